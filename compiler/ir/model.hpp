@@ -89,7 +89,8 @@ struct Body {
 // A place on a body or a ground. `frame` names a body or a ground.
 struct Attachment {
   std::string frame;
-  Vec3 point;  // global coordinates at the nominal configuration
+  Vec3 point;              // global coordinates at the nominal configuration
+  bool has_point = false;  // written with `at`; otherwise `point` is the body's centre of mass (ground: origin)
   SourceLoc loc;
 };
 

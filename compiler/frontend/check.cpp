@@ -1,0 +1,162 @@
+#include "frontend/check.hpp"
+
+#include <map>
+#include <set>
+
+#include "frontend/diagnostics.hpp"
+
+namespace mbgen::frontend {
+
+namespace {
+
+class Checker {
+ public:
+  explicit Checker(ir::Model& m) : m_(m) {}
+
+  void run() {
+    declare_all();
+    check_parameters();
+    for (ir::Body& b : m_.bodies) check_body(b);
+    for (ir::Element& e : m_.elements) check_element(e);
+    for (ir::Spin& s : m_.spins) check_spin(s);
+    for (ir::Input& in : m_.inputs) {
+      check_signal_frame(in.at, "input", in.name);
+      check_direction(in.direction);
+    }
+    for (ir::Output& out : m_.outputs) {
+      check_signal_frame(out.at, "output", out.name);
+      check_direction(out.direction);
+    }
+    check_connected();
+  }
+
+ private:
+  [[noreturn]] void fail(ir::SourceLoc loc, const std::string& msg) const { throw ModelError(m_.file, loc, msg); }
+
+  // Names live in four spaces: parameters, frames (grounds and bodies), elements, signals (inputs and outputs,
+  // which share one space because they name the columns of a data file).
+  void declare(std::map<std::string, ir::SourceLoc>& space, const std::string& what, const std::string& name,
+               ir::SourceLoc loc) {
+    const auto [it, fresh] = space.emplace(name, loc);
+    if (!fresh)
+      fail(loc, what + " `" + name + "` is already declared at line " + std::to_string(it->second.line) + ", column " +
+                    std::to_string(it->second.column));
+  }
+
+  void declare_all() {
+    for (const ir::Parameter& p : m_.parameters) {
+      if (p.name == "pi" || p.name == "inf") fail(p.loc, "`" + p.name + "` is reserved and cannot name a parameter");
+      declare(params_, "parameter", p.name, p.loc);
+    }
+    for (const ir::Ground& g : m_.grounds) declare(frames_, "a frame named", g.name, g.loc);
+    for (const ir::Body& b : m_.bodies) declare(frames_, "a frame named", b.name, b.loc);
+    for (const ir::Element& e : m_.elements) declare(elements_, "element", e.name, e.loc);
+    for (const ir::Input& in : m_.inputs) declare(signals_, "a signal named", in.name, in.loc);
+    for (const ir::Output& out : m_.outputs) declare(signals_, "a signal named", out.name, out.loc);
+  }
+
+  void check_expr(const ir::Expr& e) const {
+    if (e.kind == ir::Expr::Kind::Symbol) {
+      if (e.text != "pi" && !params_.count(e.text)) {
+        if (e.text == "inf") fail(e.loc, "`inf` is only allowed as a bound (`in [0, inf]`)");
+        fail(e.loc, "unknown parameter `" + e.text + "`: declare it with `param " + e.text + " = VALUE`");
+      }
+      return;
+    }
+    for (const ir::Expr& a : e.args) check_expr(a);
+  }
+
+  void check_vec(const ir::Vec3& v) const {
+    for (const ir::Expr& e : v) check_expr(e);
+  }
+
+  void check_parameters() {
+    for (const ir::Parameter& p : m_.parameters) {
+      check_expr(p.value);
+      if (p.lower) check_expr(*p.lower);
+      if (p.upper) check_expr(*p.upper);
+    }
+    // Cycles among derived parameters: depth-first search with colours.
+    std::map<std::string, int> state;  // 0 unvisited, 1 on the stack, 2 done
+    for (const ir::Parameter& p : m_.parameters) visit(p, state);
+  }
+
+  void visit(const ir::Parameter& p, std::map<std::string, int>& state) {
+    int& s = state[p.name];
+    if (s == 2) return;
+    if (s == 1) fail(p.loc, "parameter `" + p.name + "` is defined in terms of itself");
+    s = 1;
+    for (const std::string& n : ir::symbols_of(p.value)) visit(*m_.find_parameter(n), state);
+    state[p.name] = 2;
+  }
+
+  void check_body(ir::Body& b) {
+    check_expr(b.mass);
+    for (const auto& j : b.inertia)
+      if (j) check_expr(*j);
+    check_vec(b.position);
+    if (b.dofs.empty()) fail(b.loc, "body `" + b.name + "` has no coordinates: give it a `dof` line (x y z rx ry rz)");
+  }
+
+  // Resolves the frame and fills an implicit point.
+  void resolve(ir::Attachment& a) const {
+    if (const ir::Body* b = m_.find_body(a.frame)) {
+      if (!a.has_point) a.point = b->position;
+    } else if (!m_.is_ground(a.frame)) {
+      fail(a.loc, "unknown frame `" + a.frame + "`: expected the name of a body or a ground");
+    }
+    check_vec(a.point);
+  }
+
+  void check_direction(const ir::Direction& d) const {
+    check_vec(d.vector);
+    bool all_zero = true;
+    for (const ir::Expr& e : d.vector) all_zero = all_zero && e.is_number() && std::stod(e.text) == 0.0;
+    if (all_zero) fail(d.loc, "a direction must not be the zero vector");
+  }
+
+  void check_element(ir::Element& e) {
+    resolve(e.a);
+    resolve(e.b);
+    if (e.a.frame == e.b.frame) fail(e.b.loc, "element `" + e.name + "` joins `" + e.a.frame + "` to itself");
+    if (m_.is_ground(e.a.frame) && m_.is_ground(e.b.frame))
+      fail(e.b.loc, "element `" + e.name + "` joins two grounds: it would do nothing");
+    if (e.kind != ir::ElementKind::Spring3) check_direction(e.direction);
+    for (const ir::Expr& k : e.stiffness) check_expr(k);
+    for (const ir::Expr& c : e.damping) check_expr(c);
+  }
+
+  void check_spin(ir::Spin& s) {
+    if (!m_.find_body(s.body)) fail(s.loc, "unknown body `" + s.body + "`: only a body can spin");
+    check_expr(s.speed);
+    if (!spinning_.insert(s.body).second) fail(s.loc, "body `" + s.body + "` is given a spin twice");
+  }
+
+  void check_signal_frame(ir::Attachment& a, const std::string& what, const std::string& name) {
+    if (m_.is_ground(a.frame))
+      fail(a.loc, what + " `" + name + "` is on ground `" + a.frame + "`, which does not move: put it on a body");
+    resolve(a);
+  }
+
+  // Every body must be held by some element; otherwise it floats free or is forgotten.
+  void check_connected() const {
+    std::set<std::string> connected;
+    for (const ir::Element& e : m_.elements) {
+      connected.insert(e.a.frame);
+      connected.insert(e.b.frame);
+    }
+    for (const ir::Body& b : m_.bodies)
+      if (!connected.count(b.name))
+        fail(b.loc, "body `" + b.name + "` is not connected: no spring, spring3 or torsion element attaches to it");
+  }
+
+  ir::Model& m_;
+  std::map<std::string, ir::SourceLoc> params_, frames_, elements_, signals_;
+  std::set<std::string> spinning_;
+};
+
+}  // namespace
+
+void check_model(ir::Model& model) { Checker(model).run(); }
+
+}  // namespace mbgen::frontend

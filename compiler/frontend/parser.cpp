@@ -1,0 +1,480 @@
+#include "frontend/parser.hpp"
+
+#include <cctype>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "frontend/check.hpp"
+#include "frontend/diagnostics.hpp"
+#include "frontend/lexer.hpp"
+
+namespace mbgen::frontend {
+
+namespace {
+
+using ir::Expr;
+using ir::SourceLoc;
+
+class Parser {
+ public:
+  Parser(std::vector<Token> tokens, std::string file) : tokens_(std::move(tokens)), file_(std::move(file)) {}
+
+  ir::Model run() {
+    model_.file = file_;
+    skip_newlines();
+    while (peek().kind != TokenKind::End) {
+      statement();
+      skip_newlines();
+    }
+    return std::move(model_);
+  }
+
+ private:
+  // ---- token helpers -------------------------------------------------------------------------------
+  const Token& peek() const { return tokens_[i_]; }
+  const Token& next() { return tokens_[i_ < tokens_.size() - 1 ? i_++ : i_]; }
+  bool at_punct(const char* p) const { return peek().kind == TokenKind::Punct && peek().text == p; }
+  bool at_word(const char* w) const { return peek().kind == TokenKind::Name && peek().text == w; }
+
+  [[noreturn]] void fail(const Token& t, const std::string& expected) const {
+    throw ModelError(file_, t.loc, "expected " + expected + ", found " + describe(t));
+  }
+  [[noreturn]] void fail_at(SourceLoc loc, const std::string& message) const { throw ModelError(file_, loc, message); }
+
+  void expect_punct(const char* p) {
+    if (!at_punct(p)) fail(peek(), std::string("`") + p + "`");
+    next();
+  }
+  void expect_word(const char* w) {
+    if (!at_word(w)) fail(peek(), std::string("`") + w + "`");
+    next();
+  }
+  Token expect_name(const std::string& what) {
+    if (peek().kind != TokenKind::Name) fail(peek(), what);
+    return next();
+  }
+  void skip_newlines() {
+    while (peek().kind == TokenKind::Newline || at_punct(";")) next();
+  }
+  // A statement ends at a newline, `;`, the end of the file, or (inside a block) before `}`.
+  void end_statement() {
+    if (peek().kind == TokenKind::Newline || at_punct(";")) {
+      next();
+      return;
+    }
+    if (peek().kind == TokenKind::End || at_punct("}")) return;
+    fail(peek(), "end of statement (a new line or `;`)");
+  }
+
+  // ---- statements ----------------------------------------------------------------------------------
+  void statement() {
+    const Token& t = peek();
+    if (t.kind != TokenKind::Name)
+      fail(t, "a statement (model, param, ground, body, spring, spring3, torsion, spin, input, output)");
+    const std::string kw = t.text;
+    if (kw == "model") return model_statement();
+    if (kw == "param") return param_statement();
+    if (kw == "ground") return ground_statement();
+    if (kw == "body") return body_statement();
+    if (kw == "spring") return element_statement(ir::ElementKind::Spring);
+    if (kw == "spring3") return element_statement(ir::ElementKind::Spring3);
+    if (kw == "torsion") return element_statement(ir::ElementKind::Torsion);
+    if (kw == "spin") return spin_statement();
+    if (kw == "input") return input_statement();
+    if (kw == "output") return output_statement();
+    fail(t, "a statement (model, param, ground, body, spring, spring3, torsion, spin, input, output)");
+  }
+
+  void model_statement() {
+    const Token kw = next();
+    if (!model_.name.empty()) fail_at(kw.loc, "a second `model` statement: the model is already named `" + model_.name + "`");
+    model_.name = expect_name("the model's name").text;
+    end_statement();
+  }
+
+  void param_statement() {
+    next();
+    ir::Parameter p;
+    const Token name = expect_name("a parameter name");
+    p.name = name.text;
+    p.loc = name.loc;
+    expect_punct("=");
+    p.value = expr();
+    p.derived = !ir::symbols_of(p.value).empty();
+    if (peek().kind == TokenKind::String) p.unit = next().text;
+    bool role_given = false;
+    if (at_word("known") || at_word("estimate") || at_word("fixed")) {
+      const Token r = next();
+      p.role = r.text == "known" ? ir::Role::Known : r.text == "estimate" ? ir::Role::Estimate : ir::Role::Fixed;
+      role_given = true;
+      if (p.derived && p.role == ir::Role::Estimate)
+        fail_at(r.loc, "parameter `" + p.name + "` is derived (an expression of other parameters) and cannot be `estimate`; estimate the parameters it is built from");
+    }
+    if (at_word("in")) {
+      next();
+      expect_punct("[");
+      p.lower = bound();
+      expect_punct(",");
+      p.upper = bound();
+      expect_punct("]");
+    }
+    if (peek().kind == TokenKind::String && !role_given)
+      fail(peek(), "a role (known, estimate, fixed) or bounds (`in [LOWER, UPPER]`): the unit comes right after the value");
+    if (peek().kind != TokenKind::Newline && !at_punct(";") && peek().kind != TokenKind::End)
+      fail(peek(), "a unit string, a role (known, estimate, fixed), bounds `in [LOWER, UPPER]` or the end of the statement");
+    end_statement();
+    model_.parameters.push_back(std::move(p));
+  }
+
+  // A bound: an expression, or `inf` / `-inf` for an open end.
+  std::optional<Expr> bound() {
+    if (at_word("inf")) {
+      next();
+      return std::nullopt;
+    }
+    if (at_punct("-") && tokens_[i_ + 1].kind == TokenKind::Name && tokens_[i_ + 1].text == "inf") {
+      next();
+      next();
+      return std::nullopt;
+    }
+    return expr();
+  }
+
+  void ground_statement() {
+    next();
+    const Token name = expect_name("a ground name");
+    model_.grounds.push_back({name.text, name.loc});
+    end_statement();
+  }
+
+  void open_block() {
+    expect_punct("{");
+    skip_newlines();
+  }
+
+  // Runs `item` for each statement of a { } block.
+  template <typename F>
+  void block(F item) {
+    open_block();
+    while (!at_punct("}")) {
+      if (peek().kind == TokenKind::End) fail(peek(), "`}` to close the block");
+      item();
+      skip_newlines();
+    }
+    next();
+    end_statement();
+  }
+
+  void body_statement() {
+    next();
+    ir::Body b;
+    const Token name = expect_name("a body name");
+    b.name = name.text;
+    b.loc = name.loc;
+    b.position = zero_vec(name.loc);
+    bool has_mass = false, has_inertia = false, has_at = false, has_dof = false;
+    auto once = [&](bool& seen, const Token& t) {
+      if (seen) fail_at(t.loc, "`" + t.text + "` given twice in body `" + b.name + "`");
+      seen = true;
+    };
+    block([&] {
+      const Token t = expect_name("a body item (mass, inertia, at, dof)");
+      if (t.text == "mass") {
+        once(has_mass, t);
+        b.mass = expr();
+      } else if (t.text == "inertia") {
+        once(has_inertia, t);
+        std::vector<Expr> v = expr_list();
+        if (v.size() != 3 && v.size() != 6)
+          fail_at(t.loc, "`inertia` takes 3 values (XX, YY, ZZ) or 6 (XX, YY, ZZ, XY, XZ, YZ), found " + std::to_string(v.size()));
+        for (std::size_t k = 0; k < v.size(); ++k) b.inertia[k] = std::move(v[k]);
+      } else if (t.text == "at") {
+        once(has_at, t);
+        b.position = vec3();
+      } else if (t.text == "dof") {
+        once(has_dof, t);
+        dofs(b);
+      } else {
+        fail(t, "a body item (mass, inertia, at, dof)");
+      }
+      end_statement();
+    });
+    if (!has_mass) fail_at(b.loc, "body `" + b.name + "` has no `mass`");
+    model_.bodies.push_back(std::move(b));
+  }
+
+  void dofs(ir::Body& b) {
+    static const char* names[] = {"x", "y", "z", "rx", "ry", "rz"};
+    do {
+      if (at_punct(",")) next();
+      const Token t = expect_name("a coordinate (x, y, z, rx, ry, rz)");
+      int k = 0;
+      while (k < 6 && t.text != names[k]) ++k;
+      if (k == 6) fail(t, "a coordinate (x, y, z, rx, ry, rz)");
+      const ir::Dof d = static_cast<ir::Dof>(k);
+      for (ir::Dof seen : b.dofs)
+        if (seen == d) fail_at(t.loc, "coordinate `" + t.text + "` given twice for body `" + b.name + "`");
+      b.dofs.push_back(d);
+    } while (peek().kind == TokenKind::Name || at_punct(","));
+  }
+
+  void element_statement(ir::ElementKind kind) {
+    const Token kw = next();
+    ir::Element e;
+    e.kind = kind;
+    const Token name = expect_name("an element name");
+    e.name = name.text;
+    e.loc = name.loc;
+    bool has_from = false, has_to = false, has_dir = false, has_k = false, has_c = false;
+    const std::size_t count = kind == ir::ElementKind::Spring3 ? 3 : 1;
+    const char* dir_word = kind == ir::ElementKind::Torsion ? "about" : "along";
+    const std::string items = kind == ir::ElementKind::Spring3 ? "from, to, stiffness, damping"
+                                                                 : std::string("from, to, ") + dir_word + ", stiffness, damping";
+    auto once = [&](bool& seen, const Token& t) {
+      if (seen) fail_at(t.loc, "`" + t.text + "` given twice in " + kw.text + " `" + e.name + "`");
+      seen = true;
+    };
+    auto values = [&](const Token& t) {
+      std::vector<Expr> v = expr_list();
+      if (v.size() != count)
+        fail_at(t.loc, "a " + kw.text + " takes " + std::to_string(count) + (count == 1 ? " value" : " values (x, y, z)") +
+                           " for `" + t.text + "`, found " + std::to_string(v.size()));
+      return v;
+    };
+    block([&] {
+      const Token t = expect_name("an element item (" + items + ")");
+      if (t.text == "from") {
+        once(has_from, t);
+        e.a = attachment(kind != ir::ElementKind::Torsion);
+      } else if (t.text == "to") {
+        once(has_to, t);
+        e.b = attachment(kind != ir::ElementKind::Torsion);
+      } else if (kind != ir::ElementKind::Spring3 && t.text == dir_word) {
+        once(has_dir, t);
+        e.direction = direction();
+      } else if (t.text == "stiffness") {
+        once(has_k, t);
+        e.stiffness = values(t);
+      } else if (t.text == "damping") {
+        once(has_c, t);
+        e.damping = values(t);
+      } else {
+        fail(t, "an element item (" + items + ")");
+      }
+      end_statement();
+    });
+    if (!has_from) fail_at(e.loc, kw.text + " `" + e.name + "` has no `from`");
+    if (!has_to) fail_at(e.loc, kw.text + " `" + e.name + "` has no `to`");
+    if (kind != ir::ElementKind::Spring3 && !has_dir)
+      fail_at(e.loc, kw.text + " `" + e.name + "` has no `" + dir_word + "` direction");
+    if (!has_k) fail_at(e.loc, kw.text + " `" + e.name + "` has no `stiffness`");
+    model_.elements.push_back(std::move(e));
+  }
+
+  void spin_statement() {
+    next();
+    ir::Spin s;
+    const Token body = expect_name("the name of the spinning body");
+    s.body = body.text;
+    s.loc = body.loc;
+    expect_word("about");
+    const Token axis = expect_name("a spin axis (x, y or z)");
+    if (axis.text != "x" && axis.text != "y" && axis.text != "z") fail(axis, "a spin axis (x, y or z)");
+    s.axis = axis.text;
+    expect_word("speed");
+    s.speed = expr();
+    end_statement();
+    model_.spins.push_back(std::move(s));
+  }
+
+  void input_statement() {
+    next();
+    ir::Input in;
+    const Token name = expect_name("an input name");
+    in.name = name.text;
+    in.loc = name.loc;
+    const Token kind = expect_name("`force` or `moment`");
+    if (kind.text == "force") in.kind = ir::InputKind::Force;
+    else if (kind.text == "moment") in.kind = ir::InputKind::Moment;
+    else fail(kind, "`force` or `moment`");
+    expect_word("on");
+    in.at = attachment(in.kind == ir::InputKind::Force);
+    expect_word("along");
+    in.direction = direction();
+    end_statement();
+    model_.inputs.push_back(std::move(in));
+  }
+
+  void output_statement() {
+    next();
+    ir::Output out;
+    const Token name = expect_name("an output name");
+    out.name = name.text;
+    out.loc = name.loc;
+    const Token kind = expect_name("`displacement`, `velocity` or `acceleration`");
+    if (kind.text == "displacement") out.kind = ir::OutputKind::Displacement;
+    else if (kind.text == "velocity") out.kind = ir::OutputKind::Velocity;
+    else if (kind.text == "acceleration") out.kind = ir::OutputKind::Acceleration;
+    else fail(kind, "`displacement`, `velocity` or `acceleration`");
+    expect_word("of");
+    out.at = attachment(true);
+    expect_word("along");
+    out.direction = direction();
+    end_statement();
+    model_.outputs.push_back(std::move(out));
+  }
+
+  // ---- pieces --------------------------------------------------------------------------------------
+  ir::Attachment attachment(bool point_allowed) {
+    ir::Attachment a;
+    const Token frame = expect_name("a body or ground name");
+    a.frame = frame.text;
+    a.loc = frame.loc;
+    a.point = zero_vec(frame.loc);
+    if (at_word("at")) {
+      if (!point_allowed) fail_at(peek().loc, "a point (`at`) has no meaning here: rotations do not depend on the point");
+      next();
+      a.point = vec3();
+      a.has_point = true;
+    }
+    return a;
+  }
+
+  ir::Direction direction() {
+    ir::Direction d;
+    d.loc = peek().loc;
+    if (at_punct("(")) {
+      d.vector = vec3();
+      return d;
+    }
+    const Token axis = expect_name("a direction: x, y, z or a vector (A, B, C)");
+    if (axis.text != "x" && axis.text != "y" && axis.text != "z") fail(axis, "a direction: x, y, z or a vector (A, B, C)");
+    d.axis = axis.text;
+    for (int k = 0; k < 3; ++k) d.vector[k] = Expr::number(std::string(1, "xyz"[k]) == axis.text ? "1" : "0", axis.loc);
+    return d;
+  }
+
+  static ir::Vec3 zero_vec(SourceLoc loc) { return {Expr::number("0", loc), Expr::number("0", loc), Expr::number("0", loc)}; }
+
+  ir::Vec3 vec3() {
+    expect_punct("(");
+    Expr x = expr();
+    expect_punct(",");
+    Expr y = expr();
+    expect_punct(",");
+    Expr z = expr();
+    expect_punct(")");
+    return {std::move(x), std::move(y), std::move(z)};
+  }
+
+  std::vector<Expr> expr_list() {
+    std::vector<Expr> v{expr()};
+    while (at_punct(",")) {
+      next();
+      v.push_back(expr());
+    }
+    return v;
+  }
+
+  // ---- expressions ---------------------------------------------------------------------------------
+  Expr expr() {
+    Expr left = term();
+    while (at_punct("+") || at_punct("-")) {
+      const Token op = next();
+      left = Expr::binary(op.text == "+" ? Expr::Kind::Add : Expr::Kind::Sub, std::move(left), term(), op.loc);
+    }
+    return left;
+  }
+
+  Expr term() {
+    Expr left = unary();
+    while (at_punct("*") || at_punct("/")) {
+      const Token op = next();
+      left = Expr::binary(op.text == "*" ? Expr::Kind::Mul : Expr::Kind::Div, std::move(left), unary(), op.loc);
+    }
+    return left;
+  }
+
+  Expr unary() {
+    if (at_punct("-")) {
+      const Token op = next();
+      return Expr::negate(unary(), op.loc);
+    }
+    return power();
+  }
+
+  Expr power() {
+    Expr base = primary();
+    if (at_punct("^")) {
+      const Token op = next();
+      return Expr::binary(Expr::Kind::Pow, std::move(base), unary(), op.loc);
+    }
+    return base;
+  }
+
+  Expr primary() {
+    const Token& t = peek();
+    if (t.kind == TokenKind::Number) {
+      next();
+      return Expr::number(t.text, t.loc);
+    }
+    if (t.kind == TokenKind::Name) {
+      const Token name = next();
+      if (!at_punct("(")) return Expr::symbol(name.text, name.loc);
+      if (name.text != "sqrt" && name.text != "sin" && name.text != "cos")
+        fail_at(name.loc, "unknown function `" + name.text + "`: the functions are sqrt, sin and cos");
+      next();
+      std::vector<Expr> args = expr_list();
+      expect_punct(")");
+      if (args.size() != 1) fail_at(name.loc, "`" + name.text + "` takes one argument, found " + std::to_string(args.size()));
+      return Expr::call(name.text, std::move(args), name.loc);
+    }
+    if (at_punct("(")) {
+      next();
+      Expr inner = expr();
+      expect_punct(")");
+      return inner;
+    }
+    fail(t, "an expression (a number, a parameter name or `(`)");
+  }
+
+  std::vector<Token> tokens_;
+  std::string file_;
+  std::size_t i_ = 0;
+  ir::Model model_;
+};
+
+// The model's name defaults to the file's stem, made a valid identifier (it names a C++ namespace).
+std::string stem_of(const std::string& path) {
+  std::string base = path.substr(path.find_last_of('/') + 1);
+  const std::size_t dot = base.find_last_of('.');
+  if (dot != std::string::npos && dot != 0) base = base.substr(0, dot);
+  for (char& c : base)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  if (base.empty() || std::isdigit(static_cast<unsigned char>(base[0]))) base = "m_" + base;
+  return base;
+}
+
+}  // namespace
+
+ir::Model parse_string(const std::string& text, const std::string& file_name) {
+  ir::Model model = Parser(tokenize(text, file_name), file_name).run();
+  if (model.name.empty()) model.name = file_name == "-" || file_name.empty() ? "model" : stem_of(file_name);
+  check_model(model);
+  return model;
+}
+
+ir::Model parse_file(const std::string& path) {
+  std::ostringstream text;
+  if (path == "-") {
+    text << std::cin.rdbuf();
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ModelError(path, {}, "cannot open the model file");
+    text << in.rdbuf();
+  }
+  return parse_string(text.str(), path);
+}
+
+}  // namespace mbgen::frontend

@@ -1,0 +1,16 @@
+// The .mdl parser: text -> checked ir::Model. Grammar and rules: docs/language.md.
+#pragma once
+
+#include <string>
+
+#include "ir/model.hpp"
+
+namespace mbgen::frontend {
+
+// Reads and parses a model file ("-" reads standard input). Throws ModelError naming file, line and column.
+ir::Model parse_file(const std::string& path);
+
+// Parses model text; `file_name` is used in messages and stored in the model.
+ir::Model parse_string(const std::string& text, const std::string& file_name);
+
+}  // namespace mbgen::frontend
