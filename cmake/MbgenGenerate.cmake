@@ -1,0 +1,41 @@
+# mbgen_generate(TARGET <target> MODELS <a.mdl> [<b.mdl> ...] [NAMESPACE <ns>] [OUTPUT_DIR <dir>])
+#
+# Generates C++ for each model at build time with `mbgen MODEL.mdl -o NAME_model.cpp --header NAME_model.hpp`,
+# adds the sources to <target>, puts OUTPUT_DIR on its include path and links the mbgen runtime. Regenerates
+# when a model (or mbgen itself) changes. NAME is the model file's stem. Like flatbuffers_generate_headers().
+#
+# Works in the mbgen source tree (target `mbgen`) and after find_package(mbgen) (imported `mbgen::mbgen`).
+function(mbgen_generate)
+  cmake_parse_arguments(ARG "" "TARGET;NAMESPACE;OUTPUT_DIR" "MODELS" ${ARGN})
+  if(NOT ARG_TARGET OR NOT ARG_MODELS)
+    message(FATAL_ERROR "mbgen_generate: TARGET and MODELS are required")
+  endif()
+  if(NOT ARG_OUTPUT_DIR)
+    set(ARG_OUTPUT_DIR "${CMAKE_CURRENT_BINARY_DIR}/mbgen_generated")
+  endif()
+  if(TARGET mbgen::mbgen)
+    set(mbgen_exe mbgen::mbgen)
+  else()
+    message(FATAL_ERROR "mbgen_generate: no mbgen executable (call find_package(mbgen) first)")
+  endif()
+  file(MAKE_DIRECTORY "${ARG_OUTPUT_DIR}")
+  foreach(model IN LISTS ARG_MODELS)
+    get_filename_component(model_abs "${model}" ABSOLUTE)
+    get_filename_component(stem "${model}" NAME_WE)
+    set(cpp "${ARG_OUTPUT_DIR}/${stem}_model.cpp")
+    set(hpp "${ARG_OUTPUT_DIR}/${stem}_model.hpp")
+    set(ns_args "")
+    if(ARG_NAMESPACE)
+      set(ns_args --namespace "${ARG_NAMESPACE}")
+    endif()
+    add_custom_command(
+      OUTPUT "${cpp}" "${hpp}"
+      COMMAND ${mbgen_exe} "${model_abs}" -o "${cpp}" --header "${hpp}" ${ns_args}
+      DEPENDS "${model_abs}" ${mbgen_exe}
+      COMMENT "mbgen: generating C++ for ${model}"
+      VERBATIM)
+    target_sources(${ARG_TARGET} PRIVATE "${cpp}" "${hpp}")
+  endforeach()
+  target_include_directories(${ARG_TARGET} PUBLIC "${ARG_OUTPUT_DIR}")
+  target_link_libraries(${ARG_TARGET} PUBLIC mbgen::runtime)
+endfunction()
