@@ -1,0 +1,115 @@
+#include "mbgen/modal.hpp"
+
+#include "matrix_checks.hpp"
+#include "mbgen/dynamics_error.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mbgen {
+namespace {
+
+constexpr double two_pi = 6.283185307179586476925286766559;
+
+Mode make_mode(std::complex<double> lambda, const Eigen::VectorXcd& state_vector, Eigen::Index n) {
+  Mode mode;
+  mode.eigenvalue = lambda;
+  const double magnitude = std::abs(lambda);
+  mode.f_hz = magnitude / two_pi;
+  mode.zeta = magnitude > 0 ? -lambda.real() / magnitude : 0.0;
+  mode.shape = state_vector.head(n);
+  // Scale so that the largest entry is exactly 1: removes the solver's arbitrary complex factor.
+  Eigen::Index largest = 0;
+  if (n > 0) mode.shape.cwiseAbs().maxCoeff(&largest);
+  if (n > 0 && std::abs(mode.shape[largest]) > 0) {
+    const std::complex<double> scale = mode.shape[largest];
+    mode.shape /= scale;
+    mode.shape[largest] = 1.0;
+  }
+  return mode;
+}
+
+}  // namespace
+
+std::vector<Mode> modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C, const Eigen::MatrixXd& K) {
+  const char* where = "modal_analysis";
+  const Eigen::Index n = M.rows();
+  const auto lu = detail::factor_mass(M, where);
+  detail::require_square(C, n, "C", where);
+  detail::require_square(K, n, "K", where);
+
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  A.topRightCorner(n, n).setIdentity();
+  A.bottomLeftCorner(n, n) = -lu.solve(K);
+  A.bottomRightCorner(n, n) = -lu.solve(C);
+
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(A, /*computeEigenvectors=*/true);
+  if (solver.info() != Eigen::Success) throw DynamicsError("modal_analysis: the eigenvalue iteration did not converge");
+  const Eigen::VectorXcd lambda = solver.eigenvalues();
+  const Eigen::MatrixXcd vectors = solver.eigenvectors();
+
+  // Eigen's real Schur form returns real eigenvalues with an imaginary part of exactly zero and complex ones
+  // in conjugate pairs, so the sign of the imaginary part selects one member of each pair without tolerance.
+  std::vector<Mode> modes;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+    if (lambda[i].imag() < 0) continue;
+    modes.push_back(make_mode(lambda[i], vectors.col(i), n));
+  }
+  std::stable_sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) {
+    if (a.f_hz != b.f_hz) return a.f_hz < b.f_hz;
+    return a.zeta < b.zeta;
+  });
+  return modes;
+}
+
+Eigen::VectorXd undamped_natural_frequencies_hz(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K) {
+  const char* where = "undamped_natural_frequencies_hz";
+  detail::factor_mass(M, where);
+  detail::require_square(K, M.rows(), "K", where);
+  const Eigen::MatrixXd Ms = 0.5 * (M + M.transpose());
+  const Eigen::MatrixXd Ks = 0.5 * (K + K.transpose());
+  if (Eigen::LLT<Eigen::MatrixXd>(Ms).info() != Eigen::Success)
+    throw DynamicsError(std::string(where) + ": mass matrix M is not positive definite");
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(Ks, Ms, Eigen::EigenvaluesOnly | Eigen::Ax_lBx);
+  if (solver.info() != Eigen::Success) throw DynamicsError(std::string(where) + ": eigen solver failed");
+  Eigen::VectorXd f = solver.eigenvalues();  // ascending
+  for (Eigen::Index i = 0; i < f.size(); ++i) f[i] = std::sqrt(std::max(f[i], 0.0)) / two_pi;
+  return f;
+}
+
+Eigen::MatrixXd modal_assurance_criterion(const Eigen::MatrixXcd& a, const Eigen::MatrixXcd& b) {
+  if (a.rows() != b.rows())
+    throw DynamicsError("modal_assurance_criterion: shape sets have different lengths (" +
+                        std::to_string(a.rows()) + " and " + std::to_string(b.rows()) + ")");
+  Eigen::MatrixXd mac(a.cols(), b.cols());
+  for (Eigen::Index i = 0; i < a.cols(); ++i) {
+    const double aa = a.col(i).squaredNorm();
+    for (Eigen::Index j = 0; j < b.cols(); ++j) {
+      const double bb = b.col(j).squaredNorm();
+      const double denominator = aa * bb;
+      mac(i, j) = denominator > 0 ? std::norm(a.col(i).dot(b.col(j))) / denominator : 0.0;
+    }
+  }
+  return mac;
+}
+
+namespace {
+Eigen::MatrixXcd shape_matrix(const std::vector<Mode>& modes) {
+  const Eigen::Index rows = modes.empty() ? 0 : modes.front().shape.size();
+  Eigen::MatrixXcd shapes(rows, static_cast<Eigen::Index>(modes.size()));
+  for (std::size_t j = 0; j < modes.size(); ++j) {
+    if (modes[j].shape.size() != rows) throw DynamicsError("modal_assurance_criterion: modes of different lengths");
+    shapes.col(static_cast<Eigen::Index>(j)) = modes[j].shape;
+  }
+  return shapes;
+}
+}  // namespace
+
+Eigen::MatrixXd modal_assurance_criterion(const std::vector<Mode>& a, const std::vector<Mode>& b) {
+  return modal_assurance_criterion(shape_matrix(a), shape_matrix(b));
+}
+
+}  // namespace mbgen
