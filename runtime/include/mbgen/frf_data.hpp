@@ -1,0 +1,31 @@
+// Measured frequency response functions: complex values of output per unit input at a list of frequencies.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mbgen/data_settings.hpp"
+
+namespace mbgen {
+
+struct FrfChannel {
+  std::string output;  // model output name (numerator)
+  std::string input;   // model input name (denominator)
+  Eigen::VectorXcd values;                  // one per frequency, units of output per unit of input
+  std::optional<Eigen::VectorXd> coherence;  // 0..1, one per frequency, when measured
+};
+
+struct FrfData {
+  std::string file;  // where it was read from, for messages
+  SetMap set;        // `# set NAME=VALUE` lines
+  Eigen::VectorXd f_hz;  // frequencies in Hz, non-negative, strictly increasing
+  std::vector<FrfChannel> channels;  // in file column order
+
+  // The channel OUTPUT/INPUT, or nullptr.
+  const FrfChannel* find(const std::string& output, const std::string& input) const;
+};
+
+}  // namespace mbgen

@@ -1,0 +1,53 @@
+// Internal helpers shared by the data readers: line reading with line numbers, field splitting, strict
+// number parsing, and the `# set` / `# hold` configuration lines.
+#pragma once
+
+#include <istream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mbgen/data_settings.hpp"
+
+namespace mbgen::data_detail {
+
+std::string_view trim(std::string_view s);
+
+// Reads lines, counting them from 1 and dropping a trailing '\r' (files written on Windows).
+class LineReader {
+ public:
+  explicit LineReader(std::istream& in) : in_(in) {}
+  bool next(std::string& line);
+  int line_number() const { return line_; }
+
+ private:
+  std::istream& in_;
+  int line_ = 0;
+};
+
+// Splits at commas; fields are trimmed of blanks. Quoting is not supported.
+std::vector<std::string_view> split_fields(std::string_view line);
+
+// The whole of `text` as a decimal number (a leading '+' allowed; with `fortran_exponent` also 'D' as the
+// exponent letter). Returns nullopt when it is not one; the value may be non-finite ("nan", "inf").
+std::optional<double> parse_number(std::string_view text, bool fortran_exponent = false);
+
+// True for a C-like identifier: a letter or '_' followed by letters, digits or '_'.
+bool is_identifier(std::string_view s);
+
+// Configuration collected from lines such as `# set NAME=VALUE` and `# hold=none`.
+struct DataConfig {
+  SetMap set;
+  std::optional<HoldMode> hold;
+  int hold_line = 0;  // where `hold=` was given, for messages
+};
+
+// `body` is a comment line's text after '#'. Returns false when it is a free comment; records a `set` or
+// `hold=` line in `config`, throwing DataError at (file, line) when its syntax is bad or it repeats a name.
+bool parse_config_comment(std::string_view body, const std::string& file, int line, DataConfig& config);
+
+// The shortest decimal text that reads back as the same double.
+std::string format_double(double v);
+
+}  // namespace mbgen::data_detail
