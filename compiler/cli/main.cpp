@@ -1,3 +1,38 @@
-// mbgen: the command line. Placeholder entry point until the pipeline stages land (see compiler/cli/).
+// mbgen: compile a model to C++ (`mbgen MODEL.mdl -o OUT.cpp`), or inspect, fit, diagnose it.
+// Exit status: 0 success, 1 bad input (model, data), 2 bad usage. Nothing is written on failure.
+#include <cstring>
 #include <iostream>
-int main() { std::cerr << "mbgen: not built yet\n"; return 2; }
+#include <string>
+
+#include "cli/commands.hpp"
+#include "cli/version.hpp"
+
+namespace {
+
+void print_usage() {
+  std::cout << "mbgen " << mbgen::cli::kVersion << ": a symbolic-to-numeric model compiler for mechanical systems\n\n"
+               "usage:\n"
+               "  mbgen MODEL.mdl -o OUT.cpp [--header OUT.hpp] [--namespace NS]   compile to C++\n"
+               "  mbgen inspect MODEL.mdl [--format markdown|latex|json]          symbolic matrices, TFs, modes\n\n"
+               "Run `mbgen COMMAND --help` for a command's options.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    print_usage();
+    return 2;
+  }
+  const std::string first = argv[1];
+  if (first == "--help" || first == "-h") {
+    print_usage();
+    return 0;
+  }
+  if (first == "--version") {
+    std::cout << "mbgen " << mbgen::cli::kVersion << "\n";
+    return 0;
+  }
+  if (first == "inspect") return mbgen::cli::run_inspect(argc - 1, argv + 1);
+  return mbgen::cli::run_compile(argc, argv);
+}

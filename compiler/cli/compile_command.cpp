@@ -1,0 +1,52 @@
+// `mbgen MODEL.mdl -o OUT.cpp [--header OUT.hpp] [--namespace NS]`: the build-pipeline use.
+#include "cli/commands.hpp"
+#include "cli/output_files.hpp"
+#include "cli/run_guarded.hpp"
+#include "cli/version.hpp"
+#include "emit/cpp_emitter.hpp"
+#include "frontend/parser.hpp"
+#include "symbolic/derive.hpp"
+
+namespace mbgen::cli {
+
+namespace {
+
+// OUT.cpp -> OUT.hpp (any other name gets .hpp appended).
+std::string default_header_for(const std::string& source) {
+  const std::size_t dot = source.find_last_of('.');
+  const std::size_t slash = source.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return source + ".hpp";
+  return source.substr(0, dot) + ".hpp";
+}
+
+}  // namespace
+
+int run_compile(int argc, char** argv) {
+  CLI::App app{"Compile a model to C++: a header and a source with M, C, K, B, the output map, their parameter "
+               "Jacobians, state space and transfer-function coefficients.",
+               "mbgen"};
+  std::string model_path, source_path, header_path, ns;
+  app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
+  app.add_option("-o,--output", source_path, "C++ source to write; - writes both files to standard output")->required();
+  app.add_option("--header", header_path, "header to write (default: the source's name with .hpp)");
+  app.add_option("--namespace", ns, "C++ namespace (default: mbgen_models::MODEL)");
+  app.set_version_flag("--version", std::string("mbgen ") + kVersion);
+  return run_guarded(app, argc, argv, [&] {
+    if (header_path.empty()) header_path = source_path == "-" ? "-" : default_header_for(source_path);
+    const ir::Model model = frontend::parse_file(model_path);
+    const symbolic::SymbolicModel sym = symbolic::derive(model);
+    emit::CppEmitOptions options;
+    options.namespace_name = ns;
+    options.header_file = header_path == "-" ? model.name + "_model.hpp" : header_path;
+    options.source_file = source_path == "-" ? model.name + "_model.cpp" : source_path;
+    options.model_file = model_path == "-" ? "<stdin>" : model_path;
+    const emit::CppEmitResult code = emit::emit_cpp(sym, options);
+    OutputFiles out;
+    out.add(header_path, code.header);
+    out.add(source_path, code.source);
+    out.commit();
+    return 0;
+  });
+}
+
+}  // namespace mbgen::cli

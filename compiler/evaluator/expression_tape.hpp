@@ -1,0 +1,43 @@
+// A compiled list of GiNaC expressions: evaluated in double with no GiNaC at run time.
+//
+// The expressions are first rid of common subexpressions, then flattened into a tape of three-address
+// instructions over a register file (registers 0..n_params-1 hold the parameters). Evaluating the tape is a
+// single pass, so models changed at run time are evaluated fast without a C++ compile step.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <vector>
+
+namespace mbgen::evaluator {
+
+class ExpressionTape {
+ public:
+  // `parameters` are the symbols the expressions may use, in the order evaluate() receives their values.
+  ExpressionTape(const std::vector<GiNaC::symbol>& parameters, const std::vector<GiNaC::ex>& expressions);
+
+  // Evaluates every expression at `params` into `out` (resized to the number of expressions). Thread-safe.
+  void evaluate(const double* params, std::vector<double>& out) const;
+
+  std::size_t instruction_count() const { return code_.size(); }
+
+ private:
+  enum class Op { Const, Add, Mul, Div, PowInt, PowReal, Sqrt, Sin, Cos };
+  struct Instruction {
+    Op op;
+    int dst, a, b;  // registers
+    double value;   // Const value, PowReal exponent
+    int exponent;   // PowInt exponent
+  };
+
+  int compile(const GiNaC::ex& e);
+  int emit(Op op, int a, int b = -1, double value = 0, int exponent = 0);
+
+  int n_params_ = 0;
+  int n_registers_ = 0;
+  std::vector<Instruction> code_;
+  std::vector<int> outputs_;
+  std::map<GiNaC::ex, int, GiNaC::ex_is_less> registers_;  // symbols and temporaries already in a register
+};
+
+}  // namespace mbgen::evaluator

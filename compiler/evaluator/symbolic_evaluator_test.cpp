@@ -1,0 +1,105 @@
+#include "evaluator/symbolic_evaluator.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "frontend/parser.hpp"
+
+using namespace mbgen;
+
+namespace {
+
+// Parameter values spread around the defaults, reproducibly.
+Eigen::VectorXd random_values(const ModelInfo& info, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> factor(0.5, 1.5);
+  Eigen::VectorXd p = info.default_values();
+  for (Eigen::Index i = 0; i < p.size(); ++i) p[i] = p[i] == 0 ? factor(rng) - 0.5 : p[i] * factor(rng);
+  return p;
+}
+
+double evalf_at(const GiNaC::ex& e, const symbolic::SymbolicModel& sym, const Eigen::VectorXd& p) {
+  GiNaC::exmap values;
+  for (std::size_t i = 0; i < sym.parameters.size(); ++i)
+    values[sym.parameters[i].sym] = GiNaC::numeric(p[static_cast<Eigen::Index>(i)]);
+  return GiNaC::ex_to<GiNaC::numeric>(e.subs(values).evalf()).to_double();
+}
+
+void check_against_ginac(const std::string& file) {
+  const ir::Model model = frontend::parse_file(file);
+  symbolic::DeriveOptions o;
+  o.transfer_functions = false;
+  const symbolic::SymbolicModel sym = symbolic::derive(model, o);
+  const evaluator::SymbolicEvaluator eval(sym);
+  REQUIRE(eval.info().parameters.size() == sym.parameters.size());
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const Eigen::VectorXd p = random_values(eval.info(), seed);
+    ModelMatrices mm;
+    eval.evaluate(p, mm);
+    const std::pair<const GiNaC::matrix*, const Eigen::MatrixXd*> pairs[] = {
+        {&sym.M, &mm.M}, {&sym.C_total, &mm.C}, {&sym.K, &mm.K}, {&sym.B, &mm.B},
+        {&sym.Cd, &mm.Cd}, {&sym.Cv, &mm.Cv}, {&sym.Ca, &mm.Ca}};
+    for (const auto& [exact, numeric] : pairs) {
+      REQUIRE(numeric->rows() == static_cast<Eigen::Index>(exact->rows()));
+      REQUIRE(numeric->cols() == static_cast<Eigen::Index>(exact->cols()));
+      const double scale = std::max(1.0, numeric->cwiseAbs().maxCoeff());
+      for (unsigned r = 0; r < exact->rows(); ++r)
+        for (unsigned c = 0; c < exact->cols(); ++c)
+          CHECK(std::abs((*numeric)(r, c) - evalf_at((*exact)(r, c), sym, p)) <= 1e-13 * scale);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("the evaluator agrees with exact evaluation of the symbolic matrices", "[evaluator]") {
+  check_against_ginac(MBGEN_SOURCE_DIR "/examples/mdof2/mdof2.mdl");
+  check_against_ginac(MBGEN_SOURCE_DIR "/examples/spindle/spindle.mdl");
+}
+
+TEST_CASE("the evaluator's derivatives agree with central differences", "[evaluator]") {
+  const ir::Model model = frontend::parse_file(MBGEN_SOURCE_DIR "/examples/spindle/spindle.mdl");
+  const auto eval = evaluator::make_evaluator(model);
+  const Eigen::VectorXd p = random_values(eval->info(), 7);
+  ModelDerivatives d;
+  eval->derivatives(p, d);
+  // Densify the sparse derivative of K and compare with differences of K for every parameter.
+  const Eigen::Index np = p.size();
+  for (Eigen::Index j = 0; j < np; ++j) {
+    const double h = 1e-6 * std::max(std::abs(p[j]), 1e-3);
+    Eigen::VectorXd hi = p, lo = p;
+    hi[j] += h;
+    lo[j] -= h;
+    ModelMatrices a, b, centre;
+    eval->evaluate(hi, a);
+    eval->evaluate(lo, b);
+    eval->evaluate(p, centre);
+    Eigen::MatrixXd dK = Eigen::MatrixXd::Zero(centre.K.rows(), centre.K.cols());
+    Eigen::MatrixXd dM = dK;
+    for (const DerivativeEntry& e : d.K)
+      if (e.param == j) dK(e.row, e.col) += e.value;
+    for (const DerivativeEntry& e : d.M)
+      if (e.param == j) dM(e.row, e.col) += e.value;
+    const Eigen::MatrixXd fdK = (a.K - b.K) / (2 * h), fdM = (a.M - b.M) / (2 * h);
+    CHECK((dK - fdK).norm() <= 1e-6 * std::max(1.0, fdK.norm()) + 1e-9 * centre.K.norm());
+    CHECK((dM - fdM).norm() <= 1e-6 * std::max(1.0, fdM.norm()) + 1e-9 * centre.M.norm());
+  }
+}
+
+TEST_CASE("the evaluator reports the model's metadata", "[evaluator]") {
+  const ir::Model model = frontend::parse_file(MBGEN_SOURCE_DIR "/examples/mdof2/mdof2.mdl");
+  const auto eval = evaluator::make_evaluator(model);
+  const ModelInfo& info = eval->info();
+  CHECK(info.name == "mdof2");
+  REQUIRE(info.parameter_index("k11") >= 0);
+  const ParameterInfo& k11 = info.parameters[static_cast<std::size_t>(info.parameter_index("k11"))];
+  CHECK(k11.value == 1.38e6);
+  CHECK(k11.role == ParameterRole::Estimate);
+  CHECK(k11.upper == 1e9);
+  CHECK(info.parameters[static_cast<std::size_t>(info.parameter_index("c12"))].role == ParameterRole::Fixed);
+  CHECK(info.coordinates == std::vector<std::string>{"mass1.x", "mass2.x"});
+  CHECK(info.outputs == std::vector<std::string>{"d1", "d2"});
+  CHECK_THROWS_WITH(eval->evaluate(Eigen::VectorXd::Zero(2), *std::make_unique<ModelMatrices>()),
+                    "model `mdof2` has 8 parameters, got a vector of 2");
+}
