@@ -1,0 +1,52 @@
+// Frequency response functions of M q'' + C q' + K q = B u, y = Cd q + Cv q' + Ca q'':
+//
+//   H(jw) = (Cd + jw Cv - w^2 Ca) P(jw)^-1 B,   P(jw) = -w^2 M + jw C + K,
+//
+// at a list of frequencies in Hz, for all outputs x inputs, and its exact derivatives with respect to every
+// parameter. The derivative uses one LU factorisation of P per frequency and two block solves with it:
+//
+//   X = P^-1 B (direct),  Y = Cout P^-1 (adjoint, P^T Y^T = Cout^T),
+//   dH/dp = dCout X - Y dP X + Y dB,
+//
+// where dP, dB, dCout come from the sparse DerivativeEntry lists, so each entry costs one rank-one update of
+// an outputs x inputs block: the whole Jacobian costs about (inputs + outputs) triangular solves plus
+// O(entries * outputs * inputs) per frequency, instead of one factorisation per parameter.
+#pragma once
+
+#include "mbgen/model.hpp"
+
+#include <Eigen/Core>
+
+#include <complex>
+#include <cstddef>
+#include <vector>
+
+namespace mbgen {
+
+struct FrfResult {
+  std::vector<double> freqs_hz;
+  std::vector<Eigen::MatrixXcd> H;  // H[k]: outputs x inputs at freqs_hz[k]
+};
+
+struct FrfJacobianResult {
+  std::vector<double> freqs_hz;
+  std::vector<Eigen::MatrixXcd> H;                // H[k]: outputs x inputs at freqs_hz[k]
+  std::vector<std::vector<Eigen::MatrixXcd>> dH;  // dH[k][p] = dH[k]/dp_p, outputs x inputs
+  // Work done, for benchmarks: LU factorisations of P and right-hand-side columns solved with them.
+  std::size_t lu_factorizations = 0;
+  std::size_t solved_columns = 0;
+};
+
+// Throws DynamicsError for inconsistent matrix sizes or a singular P at some frequency (an undamped resonance
+// hit exactly, or f = 0 with a singular K).
+FrfResult frf(const ModelMatrices& m, const std::vector<double>& freqs_hz);
+
+// parameter_count: number of parameters p (every DerivativeEntry::param must lie in [0, parameter_count)).
+FrfJacobianResult frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
+                               const std::vector<double>& freqs_hz);
+
+// Conveniences: evaluate the model (and its derivatives) at parameters p first.
+FrfResult frf(const Model& model, const Eigen::VectorXd& p, const std::vector<double>& freqs_hz);
+FrfJacobianResult frf_jacobian(const Model& model, const Eigen::VectorXd& p, const std::vector<double>& freqs_hz);
+
+}  // namespace mbgen

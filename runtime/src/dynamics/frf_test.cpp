@@ -1,0 +1,136 @@
+#include "mbgen/frf.hpp"
+
+#include "mbgen/dynamics_error.hpp"
+#include "test_models.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+namespace {
+
+using cd = std::complex<double>;
+const double pi = std::acos(-1.0);
+
+// REFERENCE-MODELS.md closed form: G11 = (b2 s^2 + b1 s + b0) / (s^4 + a3 s^3 + a2 s^2 + a1 s + a0), G21 with
+// numerator b1* s + b0*.
+struct Mdof2ClosedForm {
+  double m1 = 1.39, m2 = 1.09, k11 = 1.38e6, k22 = 0.24e6, k12 = 0.12e6, c11 = 13.42, c22 = 0.47, c12 = 0;
+  cd denominator(cd s) const {
+    const double mm = m1 * m2;
+    const double a3 = (c11 * m2 + c12 * m1 + c12 * m2 + c22 * m1) / mm;
+    const double a2 = (c11 * c12 + c11 * c22 + c12 * c22 + k11 * m2 + k12 * m1 + k12 * m2 + k22 * m1) / mm;
+    const double a1 = (c11 * k12 + c11 * k22 + c12 * k11 + c12 * k22 + c22 * k11 + c22 * k12) / mm;
+    const double a0 = (k11 * k12 + k11 * k22 + k12 * k22) / mm;
+    return s * s * s * s + a3 * s * s * s + a2 * s * s + a1 * s + a0;
+  }
+  cd g11(cd s) const {
+    const double mm = m1 * m2;
+    return (s * s / m1 + (c12 + c22) / mm * s + (k12 + k22) / mm) / denominator(s);
+  }
+  cd g21(cd s) const { return (c12 / (m1 * m2) * s + k12 / (m1 * m2)) / denominator(s); }
+};
+
+std::vector<double> test_frequencies() {
+  // Spread over the band, including points close to both modes (89.72 Hz, 166.29 Hz) and 0 Hz.
+  return {0.0, 1.0, 30.0, 89.0, 89.72, 89.8, 120.0, 166.0, 166.29, 170.0, 400.0, 2000.0};
+}
+
+}  // namespace
+
+TEST_CASE("mdof2 FRF matches the closed-form polynomial ratio") {
+  const mbgen::test::Mdof2Model model(/*extra_outputs=*/true);
+  const auto freqs = test_frequencies();
+  const auto result = mbgen::frf(model, model.info().default_values(), freqs);
+  REQUIRE(result.H.size() == freqs.size());
+  const Mdof2ClosedForm ref;
+  for (std::size_t k = 0; k < freqs.size(); ++k) {
+    const cd s(0, 2 * pi * freqs[k]);
+    const Eigen::MatrixXcd& H = result.H[k];
+    REQUIRE(H.rows() == 4);
+    REQUIRE(H.cols() == 1);
+    INFO("f = " << freqs[k] << " Hz");
+    CHECK(std::abs(H(0, 0) - ref.g11(s)) <= 1e-10 * std::abs(ref.g11(s)));
+    CHECK(std::abs(H(1, 0) - ref.g21(s)) <= 1e-10 * std::abs(ref.g21(s)));
+    // v1 = s d1, a2 = s^2 d2.
+    CHECK(std::abs(H(2, 0) - s * ref.g11(s)) <= 1e-10 * std::abs(s * ref.g11(s)) + 1e-300);
+    CHECK(std::abs(H(3, 0) - s * s * ref.g21(s)) <= 1e-10 * std::abs(s * s * ref.g21(s)) + 1e-300);
+  }
+  // Static compliance at 0 Hz: G11(0) = (k12 + k22) / (k11 k12 + k11 k22 + k12 k22).
+  CHECK(result.H[0](0, 0).real() == Approx((0.12e6 + 0.24e6) / (1.38e6 * 0.12e6 + 1.38e6 * 0.24e6 + 0.12e6 * 0.24e6)));
+  CHECK(result.H[0](0, 0).imag() == 0.0);
+}
+
+namespace {
+
+// Central finite differences of the whole FRF with respect to parameter i.
+std::vector<Eigen::MatrixXcd> central_difference(const mbgen::Model& model, const Eigen::VectorXd& p, int i,
+                                                 const std::vector<double>& freqs) {
+  const double h = 1e-6 * std::max(std::abs(p[i]), 1.0);
+  Eigen::VectorXd plus = p, minus = p;
+  plus[i] += h;
+  minus[i] -= h;
+  const auto Hp = mbgen::frf(model, plus, freqs).H, Hm = mbgen::frf(model, minus, freqs).H;
+  std::vector<Eigen::MatrixXcd> dH(freqs.size());
+  for (std::size_t k = 0; k < freqs.size(); ++k) dH[k] = (Hp[k] - Hm[k]) / (2 * h);
+  return dH;
+}
+
+void check_jacobian_against_finite_differences(const mbgen::Model& model, const std::vector<double>& freqs) {
+  const Eigen::VectorXd p = model.info().default_values();
+  const auto result = mbgen::frf_jacobian(model, p, freqs);
+  const auto plain = mbgen::frf(model, p, freqs);
+  REQUIRE(result.dH.size() == freqs.size());
+  CHECK(result.lu_factorizations == freqs.size());
+  for (std::size_t k = 0; k < freqs.size(); ++k) CHECK((result.H[k] - plain.H[k]).norm() == 0.0);
+  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+    const auto fd = central_difference(model, p, i, freqs);
+    // Compare entry by entry, relative to the size of that entry's derivative over the whole band (an entry
+    // that is exactly zero analytically must also be zero to rounding in the differences).
+    for (std::size_t k = 0; k < freqs.size(); ++k) {
+      REQUIRE(result.dH[k].size() == static_cast<std::size_t>(p.size()));
+      const Eigen::MatrixXcd& analytic = result.dH[k][static_cast<std::size_t>(i)];
+      INFO("parameter " << model.info().parameters[static_cast<std::size_t>(i)].name << ", f = " << freqs[k]);
+      const double scale = analytic.norm() + 1e-12 * result.H[k].norm() / std::max(std::abs(p[i]), 1.0);
+      CHECK((analytic - fd[k]).norm() <= 1e-6 * scale);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("mdof2 FRF Jacobian matches central finite differences") {
+  const mbgen::test::Mdof2Model model(/*extra_outputs=*/true);
+  check_jacobian_against_finite_differences(model, {5.0, 60.0, 89.5, 110.0, 166.5, 300.0});
+}
+
+TEST_CASE("FRF Jacobian of a random model with parameter-dependent M, C, K, B, Cd, Cv, Ca") {
+  const mbgen::test::RandomAffineModel model(5, 2, 3, 12, 42);
+  check_jacobian_against_finite_differences(model, {0.0, 3.0, 7.5, 15.0, 40.0, 100.0});
+}
+
+TEST_CASE("FRF errors") {
+  mbgen::ModelMatrices m;
+  const double w = 2 * pi * 10;
+  m.M = Eigen::MatrixXd::Constant(1, 1, 1.0);
+  m.C = Eigen::MatrixXd::Zero(1, 1);
+  m.K = Eigen::MatrixXd::Constant(1, 1, w * w);
+  m.B = Eigen::MatrixXd::Ones(1, 1);
+  m.Cd = Eigen::MatrixXd::Ones(1, 1);
+  m.Cv = Eigen::MatrixXd::Zero(1, 1);
+  m.Ca = Eigen::MatrixXd::Zero(1, 1);
+  CHECK_NOTHROW(mbgen::frf(m, {9.0, 11.0}));
+  CHECK_THROWS_WITH(mbgen::frf(m, {9.0, 10.0}), Catch::Contains("singular at 10 Hz"));
+
+  mbgen::ModelDerivatives d;
+  d.K.push_back({3, 0, 0, 1.0});
+  CHECK_THROWS_WITH(mbgen::frf_jacobian(m, d, 2, {1.0}), Catch::Contains("derivative entry 0 of K"));
+  d.K = {{0, 1, 0, 1.0}};
+  CHECK_THROWS_AS(mbgen::frf_jacobian(m, d, 2, {1.0}), mbgen::DynamicsError);
+
+  m.Cv = Eigen::MatrixXd::Zero(2, 1);
+  CHECK_THROWS_WITH(mbgen::frf(m, {1.0}), Catch::Contains("matrix Cv is 2x1, expected 1x1"));
+
+  const mbgen::test::Mdof2Model model;
+  CHECK_THROWS_WITH(mbgen::frf(model, Eigen::VectorXd::Ones(3), {1.0}), Catch::Contains("has 8 parameters"));
+}
