@@ -1,0 +1,345 @@
+#include "emit/cpp_emitter.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "emit/cxx_printer.hpp"
+#include "emit/infix_printer.hpp"
+#include "emit/template_engine.hpp"
+#include "symbolic/to_ginac.hpp"
+
+#ifndef MBGEN_VERSION
+#error "MBGEN_VERSION must be defined by the build"
+#endif
+
+namespace mbgen::emit {
+namespace {
+
+std::string dflt(const GiNaC::ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str();
+}
+
+using symbolic::SymbolicModel;
+
+std::string base_name(const std::string& path) {
+  const auto slash = path.find_last_of("/\\");
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// A C++ identifier made from a model name (letters, digits, underscores; no leading digit).
+std::string identifier(const std::string& name) {
+  std::string out;
+  for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_') ? c : '_';
+  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out = "_" + out;
+  return out;
+}
+
+void check_namespace(const std::string& ns) {
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t sep = ns.find("::", start);
+    const std::string part = ns.substr(start, sep == std::string::npos ? std::string::npos : sep - start);
+    if (part.empty() || identifier(part) != part)
+      throw std::invalid_argument("invalid C++ namespace '" + ns + "'");
+    if (sep == std::string::npos) return;
+    start = sep + 2;
+  }
+}
+
+std::string string_literal(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& sep = ", ") {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? sep : "") + items[i];
+  return out;
+}
+
+// A double literal that reads back to exactly x (17 significant digits), infinities spelled out.
+std::string double_literal(double x) {
+  if (std::isinf(x)) return x > 0 ? "std::numeric_limits<double>::infinity()" : "-std::numeric_limits<double>::infinity()";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  std::string s = buf;
+  if (s.find_first_of(".en") == std::string::npos) s += ".0";
+  return s;
+}
+
+double to_double(const GiNaC::ex& e) {
+  const GiNaC::ex v = GiNaC::evalf(e);
+  if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
+    throw std::invalid_argument("emit_cpp: value is not a real number: " + dflt(e));
+  return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+}
+
+const char* role_text(ir::Role r) {
+  switch (r) {
+    case ir::Role::Known: return "mbgen::ParameterRole::Known";
+    case ir::Role::Estimate: return "mbgen::ParameterRole::Estimate";
+    case ir::Role::Fixed: return "mbgen::ParameterRole::Fixed";
+  }
+  return "mbgen::ParameterRole::Known";
+}
+
+// The statements every emitted function starts with: using-declarations for ADL and the parameters it reads.
+class FunctionContext {
+ public:
+  explicit FunctionContext(const SymbolicModel& sm) : sm_(sm) {
+    for (const auto& p : sm.parameters) names_.emplace(p.sym, "p_" + identifier(p.name));
+  }
+  const SymbolNames& names() const { return names_; }
+
+  std::string prologue(const std::vector<GiNaC::ex>& used_by) const {
+    std::string out =
+        "  using std::abs; using std::atan; using std::cos; using std::exp; using std::log; using std::pow;\n"
+        "  using std::sin; using std::sqrt; using std::tan;\n";
+    bool any = false;
+    for (std::size_t i = 0; i < sm_.parameters.size(); ++i) {
+      const auto& sym = sm_.parameters[i].sym;
+      bool used = false;
+      for (const auto& e : used_by) used = used || e.has(sym);
+      if (!used) continue;
+      any = true;
+      out += "  const Scalar& " + names_.at(sym) + " = p[" + std::to_string(i) + "];\n";
+    }
+    if (!any) out += "  static_cast<void>(p);\n";
+    return out;
+  }
+
+ private:
+  const SymbolicModel& sm_;
+  SymbolNames names_;
+};
+
+struct MatrixSpec {
+  const char* function;
+  const char* symbol;
+  const char* type;
+  const char* description;
+  const GiNaC::matrix* matrix;
+  bool in_model;  // part of mbgen::ModelMatrices
+};
+
+TemplateDict matrix_dict(const SymbolicModel& sm, const FunctionContext& ctx, const MatrixSpec& spec) {
+  const GiNaC::matrix& m = *spec.matrix;
+  std::vector<GiNaC::ex> entries;
+  std::vector<CxxAssignment> values;
+  for (unsigned r = 0; r < m.rows(); ++r)
+    for (unsigned c = 0; c < m.cols(); ++c)
+      if (!m(r, c).is_zero()) {
+        entries.push_back(m(r, c));
+        values.push_back({std::string(spec.symbol) + "(" + std::to_string(r) + ", " + std::to_string(c) + ")", m(r, c)});
+      }
+  std::string body = ctx.prologue(entries) + "  " + spec.symbol + ".setZero();\n" + cxx_assignments(values, ctx.names(), "  ");
+
+  std::vector<std::string> pattern;
+  std::vector<CxxAssignment> derivatives;
+  std::vector<GiNaC::ex> derivative_exprs;
+  for (std::size_t j = 0; j < sm.parameters.size(); ++j)
+    for (unsigned r = 0; r < m.rows(); ++r)
+      for (unsigned c = 0; c < m.cols(); ++c) {
+        const GiNaC::ex d = m(r, c).diff(sm.parameters[j].sym);
+        if (d.is_zero()) continue;
+        derivatives.push_back({"values[" + std::to_string(pattern.size()) + "]", d});
+        derivative_exprs.push_back(d);
+        pattern.push_back("JacobianEntry{" + std::to_string(j) + ", " + std::to_string(r) + ", " + std::to_string(c) + "}");
+      }
+  std::string jacobian_body = ctx.prologue(derivative_exprs);
+  if (derivatives.empty()) jacobian_body += "  static_cast<void>(values);\n";
+  jacobian_body += cxx_assignments(derivatives, ctx.names(), "  ");
+
+  TemplateList in_model;
+  if (spec.in_model) in_model.emplace_back();
+  return {{"function", spec.function},
+          {"symbol", spec.symbol},
+          {"type", spec.type},
+          {"description", spec.description},
+          {"body", body},
+          {"jacobian_body", jacobian_body},
+          {"jacobian_size", std::to_string(pattern.size())},
+          {"jacobian_pattern", join(pattern)},
+          {"in_model", in_model}};
+}
+
+// Emitted expressions for a transfer function whose coefficients are exact expressions (or exactly zero).
+void symbolic_tf_bodies(const SymbolicModel& sm, const FunctionContext& ctx, const symbolic::TransferFunction& tf,
+                        std::string& body, std::string& jacobian_body) {
+  std::vector<CxxAssignment> values;
+  std::vector<GiNaC::ex> all;
+  for (std::size_t k = 0; k < tf.numerator.size(); ++k) {
+    values.push_back({"numerator[" + std::to_string(k) + "]", tf.numerator[k]});
+    all.push_back(tf.numerator[k]);
+  }
+  for (std::size_t k = 0; k < tf.denominator.size(); ++k) {
+    values.push_back({"denominator[" + std::to_string(k) + "]", tf.denominator[k]});
+    all.push_back(tf.denominator[k]);
+  }
+  body = ctx.prologue(all) + "  numerator.resize(" + std::to_string(tf.numerator.size()) + ");\n" +
+         "  denominator.resize(" + std::to_string(tf.denominator.size()) + ");\n" +
+         cxx_assignments(values, ctx.names(), "  ");
+
+  const std::size_t nn = tf.numerator.size(), nd = tf.denominator.size(), np = sm.parameters.size();
+  std::vector<CxxAssignment> derivatives;
+  std::vector<GiNaC::ex> used;
+  auto add = [&](const std::vector<GiNaC::ex>& coeffs, const std::string& target, std::size_t size) {
+    for (std::size_t j = 0; j < np; ++j)
+      for (std::size_t k = 0; k < coeffs.size(); ++k) {
+        const GiNaC::ex d = coeffs[k].diff(sm.parameters[j].sym);
+        if (d.is_zero()) continue;
+        derivatives.push_back({target + "[" + std::to_string(j * size + k) + "]", d});
+        used.push_back(d);
+      }
+  };
+  add(tf.numerator, "d_numerator", nn);
+  add(tf.denominator, "d_denominator", nd);
+  jacobian_body = ctx.prologue(used) + "  d_numerator.assign(" + std::to_string(np * nn) + ", Scalar(0));\n" +
+                  "  d_denominator.assign(" + std::to_string(np * nd) + ", Scalar(0));\n" +
+                  cxx_assignments(derivatives, ctx.names(), "  ");
+}
+
+TemplateList transfer_function_dicts(const SymbolicModel& sm, const FunctionContext& ctx,
+                                     const std::vector<std::string>& inputs, const std::vector<std::string>& outputs) {
+  TemplateList list;
+  for (std::size_t i = 0; i < sm.transfer_functions.size(); ++i) {
+    const auto& tf = sm.transfer_functions[i];
+    std::vector<std::string> coords;
+    for (int c : tf.coordinates) coords.push_back(std::to_string(c));
+    const bool emitted = tf.symbolic || tf.coordinates.empty();
+    std::string body, jacobian_body, comment;
+    std::size_t nn = tf.numerator.size(), nd = tf.denominator.size();
+    if (emitted) {
+      symbolic_tf_bodies(sm, ctx, tf, body, jacobian_body);
+      comment = ": exact expressions";
+    } else {
+      const TemplateDict d = {{"output", std::to_string(tf.output)}, {"input", std::to_string(tf.input)},
+                              {"coordinates", join(coords)}};
+      body = render_embedded("cpp/tf_runtime.tmpl", d);
+      jacobian_body = render_embedded("cpp/tf_runtime_jacobian.tmpl", d);
+      nn = nd = 2 * tf.coordinates.size() + 1;
+      comment = ": computed at run time on coordinates " + join(coords);
+    }
+    list.push_back({{"index", std::to_string(i)},
+                    {"output", std::to_string(tf.output)},
+                    {"input", std::to_string(tf.input)},
+                    {"output_name", outputs.at(static_cast<std::size_t>(tf.output))},
+                    {"input_name", inputs.at(static_cast<std::size_t>(tf.input))},
+                    {"symbolic", emitted ? "true" : "false"},
+                    {"numerator_size", std::to_string(nn)},
+                    {"denominator_size", std::to_string(nd)},
+                    {"comment", comment},
+                    {"body", body},
+                    {"jacobian_body", jacobian_body}});
+  }
+  return list;
+}
+
+// Bounds of a free parameter as doubles (infinite when absent or when the model is not at hand).
+std::pair<double, double> bounds_of(const SymbolicModel& sm, const symbolic::FreeParameter& p) {
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  if (!p.ir || !sm.model || (!p.ir->lower && !p.ir->upper)) return {lo, hi};
+  const symbolic::ParameterTable table(*sm.model);
+  const GiNaC::exmap values = sm.values();
+  if (p.ir->lower) lo = to_double(table.convert(*p.ir->lower).subs(table.values()).subs(values));
+  if (p.ir->upper) hi = to_double(table.convert(*p.ir->upper).subs(table.values()).subs(values));
+  return {lo, hi};
+}
+
+}  // namespace
+
+const char* mbgen_version() { return MBGEN_VERSION; }
+
+CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
+  std::string model_name = options.model_name;
+  if (model_name.empty()) {
+    if (!sm.model) throw std::invalid_argument("emit_cpp: no model name");
+    model_name = sm.model->name;
+  }
+  std::string ns = options.namespace_name.empty() ? "mbgen_models::" + identifier(model_name) : options.namespace_name;
+  check_namespace(ns);
+  const std::string header_file = base_name(options.header_file), source_file = base_name(options.source_file);
+  if (header_file.empty()) throw std::invalid_argument("emit_cpp: no header file name");
+
+  std::vector<std::string> inputs, outputs, coordinates;
+  if (sm.model) {
+    for (const auto& in : sm.model->inputs) inputs.push_back(in.name);
+    for (const auto& out : sm.model->outputs) outputs.push_back(out.name);
+  } else {
+    for (unsigned j = 0; j < sm.B.cols(); ++j) inputs.push_back("u" + std::to_string(j));
+    for (unsigned i = 0; i < sm.Cd.rows(); ++i) outputs.push_back("y" + std::to_string(i));
+  }
+  for (const auto& c : sm.coordinates) coordinates.push_back(c.body + "." + ir::to_string(c.dof));
+
+  FunctionContext ctx(sm);
+  const MatrixSpec specs[] = {
+      {"mass_matrix", "M", "CoordinateMatrix", "Mass matrix M.", &sm.M, true},
+      {"damping_matrix", "C", "CoordinateMatrix", "Damping matrix C, including the gyroscopic matrix G.", &sm.C_total, true},
+      {"gyroscopic_matrix", "G", "CoordinateMatrix", "Gyroscopic matrix G alone (skew-symmetric, part of C).", &sm.G, false},
+      {"stiffness_matrix", "K", "CoordinateMatrix", "Stiffness matrix K.", &sm.K, true},
+      {"input_matrix", "B", "InputMatrix", "Input matrix B.", &sm.B, true},
+      {"output_displacement_matrix", "Cd", "OutputMatrix", "Output map of displacements Cd.", &sm.Cd, true},
+      {"output_velocity_matrix", "Cv", "OutputMatrix", "Output map of velocities Cv.", &sm.Cv, true},
+      {"output_acceleration_matrix", "Ca", "OutputMatrix", "Output map of accelerations Ca.", &sm.Ca, true},
+  };
+  TemplateList matrices;
+  for (const auto& spec : specs) matrices.push_back(matrix_dict(sm, ctx, spec));
+
+  TemplateList parameters;
+  std::vector<std::string> names, roles, units, lower, upper;
+  for (const auto& p : sm.parameters) {
+    parameters.push_back({{"name", p.name}, {"value", double_literal(to_double(p.value))}, {"exact", infix_text(p.value)}});
+    names.push_back(string_literal(p.name));
+    roles.push_back(role_text(p.ir ? p.ir->role : ir::Role::Known));
+    units.push_back(string_literal(p.ir ? p.ir->unit : ""));
+    const auto [lo, hi] = bounds_of(sm, p);
+    lower.push_back(double_literal(lo));
+    upper.push_back(double_literal(hi));
+  }
+  auto quoted = [](const std::vector<std::string>& v) {
+    std::vector<std::string> q;
+    for (const auto& s : v) q.push_back(string_literal(s));
+    return join(q);
+  };
+
+  const TemplateDict values = {
+      {"version", MBGEN_VERSION},
+      {"model_file", base_name(options.model_file)},
+      {"model_name", model_name},
+      {"namespace", ns},
+      {"header_file", header_file},
+      {"source_file", source_file},
+      {"num_parameters", std::to_string(sm.parameters.size())},
+      {"num_coordinates", std::to_string(sm.coordinates.size())},
+      {"num_inputs", std::to_string(inputs.size())},
+      {"num_outputs", std::to_string(outputs.size())},
+      {"parameters", parameters},
+      {"parameter_names", join(names)},
+      {"parameter_roles", join(roles)},
+      {"parameter_units", join(units)},
+      {"parameter_lower", join(lower)},
+      {"parameter_upper", join(upper)},
+      {"coordinate_names", quoted(coordinates)},
+      {"input_names", quoted(inputs)},
+      {"output_names", quoted(outputs)},
+      {"matrices", matrices},
+      {"num_transfer_functions", std::to_string(sm.transfer_functions.size())},
+      {"transfer_functions", transfer_function_dicts(sm, ctx, inputs, outputs)},
+  };
+  return {render_embedded("cpp/model.hpp.tmpl", values), render_embedded("cpp/model.cpp.tmpl", values)};
+}
+
+}  // namespace mbgen::emit

@@ -1,0 +1,214 @@
+#include "emit/cxx_printer.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "emit/cse.hpp"
+
+namespace mbgen::emit {
+namespace {
+
+std::string dflt(const GiNaC::ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str();
+}
+
+// Printed text and its binding strength: 0 sum, 1 product/quotient/negation, 2 atom.
+struct Printed {
+  std::string text;
+  int prec = 2;
+};
+
+bool starts_negative(const std::string& s) { return !s.empty() && s[0] == '-'; }
+
+std::string as_factor(const Printed& p) {
+  if (p.prec < 1 || starts_negative(p.text)) return "(" + p.text + ")";
+  return p.text;
+}
+
+std::string as_atom(const Printed& p) { return p.prec < 2 ? "(" + p.text + ")" : p.text; }
+
+// A non-negative integer as Scalar arithmetic that is exact wherever the Scalar type can hold the value:
+// below 10^15 (< 2^53) one literal, above that Horner's scheme in base 10^15.
+std::string integer_digits(const GiNaC::numeric& n) {
+  std::ostringstream os;
+  os << GiNaC::ex(n);
+  return os.str();
+}
+
+std::string cxx_integer(const GiNaC::numeric& n) {
+  static const GiNaC::numeric base("1000000000000000");  // 10^15
+  if (n < base) return "Scalar(" + integer_digits(n) + ")";
+  const GiNaC::numeric q = GiNaC::iquo(n, base), r = GiNaC::irem(n, base);
+  return "(" + cxx_integer(q) + "*Scalar(1000000000000000) + Scalar(" + integer_digits(r) + "))";
+}
+
+Printed print_nonneg_rational(const GiNaC::numeric& n) {
+  std::string p = cxx_integer(n.numer());
+  if (n.is_integer()) return {p, 2};
+  return {p + "/" + cxx_integer(n.denom()), 1};
+}
+
+Printed print_number(const GiNaC::numeric& n) {
+  if (!n.is_rational()) {
+    if (!n.is_real()) throw std::logic_error("cxx_printer: complex number " + dflt(n));
+    // Not expected from the exact symbolic stage; printed with enough digits for long double.
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.21Lg", static_cast<long double>(n.to_double()));
+    return {std::string("Scalar(") + buf + "L)", 2};
+  }
+  if (n.is_negative()) {
+    Printed p = print_nonneg_rational(-n);
+    return {"-" + p.text, 1};
+  }
+  return print_nonneg_rational(n);
+}
+
+class Printer {
+ public:
+  explicit Printer(const SymbolNames& names) : names_(names) {}
+
+  Printed print(const GiNaC::ex& e) const {
+    if (GiNaC::is_a<GiNaC::numeric>(e)) return print_number(GiNaC::ex_to<GiNaC::numeric>(e));
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      auto it = names_.find(e);
+      if (it == names_.end()) throw std::logic_error("cxx_printer: no C++ name for symbol " + dflt(e));
+      return {it->second, 2};
+    }
+    if (GiNaC::is_a<GiNaC::constant>(e)) {
+      if (e.is_equal(GiNaC::Pi)) return {"c_pi", 2};
+      throw std::logic_error("cxx_printer: unsupported constant " + dflt(e));
+    }
+    if (GiNaC::is_a<GiNaC::add>(e)) return print_add(e);
+    if (GiNaC::is_a<GiNaC::mul>(e)) return print_mul(e);
+    if (GiNaC::is_a<GiNaC::power>(e)) return print_power(e);
+    if (GiNaC::is_a<GiNaC::function>(e)) return print_function(e);
+    throw std::logic_error("cxx_printer: unsupported expression " + dflt(e));
+  }
+
+ private:
+  const SymbolNames& names_;
+
+  Printed print_add(const GiNaC::ex& e) const {
+    std::string s;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      Printed t = print(e.op(i));
+      std::string text = t.prec < 1 ? "(" + t.text + ")" : t.text;
+      if (i == 0) {
+        s = text;
+      } else if (starts_negative(text)) {
+        s += " - " + text.substr(1);
+      } else {
+        s += " + " + text;
+      }
+    }
+    return {s, 0};
+  }
+
+  static bool is_negative_integer_power(const GiNaC::ex& f) {
+    return GiNaC::is_a<GiNaC::power>(f) && f.op(1).info(GiNaC::info_flags::negint);
+  }
+
+  Printed print_mul(const GiNaC::ex& e) const {
+    GiNaC::numeric coeff = 1;
+    std::vector<std::string> num, den;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const GiNaC::ex& f = e.op(i);
+      if (GiNaC::is_a<GiNaC::numeric>(f)) {
+        coeff *= GiNaC::ex_to<GiNaC::numeric>(f);
+      } else if (is_negative_integer_power(f)) {
+        den.push_back(as_factor(print(GiNaC::pow(f.op(0), -f.op(1)))));
+      } else {
+        num.push_back(as_factor(print(f)));
+      }
+    }
+    if (!coeff.is_rational()) {
+      num.insert(num.begin(), as_factor(print_number(coeff)));
+      coeff = 1;
+    }
+    bool negative = coeff.is_negative();
+    GiNaC::numeric c = negative ? -coeff : coeff;
+    std::vector<std::string> parts;
+    if (!c.is_integer()) {
+      parts.push_back(print_nonneg_rational(c).text);
+    } else if (!c.is_equal(1) || num.empty()) {
+      parts.push_back(print_nonneg_rational(c).text);
+    }
+    parts.insert(parts.end(), num.begin(), num.end());
+    std::string s;
+    for (std::size_t i = 0; i < parts.size(); ++i) s += (i ? "*" : "") + parts[i];
+    if (!den.empty()) {
+      std::string d;
+      for (std::size_t i = 0; i < den.size(); ++i) d += (i ? "*" : "") + den[i];
+      bool single_atom = den.size() == 1 && d.find_first_of("*/+- ") == std::string::npos;
+      s += "/" + (single_atom ? d : "(" + d + ")");
+    }
+    bool atom = !negative && parts.size() == 1 && den.empty() && s.find_first_of("*/") == std::string::npos;
+    return {(negative ? "-" : "") + s, atom ? 2 : 1};
+  }
+
+  Printed print_power(const GiNaC::ex& e) const {
+    const GiNaC::ex& base = e.op(0);
+    const GiNaC::ex& expo = e.op(1);
+    if (GiNaC::is_a<GiNaC::numeric>(expo)) {
+      GiNaC::numeric k = GiNaC::ex_to<GiNaC::numeric>(expo);
+      if (k.is_integer() && k.is_negative()) {
+        Printed d = print(GiNaC::pow(base, -expo));
+        return {"Scalar(1)/" + as_atom(d), 1};
+      }
+      if (k.is_integer() && k >= 2 && k <= 4) {
+        std::string b = as_atom(print(base));
+        std::string s = b;
+        for (int i = 1; i < k.to_int(); ++i) s += "*" + b;
+        return {s, 1};
+      }
+      if (k.is_equal(GiNaC::numeric(1, 2))) return {"sqrt(" + print(base).text + ")", 2};
+      if (k.is_equal(GiNaC::numeric(-1, 2))) return {"Scalar(1)/sqrt(" + print(base).text + ")", 1};
+      return {"pow(" + print(base).text + ", " + print_number(k).text + ")", 2};
+    }
+    return {"pow(" + print(base).text + ", " + print(expo).text + ")", 2};
+  }
+
+  Printed print_function(const GiNaC::ex& e) const {
+    std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    static const char* const allowed[] = {"sin", "cos", "tan", "exp", "log", "atan", "asin", "acos",
+                                          "sinh", "cosh", "tanh", "abs"};
+    bool ok = false;
+    for (const char* a : allowed) ok = ok || name == a;
+    if (!ok) throw std::logic_error("cxx_printer: unsupported function " + name);
+    std::string s = name + "(";
+    for (std::size_t i = 0; i < e.nops(); ++i) s += (i ? ", " : "") + print(e.op(i)).text;
+    return {s + ")", 2};
+  }
+};
+
+}  // namespace
+
+std::string cxx_number(const GiNaC::numeric& n) { return print_number(n).text; }
+
+std::string cxx_expression(const GiNaC::ex& e, const SymbolNames& names) { return Printer(names).print(e).text; }
+
+std::string cxx_assignments(const std::vector<CxxAssignment>& assignments, const SymbolNames& names,
+                            const std::string& indent) {
+  std::vector<GiNaC::ex> rhs;
+  rhs.reserve(assignments.size());
+  bool uses_pi = false;
+  for (const auto& a : assignments) {
+    rhs.push_back(a.rhs);
+    uses_pi = uses_pi || a.rhs.has(GiNaC::Pi);
+  }
+  CseResult cse = eliminate_common_subexpressions(rhs, "t");
+  SymbolNames all = names;
+  for (const auto& [sym, def] : cse.temporaries) all.emplace(sym, sym.get_name());
+  Printer printer(all);
+  std::string out;
+  if (uses_pi) out += indent + "const Scalar c_pi = Scalar(4)*atan(Scalar(1));\n";
+  for (const auto& [sym, def] : cse.temporaries)
+    out += indent + "const Scalar " + sym.get_name() + " = " + printer.print(def).text + ";\n";
+  for (std::size_t i = 0; i < assignments.size(); ++i)
+    out += indent + assignments[i].lhs + " = " + printer.print(cse.outputs[i]).text + ";\n";
+  return out;
+}
+
+}  // namespace mbgen::emit

@@ -1,0 +1,136 @@
+#include "emit/infix_printer.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace mbgen::emit {
+namespace {
+
+std::string dflt(const GiNaC::ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str();
+}
+
+// Binding strength: 0 sum, 1 product/quotient/negation, 2 power, 3 atom.
+struct Printed {
+  std::string text;
+  int prec = 3;
+};
+
+std::string integer_text(const GiNaC::numeric& n) {
+  std::ostringstream os;
+  os << GiNaC::ex(n);
+  return os.str();
+}
+
+// An exact rational: a float (not expected from the exact symbolic stage) is converted to the rational it
+// represents exactly, so the syntax stays integers and ratios.
+GiNaC::numeric exact(const GiNaC::numeric& n) {
+  if (n.is_rational()) return n;
+  if (!n.is_real()) throw std::logic_error("infix_text: complex number " + dflt(n));
+  // A double's binary value, exactly: mantissa * 2^exponent.
+  int exponent = 0;
+  const double mantissa = std::frexp(n.to_double(), &exponent);
+  const GiNaC::numeric m(static_cast<long>(std::ldexp(mantissa, 53)));
+  return m * GiNaC::pow(GiNaC::numeric(2), GiNaC::numeric(exponent - 53));
+}
+
+Printed number(const GiNaC::numeric& raw) {
+  GiNaC::numeric n = exact(raw);
+  if (n.is_negative()) return {"-" + number(-n).text, 1};
+  if (n.is_integer()) return {integer_text(n), 3};
+  return {integer_text(n.numer()) + "/" + integer_text(n.denom()), 1};
+}
+
+class Printer {
+ public:
+  Printed print(const GiNaC::ex& e) const {
+    if (GiNaC::is_a<GiNaC::numeric>(e)) return number(GiNaC::ex_to<GiNaC::numeric>(e));
+    if (GiNaC::is_a<GiNaC::symbol>(e)) return {GiNaC::ex_to<GiNaC::symbol>(e).get_name(), 3};
+    if (GiNaC::is_a<GiNaC::constant>(e)) {
+      if (e.is_equal(GiNaC::Pi)) return {"pi", 3};
+      throw std::logic_error("infix_text: unsupported constant " + dflt(e));
+    }
+    if (GiNaC::is_a<GiNaC::add>(e)) return add(e);
+    if (GiNaC::is_a<GiNaC::mul>(e)) return mul(e);
+    if (GiNaC::is_a<GiNaC::power>(e)) return power(e);
+    if (GiNaC::is_a<GiNaC::function>(e)) {
+      std::string s = GiNaC::ex_to<GiNaC::function>(e).get_name() + "(";
+      for (std::size_t i = 0; i < e.nops(); ++i) s += (i ? ", " : "") + print(e.op(i)).text;
+      return {s + ")", 3};
+    }
+    throw std::logic_error("infix_text: unsupported expression " + dflt(e));
+  }
+
+ private:
+  static std::string wrap(const Printed& p, int min_prec) {
+    return p.prec < min_prec ? "(" + p.text + ")" : p.text;
+  }
+
+  Printed add(const GiNaC::ex& e) const {
+    std::string s;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      std::string t = wrap(print(e.op(i)), 1);
+      if (i == 0)
+        s = t;
+      else if (t[0] == '-')
+        s += " - " + t.substr(1);
+      else
+        s += " + " + t;
+    }
+    return {s, 0};
+  }
+
+  // A factor inside a product: a power or an atom, else parenthesised (sums, negations, quotients).
+  std::string factor(const GiNaC::ex& f) const { return wrap(print(f), 2); }
+
+  Printed mul(const GiNaC::ex& e) const {
+    GiNaC::numeric coeff = 1;
+    std::vector<std::string> num, den;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const GiNaC::ex& f = e.op(i);
+      if (GiNaC::is_a<GiNaC::numeric>(f)) {
+        coeff *= exact(GiNaC::ex_to<GiNaC::numeric>(f));
+      } else if (GiNaC::is_a<GiNaC::power>(f) && f.op(1).info(GiNaC::info_flags::negative) &&
+                 GiNaC::is_a<GiNaC::numeric>(f.op(1))) {
+        den.push_back(factor(GiNaC::pow(f.op(0), -f.op(1))));
+      } else {
+        num.push_back(factor(f));
+      }
+    }
+    const bool negative = coeff.is_negative();
+    if (negative) coeff = -coeff;
+    if (!coeff.numer().is_equal(1) || num.empty()) num.insert(num.begin(), integer_text(coeff.numer()));
+    if (!coeff.denom().is_equal(1)) den.insert(den.begin(), integer_text(coeff.denom()));
+    std::string s;
+    for (std::size_t i = 0; i < num.size(); ++i) s += (i ? "*" : "") + num[i];
+    if (!den.empty()) {
+      std::string d;
+      for (std::size_t i = 0; i < den.size(); ++i) d += (i ? "*" : "") + den[i];
+      s += "/" + (den.size() == 1 ? d : "(" + d + ")");
+    }
+    const bool single = !negative && num.size() == 1 && den.empty();
+    return {(negative ? "-" : "") + s, single ? 2 : 1};
+  }
+
+  Printed power(const GiNaC::ex& e) const {
+    const GiNaC::ex& base = e.op(0);
+    const GiNaC::ex& expo = e.op(1);
+    if (GiNaC::is_a<GiNaC::numeric>(expo) && expo.info(GiNaC::info_flags::negative)) {
+      Printed d = print(GiNaC::pow(base, -expo));
+      return {"1/" + wrap(d, 2), 1};
+    }
+    std::string b = wrap(print(base), 3);
+    Printed x = print(expo);
+    return {b + "^" + wrap(x, 3), 2};
+  }
+};
+
+}  // namespace
+
+std::string infix_text(const GiNaC::ex& e) { return Printer().print(e).text; }
+
+}  // namespace mbgen::emit
