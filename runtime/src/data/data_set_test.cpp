@@ -1,0 +1,84 @@
+// read_data_file: dispatch on the CSV header and on UFF name or content, the sidecar mapping file, and
+// the errors for files of no known kind.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "mbgen/data_error.hpp"
+#include "mbgen/data_set.hpp"
+
+using namespace mbgen;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp_dir() {
+  const fs::path dir = fs::path(MBGEN_BINARY_DIR) / "test-tmp" / "data_set_test";
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string write(const std::string& name, const std::string& text) {
+  const fs::path p = temp_dir() / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p.string();
+}
+
+std::string sample(const std::string& name) { return std::string(MBGEN_SHARED_DIR) + "/data/uff/" + name; }
+
+}  // namespace
+
+TEST_CASE("CSV kinds are told by the first header column") {
+  const auto time = read_data_file(write("a.csv", "# set k=2\nt,F,x\n0,1,2\n0.5,1,2\n"), {"F"}, {"x"});
+  REQUIRE(std::holds_alternative<TimeRecord>(time));
+  CHECK(std::get<TimeRecord>(time).samples() == 2);
+  CHECK(data_set_values(time).at("k").value == 2);
+  CHECK(data_file(time).find("a.csv") != std::string::npos);
+
+  const auto frf = read_data_file(write("b.txt", "\n# FRF\nf_hz,x/F.re,x/F.im\n1,2,3\n"));
+  REQUIRE(std::holds_alternative<FrfData>(frf));
+  CHECK(std::get<FrfData>(frf).channels.at(0).values[0] == std::complex<double>(2, 3));
+
+  CHECK_THROWS_WITH(read_data_file(write("c.csv", "# x\nfreq,a\n1,2\n")),
+                    Catch::Contains("c.csv:2:1: error: cannot tell the kind of data: the header starts with 'freq'"));
+  CHECK_THROWS_WITH(read_data_file(write("d.csv", "")), Catch::Contains("d.csv: error: empty file"));
+  CHECK_THROWS_WITH(read_data_file(write("e.csv", "t,F,y\n0,1,2\n1,1,2\n"), {"F"}, {"x"}),
+                    Catch::Contains("column 'y' is neither a model input nor output"));
+  CHECK_THROWS_WITH(read_data_file((temp_dir() / "missing.csv").string()), Catch::Contains("cannot open file"));
+}
+
+TEST_CASE("streams: standard-input style reading") {
+  std::istringstream in("t,F\n0,1\n1,2\n");
+  CHECK(std::holds_alternative<TimeRecord>(read_data(in, "-")));
+  // UFF recognised by content when the name says nothing.
+  std::ifstream uff(sample("non_ascii_header.uff"), std::ios::binary);
+  const auto set = read_data(uff, "-");
+  REQUIRE(std::holds_alternative<FrfData>(set));
+  CHECK(std::get<FrfData>(set).f_hz.size() == 6);
+}
+
+TEST_CASE("UFF files, with the sidecar mapping PATH.map or an explicit one") {
+  // A copy of a sample time history, with a mapping file beside it.
+  std::ifstream src(sample("time-history-not-all-columns-filled.uff"), std::ios::binary);
+  std::stringstream bytes;
+  bytes << src.rdbuf();
+  const std::string path = write("th.uff", bytes.str());
+  fs::remove(path + ".map");
+  CHECK_THROWS_WITH(read_data_file(path, {"F"}, {"acc"}), Catch::Contains("'0:S = NAME'"));
+  write("th.uff.map", "# mapping\n0:S = acc\nset n_sp=300\nhold=none\n");
+  const auto set = read_data_file(path, {"F"}, {"acc"});
+  const TimeRecord& rec = std::get<TimeRecord>(set);
+  CHECK(rec.signals.at(0).name == "acc");
+  CHECK(rec.hold == HoldMode::None);
+  CHECK(rec.set.at("n_sp").text == "300");
+  // An explicit mapping wins over the sidecar.
+  UffMapping explicit_map;
+  explicit_map.names["0:S"] = "mic";
+  const auto other = read_data_file(path, ChannelNames{{"F"}, {"mic"}}, explicit_map);
+  CHECK(std::get<TimeRecord>(other).signals.at(0).name == "mic");
+  // The shared samples are read by extension.
+  CHECK(std::holds_alternative<TimeRecord>(read_data_file(sample("binary8byte.uff"))));
+  CHECK_THROWS_WITH(read_data_file(sample("dataset_milestone_in_header.uff")), Catch::Contains("cut off"));
+}
