@@ -1,0 +1,46 @@
+// Candidate extensions of a model for `mbgen diagnose` (ids: /work/shared/design/INTERFACES.md, operators:
+// docs/extensions.md).
+//
+// Each operator looks at the model's own structure (its grounds, bodies, elements, parameters and signals) and
+// proposes small changes, each with few new parameters so that the data can identify them. The diagnosis fits
+// every candidate and keeps those the data justify.
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "ir/model.hpp"
+
+namespace mbgen::diagnosis {
+
+struct NewParameter {
+  std::string name;
+  std::string why;  // what the parameter stands for, one short phrase
+};                  // its start value and bounds are in the extended model's parameter of that name
+
+struct Extension {
+  std::string id;             // "<operator>:<target>", e.g. "compliant_ground:base"
+  std::string operator_name;  // "compliant_ground"
+  std::string target;         // "base" (for connection: "A-B")
+  std::string description;    // one plain sentence a test engineer understands
+  ir::Model model;            // the extended model; new parameters have role estimate and a start value
+  std::vector<NewParameter> new_parameters;
+  std::vector<std::string> freed_parameters;  // existing parameters whose role becomes estimate
+  std::string mdl_text;  // the extended model as .mdl: the original text with a small, commented change
+};
+
+struct ExtensionContext {
+  std::vector<double> peak_hz;               // unexplained resonances in the residual, strongest first (may be empty)
+  std::set<std::string> varying_parameters;  // parameters the data sets set differently (e.g. n_sp)
+  std::map<std::string, double> values;      // current (fitted) values of the nominal model's free parameters
+};
+
+// All candidates, in a fixed order: by operator (compliant_ground, gyroscopic, free_parameter, untie_parameter,
+// moment_stiffness, added_mass, resonator, connection), then in the model's declaration order. Ids are unique.
+// `nominal_text` is the text `nominal` was parsed from; each candidate's mdl_text parses to its model.
+std::vector<Extension> enumerate_extensions(const ir::Model& nominal, const std::string& nominal_text,
+                                            const ExtensionContext& ctx);
+
+}  // namespace mbgen::diagnosis

@@ -1,0 +1,89 @@
+// What every extension operator needs: the model it extends (parsed from its text, so source locations point
+// into that text), the diagnosis context, and a Draft that builds one candidate's model and text side by side.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "diagnosis/extension.hpp"
+#include "diagnosis/model_values.hpp"
+#include "diagnosis/names.hpp"
+#include "diagnosis/text_patch.hpp"
+
+namespace mbgen::diagnosis {
+
+struct OperatorInput {
+  const ir::Model& model;  // parsed from `text`
+  const std::string& text;
+  const ExtensionContext& ctx;
+  ModelValues values;  // the model's values, ctx.values overriding
+};
+
+// One candidate under construction. Declarations added through it go both into the extended model (appended to
+// their list, as the parser would read them from the end of the text) and into the end section of the text.
+class Draft {
+ public:
+  Draft(const OperatorInput& in, const std::string& operator_name, const std::string& target);
+
+  ir::Model& model() { return ext_.model; }
+  NameSet& names() { return names_; }
+  TextPatch& patch() { return patch_; }
+
+  // A new parameter with role estimate (or `role`), start `value`, optional bounds; returns its (fresh) name.
+  std::string add_parameter(const std::string& base, double value, const std::string& unit,
+                            std::optional<double> lower, std::optional<double> upper, const std::string& why,
+                            ir::Role role = ir::Role::Estimate);
+  // A new parameter declared as given (its name taken from names()); `why` becomes its comment in the text.
+  void add_parameter(ir::Parameter p, const std::string& why);
+  void add_ground(ir::Ground g);
+  void add_body(ir::Body b);
+  void add_element(ir::Element e);
+  void add_spin(ir::Spin s);
+  void free_parameter(const std::string& name) { ext_.freed_parameters.push_back(name); }
+
+  Extension finish(const std::string& description);
+
+ private:
+  Extension ext_;
+  NameSet names_;
+  TextPatch patch_;
+  std::string declarations_;  // parameters first, then the rest, for the end section
+  std::string statements_;
+};
+
+// ---- shared facts about a model ----------------------------------------------------------------------------
+
+// The signal that marks where a body is measured or excited: its first input, else its first output.
+struct SignalPoint {
+  std::string signal;         // input or output name
+  bool is_input = false;
+  const ir::Attachment* at;   // point filled by the front end (explicit or the centre of mass)
+  const ir::Direction* direction;
+};
+std::optional<SignalPoint> signal_point(const ir::Model& model, const std::string& body);
+
+// The global axis (0, 1, 2) a direction lies along, if it does (a vector is evaluated at the current values).
+std::optional<int> axis_of(const ir::Direction& d, const ModelValues& values);
+
+bool has_dof(const ir::Body& b, ir::Dof d);
+double total_moving_mass(const ir::Model& model, const ModelValues& values);
+// The largest stiffness value of the translational elements (spring, spring3); 0 if there are none.
+double largest_translational_stiffness(const ir::Model& model, const ModelValues& values);
+double smallest_body_mass(const ir::Model& model, const ModelValues& values);
+
+// Start value of a damping for stiffness k on mass m: 2 % of critical damping, c = 2*0.02*sqrt(k*m).
+double light_damping(double k, double m);
+constexpr double kTwoPi = 6.283185307179586;
+
+// ---- the operators (one file each; docs/extensions.md) -------------------------------------------------------
+std::vector<Extension> compliant_ground(const OperatorInput& in);
+std::vector<Extension> gyroscopic(const OperatorInput& in);
+std::vector<Extension> free_parameter(const OperatorInput& in);
+std::vector<Extension> untie_parameter(const OperatorInput& in);
+std::vector<Extension> moment_stiffness(const OperatorInput& in);
+std::vector<Extension> added_mass(const OperatorInput& in);
+std::vector<Extension> resonator(const OperatorInput& in);
+std::vector<Extension> connection(const OperatorInput& in);
+
+}  // namespace mbgen::diagnosis
