@@ -1,6 +1,7 @@
 #include "emit/cxx_printer.hpp"
 
 #include <sstream>
+#include <algorithm>
 #include <stdexcept>
 
 #include "emit/cse.hpp"
@@ -90,11 +91,21 @@ class Printer {
  private:
   const SymbolNames& names_;
 
+  // Operands are printed in the order of their text, not GiNaC's internal order (which follows symbol
+  // creation order, and so differs for the fresh temporaries of each CSE run): output is deterministic.
   Printed print_add(const GiNaC::ex& e) const {
-    std::string s;
+    std::vector<std::string> terms;
     for (std::size_t i = 0; i < e.nops(); ++i) {
       Printed t = print(e.op(i));
-      std::string text = t.prec < 1 ? "(" + t.text + ")" : t.text;
+      terms.push_back(t.prec < 1 ? "(" + t.text + ")" : t.text);
+    }
+    std::sort(terms.begin(), terms.end(), [](const std::string& x, const std::string& y) {
+      if (starts_negative(x) != starts_negative(y)) return !starts_negative(x);  // a positive term first
+      return x < y;
+    });
+    std::string s;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      const std::string& text = terms[i];
       if (i == 0) {
         s = text;
       } else if (starts_negative(text)) {
@@ -123,6 +134,8 @@ class Printer {
         num.push_back(as_factor(print(f)));
       }
     }
+    std::sort(num.begin(), num.end());
+    std::sort(den.begin(), den.end());
     if (!coeff.is_rational()) {
       num.insert(num.begin(), as_factor(print_number(coeff)));
       coeff = 1;

@@ -1,5 +1,6 @@
 #include "emit/infix_printer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -70,10 +71,17 @@ class Printer {
     return p.prec < min_prec ? "(" + p.text + ")" : p.text;
   }
 
+  // Operands in the order of their text (GiNaC's order follows symbol creation): deterministic output.
   Printed add(const GiNaC::ex& e) const {
+    std::vector<std::string> terms;
+    for (std::size_t i = 0; i < e.nops(); ++i) terms.push_back(wrap(print(e.op(i)), 1));
+    std::sort(terms.begin(), terms.end(), [](const std::string& x, const std::string& y) {
+      if ((x[0] == '-') != (y[0] == '-')) return y[0] == '-';  // a positive term first
+      return x < y;
+    });
     std::string s;
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-      std::string t = wrap(print(e.op(i)), 1);
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      const std::string& t = terms[i];
       if (i == 0)
         s = t;
       else if (t[0] == '-')
@@ -101,6 +109,8 @@ class Printer {
         num.push_back(factor(f));
       }
     }
+    std::sort(num.begin(), num.end());
+    std::sort(den.begin(), den.end());
     const bool negative = coeff.is_negative();
     if (negative) coeff = -coeff;
     if (!coeff.numer().is_equal(1) || num.empty()) num.insert(num.begin(), integer_text(coeff.numer()));

@@ -17,23 +17,9 @@ std::string escape_text(const std::string& s) {
   return out;
 }
 
-// Symbols k_fx print as k_{fx}: GiNaC's default TeX name would subscript only the first letter.
-GiNaC::exmap tex_symbols(const symbolic::SymbolicModel& sm) {
-  GiNaC::exmap m;
-  for (const auto& p : sm.parameters) {
-    const std::string& n = p.name;
-    const auto u = n.find('_');
-    std::string tex = u == std::string::npos ? n : n.substr(0, u) + "_{" + escape_text(n.substr(u + 1)) + "}";
-    if (u == std::string::npos && n.size() > 1) {
-      // m1 -> m_{1}, k11 -> k_{11}: a trailing number becomes a subscript.
-      std::size_t d = n.size();
-      while (d > 0 && std::isdigit(static_cast<unsigned char>(n[d - 1]))) --d;
-      if (d > 0 && d < n.size()) tex = n.substr(0, d) + "_{" + n.substr(d) + "}";
-    }
-    m[p.sym] = GiNaC::symbol(n, tex);
-  }
-  return m;
-}
+// The model's own symbols are printed (GiNaC's default TeX names): substituting symbols with TeX names would
+// create fresh symbols, whose hash-based order in sums differs from run to run.
+GiNaC::exmap tex_symbols(const symbolic::SymbolicModel&) { return {}; }
 
 std::string latex(const GiNaC::ex& e) {
   std::ostringstream os;
