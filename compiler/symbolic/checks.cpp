@@ -1,0 +1,61 @@
+#include "symbolic/checks.hpp"
+
+#include "frontend/diagnostics.hpp"
+#include "symbolic/geometry.hpp"
+
+namespace mbgen::symbolic {
+
+namespace {
+
+bool row_is_zero(const GiNaC::matrix& mat, int i) {
+  for (unsigned j = 0; j < mat.cols(); ++j)
+    if (!mat(i, j).is_zero()) return false;
+  return true;
+}
+
+bool is_rotation(ir::Dof d) { return static_cast<int>(d) >= 3; }
+
+}  // namespace
+
+void check_every_coordinate_is_held(const Mechanism& m, const SymbolicModel& sm) {
+  for (const BodyKinematics& b : m.bodies)
+    for (size_t k = 0; k < b.coordinate.size(); ++k) {
+      const int i = b.coordinate[k];
+      if (!row_is_zero(sm.K, i) || !row_is_zero(sm.C_total, i)) continue;
+      const std::string dof = ir::to_string(b.body->dofs[k]);
+      throw frontend::ModelError(m.model->file, b.body->loc,
+                                 "coordinate " + sm.coordinates[i].name() +
+                                     ": no element acts on it (its stiffness and damping rows are zero); attach "
+                                     "an element to body `" + b.body->name + "` that resists " + dof +
+                                     ", or remove " + dof + " from its dof list");
+    }
+}
+
+void check_mass_matrix(const Mechanism& m, const SymbolicModel& sm) {
+  const GiNaC::exmap values = sm.values();
+  for (const BodyKinematics& b : m.bodies) {
+    const unsigned n = static_cast<unsigned>(b.coordinate.size());
+    GiNaC::matrix block(n, n);
+    for (unsigned r = 0; r < n; ++r)
+      for (unsigned c = 0; c < n; ++c) block(r, c) = tidy(sm.M(b.coordinate[r], b.coordinate[c]).subs(values));
+    for (unsigned k = 0; k < n; ++k) {
+      if (!block(k, k).is_zero()) continue;
+      const ir::Dof dof = b.body->dofs[k];
+      const std::string what = is_rotation(dof) ? std::string("inertia about ") + ir::to_string(dof)[1]
+                                                : std::string("mass");
+      throw frontend::ModelError(m.model->file, b.body->loc,
+                                 "coordinate " + sm.coordinates[b.coordinate[k]].name() + " has zero " + what +
+                                     " at the current parameter values (singular mass matrix); give body `" +
+                                     b.body->name + "` a non-zero " +
+                                     (is_rotation(dof) ? "inertia (inertia XX, YY, ZZ)" : "mass") +
+                                     ", or remove " + ir::to_string(dof) + " from its dof list");
+    }
+    if (tidy(block.determinant()).is_zero())
+      throw frontend::ModelError(m.model->file, b.body->loc,
+                                 "the mass matrix of body `" + b.body->name +
+                                     "` is singular at the current parameter values (its inertia tensor is not "
+                                     "positive definite on its rotation coordinates); check its inertia values");
+  }
+}
+
+}  // namespace mbgen::symbolic

@@ -1,0 +1,181 @@
+#include "symbolic/to_ginac.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <stdexcept>
+
+#include "frontend/diagnostics.hpp"
+
+namespace mbgen::symbolic {
+
+namespace {
+
+bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+
+// Splits a decimal literal into sign, all mantissa digits, the number of digits after the point, and the
+// exponent. Returns false if `text` is not a decimal literal.
+bool split_decimal(const std::string& text, bool& negative, std::string& digits, long& fraction_digits,
+                   std::string& exponent) {
+  size_t i = 0;
+  negative = false;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) negative = text[i++] == '-';
+  digits.clear();
+  fraction_digits = 0;
+  bool point = false;
+  for (; i < text.size(); ++i) {
+    if (is_digit(text[i])) {
+      digits += text[i];
+      if (point) ++fraction_digits;
+    } else if (text[i] == '.' && !point) {
+      point = true;
+    } else {
+      break;
+    }
+  }
+  if (digits.empty()) return false;
+  exponent = "0";
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    std::string e;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) e += text[i++];
+    const size_t start = i;
+    while (i < text.size() && is_digit(text[i])) e += text[i++];
+    if (i == start) return false;
+    exponent = e;
+  }
+  return i == text.size();
+}
+
+}  // namespace
+
+bool is_decimal_literal(const std::string& text) {
+  bool negative;
+  std::string digits, exponent;
+  long fraction_digits;
+  return split_decimal(text, negative, digits, fraction_digits, exponent);
+}
+
+GiNaC::numeric parse_decimal(const std::string& text) {
+  bool negative;
+  std::string digits, exponent;
+  long fraction_digits;
+  if (!split_decimal(text, negative, digits, fraction_digits, exponent))
+    throw std::invalid_argument("not a decimal literal: `" + text + "`");
+  // Integers given as digit strings are parsed exactly by CLN.
+  const GiNaC::numeric mantissa(digits.c_str());
+  const std::string exp_text = exponent[0] == '+' ? exponent.substr(1) : exponent;
+  const GiNaC::numeric power = GiNaC::numeric(exp_text.c_str()) - GiNaC::numeric(fraction_digits);
+  GiNaC::numeric value = mantissa * GiNaC::pow(GiNaC::numeric(10), power);
+  return negative ? -value : value;
+}
+
+ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::string, std::string>& overrides)
+    : model_(model) {
+  for (const auto& [name, value] : overrides) {
+    const ir::Parameter* p = model.find_parameter(name);
+    if (!p)
+      throw frontend::ModelError(model.file, {},
+                                 "--set " + name + "=" + value + ": the model has no parameter named `" + name +
+                                     "`; only declared parameters can be set");
+    if (p->derived)
+      throw frontend::ModelError(model.file, p->loc,
+                                 "--set " + name + "=" + value + ": `" + name +
+                                     "` is derived (= " + ir::to_string(p->value) +
+                                     ") and cannot be set; set the free parameters it is built from instead");
+    if (!is_decimal_literal(value))
+      throw frontend::ModelError(model.file, {},
+                                 "--set " + name + "=" + value + ": the value must be a decimal number such as "
+                                 "1.5, -2 or 60e6");
+  }
+  for (const ir::Parameter& p : model.parameters) {
+    if (p.derived) continue;
+    FreeParameter fp;
+    fp.name = p.name;
+    fp.sym = GiNaC::symbol(p.name);
+    fp.ir = &p;
+    symbol_of_[p.name] = fp.sym;
+    free_.push_back(fp);
+  }
+  for (FreeParameter& fp : free_) {
+    const auto o = overrides.find(fp.name);
+    if (o != overrides.end()) {
+      fp.value = parse_decimal(o->second);
+      continue;
+    }
+    // A parameter that is not derived must not depend on others (the parser marks those derived).
+    const std::vector<std::string> uses = ir::symbols_of(fp.ir->value);
+    if (!uses.empty())
+      throw frontend::ModelError(model.file, fp.ir->value.loc,
+                                 "the value of free parameter `" + fp.name + "` uses parameter `" + uses.front() +
+                                     "`; a free parameter needs a constant value");
+    fp.value = convert(fp.ir->value);
+  }
+}
+
+GiNaC::exmap ParameterTable::values() const {
+  GiNaC::exmap m;
+  for (const FreeParameter& fp : free_) m[fp.sym] = fp.value;
+  return m;
+}
+
+GiNaC::ex ParameterTable::derived_value(const ir::Parameter& p) const {
+  const auto memo = derived_.find(p.name);
+  if (memo != derived_.end()) return memo->second;
+  const auto cycle_start = std::find(expanding_.begin(), expanding_.end(), &p);
+  if (cycle_start != expanding_.end()) {
+    std::string chain;
+    for (auto it = cycle_start; it != expanding_.end(); ++it) chain += (*it)->name + " -> ";
+    chain += p.name;
+    throw frontend::ModelError(model_.file, p.loc,
+                               "parameter `" + p.name + "` is defined in terms of itself (" + chain +
+                                   "); give one of these parameters a numeric value");
+  }
+  expanding_.push_back(&p);
+  const GiNaC::ex value = convert(p.value);
+  expanding_.pop_back();
+  derived_[p.name] = value;
+  return value;
+}
+
+GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
+  using K = ir::Expr::Kind;
+  auto fail = [&](const std::string& message) -> GiNaC::ex {
+    throw frontend::ModelError(model_.file, e.loc, message);
+  };
+  switch (e.kind) {
+    case K::Number:
+      if (!is_decimal_literal(e.text) || e.text[0] == '-' || e.text[0] == '+')
+        return fail("`" + e.text + "` is not a number; write digits with an optional point and exponent, e.g. 0.127 "
+                    "or 60e6");
+      return parse_decimal(e.text);
+    case K::Symbol: {
+      const auto free = symbol_of_.find(e.text);
+      if (free != symbol_of_.end()) return free->second;
+      if (const ir::Parameter* p = model_.find_parameter(e.text)) return derived_value(*p);
+      if (e.text == "pi") return GiNaC::Pi;
+      return fail("unknown parameter `" + e.text + "`; declare it with `param " + e.text + " = VALUE`");
+    }
+    case K::Add: return convert(e.args.at(0)) + convert(e.args.at(1));
+    case K::Sub: return convert(e.args.at(0)) - convert(e.args.at(1));
+    case K::Mul: return convert(e.args.at(0)) * convert(e.args.at(1));
+    case K::Div: {
+      const GiNaC::ex denominator = convert(e.args.at(1));
+      if (denominator.is_zero()) return fail("division by zero in `" + ir::to_string(e) + "`");
+      return convert(e.args.at(0)) / denominator;
+    }
+    case K::Pow: return GiNaC::pow(convert(e.args.at(0)), convert(e.args.at(1)));
+    case K::Neg: return -convert(e.args.at(0));
+    case K::Call: {
+      if (e.args.size() != 1)
+        return fail("function `" + e.text + "` takes one argument, got " + std::to_string(e.args.size()));
+      const GiNaC::ex x = convert(e.args[0]);
+      if (e.text == "sqrt") return GiNaC::sqrt(x);
+      if (e.text == "sin") return GiNaC::sin(x);
+      if (e.text == "cos") return GiNaC::cos(x);
+      return fail("unknown function `" + e.text + "`; the functions are sqrt, sin and cos");
+    }
+  }
+  return fail("malformed expression");
+}
+
+}  // namespace mbgen::symbolic
