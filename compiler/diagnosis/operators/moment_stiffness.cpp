@@ -41,6 +41,14 @@ double largest(const std::vector<ir::Expr>& values, const ModelValues& v) {
   return out;
 }
 
+// "x", "x and y", "x, y and z".
+std::string listing(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
+  return out;
+}
+
 Extension extend(const OperatorInput& in, const ir::Element& e, const std::vector<int>& axes) {
   Draft d(in, "moment_stiffness", e.name);
   // Start: the element's stiffness (damping) times the square of its length, 10 mm if its ends coincide.
@@ -53,7 +61,7 @@ Extension extend(const OperatorInput& in, const ir::Element& e, const std::vecto
                                          std::nullopt, "rotational stiffness of " + e.name);
   const std::string cr = d.add_parameter("cr_" + e.name, largest(e.damping, in.values) * l2, "N m s/rad", 0.0,
                                          std::nullopt, "rotational damping of " + e.name);
-  std::string about;
+  std::vector<std::string> about;
   for (int k : axes) {
     ir::Element t;
     t.kind = ir::ElementKind::Torsion;
@@ -70,10 +78,10 @@ Extension extend(const OperatorInput& in, const ir::Element& e, const std::vecto
     t.stiffness = {sym(kr)};
     t.damping = {sym(cr)};
     d.add_element(t);
-    about += (about.empty() ? "" : " and ") + t.direction.axis;
+    about.push_back(t.direction.axis);
   }
   return d.finish(e.name + " also resists tilting between " + e.a.frame + " and " + e.b.frame + ": torsion about " +
-                  about + " with stiffness " + kr + " and damping " + cr);
+                  listing(about) + " with stiffness " + kr + " and damping " + cr);
 }
 
 }  // namespace

@@ -39,7 +39,7 @@ void Draft::add_parameter(ir::Parameter p, const std::string& why) {
 }
 
 void Draft::add_ground(ir::Ground g) {
-  statements_ += frontend::write_ground(g);
+  statements_ += "\n" + frontend::write_ground(g);
   ext_.model.grounds.push_back(std::move(g));
 }
 

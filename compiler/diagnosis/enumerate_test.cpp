@@ -1,0 +1,76 @@
+// The candidates each example gets, and the checks every candidate passes (its text parses to its model, the
+// model derives with a non-singular mass matrix).
+#include "diagnosis/test_support.hpp"
+
+using namespace mbgen;
+using namespace mbgen::diagnosis;
+using Catch::Matchers::Equals;
+
+TEST_CASE("mdof2: the candidates come from its structure", "[diagnosis]") {
+  const test::Example ex = test::load("mdof2");
+  const std::vector<Extension> plain = enumerate_extensions(ex.model, ex.text, {});
+  CHECK_THAT(test::ids_of(plain), Equals(std::vector<std::string>{
+                                      "compliant_ground:wall", "free_parameter:c12", "added_mass:mass1",
+                                      "added_mass:mass2"}));
+  ExtensionContext peaks;
+  peaks.peak_hz = {190};
+  const std::vector<Extension> with_peak = enumerate_extensions(ex.model, ex.text, peaks);
+  CHECK_THAT(test::ids_of(with_peak), Equals(std::vector<std::string>{
+                                          "compliant_ground:wall", "free_parameter:c12", "added_mass:mass1",
+                                          "added_mass:mass2", "resonator:mass1", "resonator:mass2"}));
+  for (const Extension& x : with_peak) test::check_candidate(x);
+}
+
+TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {
+  const test::Example ex = test::load("spindle");
+  const std::vector<std::string> common_head = {"compliant_ground:base"};
+  const std::vector<std::string> common_tail = {
+      "untie_parameter:k_hbx",     "untie_parameter:k_hby",     "untie_parameter:k_hbz",
+      "untie_parameter:c_hbx",     "untie_parameter:c_hby",     "untie_parameter:c_hbz",
+      "moment_stiffness:bearing_fx", "moment_stiffness:bearing_fy", "moment_stiffness:bearing_fz",
+      "moment_stiffness:bearing_rx", "moment_stiffness:bearing_ry", "moment_stiffness:mount1",
+      "moment_stiffness:mount2",   "moment_stiffness:mount3",   "moment_stiffness:mount4",
+      "added_mass:spindle",        "added_mass:housing"};
+
+  SECTION("n_sp is zero and the same in every data set: no gyroscopic candidate") {
+    std::vector<std::string> expected = common_head;
+    expected.insert(expected.end(), common_tail.begin(), common_tail.end());
+    expected.push_back("connection:base-spindle");
+    const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, {});
+    CHECK_THAT(test::ids_of(xs), Equals(expected));
+    for (const Extension& x : xs) test::check_candidate(x);
+  }
+  SECTION("n_sp varies between data sets, and there is a peak to explain") {
+    ExtensionContext ctx;
+    ctx.varying_parameters = {"n_sp"};
+    ctx.peak_hz = {190, 420};
+    std::vector<std::string> expected = common_head;
+    expected.push_back("gyroscopic:spindle");
+    expected.insert(expected.end(), common_tail.begin(), common_tail.end());
+    for (const char* id : {"resonator:spindle", "resonator:housing", "connection:base-spindle"}) expected.push_back(id);
+    const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, ctx);
+    CHECK_THAT(test::ids_of(xs), Equals(expected));
+    for (const Extension& x : xs) test::check_candidate(x);
+  }
+  SECTION("a non-zero spin speed alone brings the gyroscopic candidate") {
+    ExtensionContext ctx;
+    ctx.values["n_sp"] = 300;
+    const std::vector<std::string> ids = test::ids_of(enumerate_extensions(ex.model, ex.text, ctx));
+    CHECK(std::count(ids.begin(), ids.end(), "gyroscopic:spindle") == 1);
+  }
+}
+
+TEST_CASE("a model built in code is written out and extended the same way", "[diagnosis]") {
+  const test::Example ex = test::load("mdof2");
+  ir::Model built = ex.model;
+  built.file.clear();
+  const std::vector<Extension> xs = enumerate_extensions(built, "", {});
+  REQUIRE(xs.size() == 4);
+  for (const Extension& x : xs) test::check_candidate(x);
+}
+
+TEST_CASE("a text that is not the model's is refused", "[diagnosis]") {
+  const test::Example mdof2 = test::load("mdof2");
+  const test::Example spindle = test::load("spindle");
+  CHECK_THROWS_AS(enumerate_extensions(mdof2.model, spindle.text, {}), std::invalid_argument);
+}

@@ -1,0 +1,239 @@
+// What each operator does to the equations of motion, checked against matrices assembled by hand (exact, with
+// GiNaC) or against the physics written another way (a point mass's moments about the origin).
+#include "diagnosis/model_values.hpp"
+#include "diagnosis/test_support.hpp"
+
+using namespace mbgen;
+using namespace mbgen::diagnosis;
+using GiNaC::ex;
+using symbolic::test::same;
+
+namespace {
+
+int coordinate(const symbolic::SymbolicModel& sm, const std::string& name) {
+  for (std::size_t i = 0; i < sm.coordinates.size(); ++i)
+    if (sm.coordinates[i].name() == name) return static_cast<int>(i);
+  FAIL("no coordinate " << name);
+  return -1;
+}
+
+symbolic::SymbolicModel derive(const ir::Model& m) {
+  symbolic::DeriveOptions o;
+  o.transfer_functions = false;
+  return symbolic::derive(m, o);
+}
+
+// A matrix of the extended model minus the nominal one (same coordinates). The two derivations have their own
+// symbol objects: the nominal's are replaced by the extended model's of the same name first.
+GiNaC::matrix difference(const symbolic::SymbolicModel& ext, const symbolic::SymbolicModel& nominal,
+                         GiNaC::matrix symbolic::SymbolicModel::*which) {
+  REQUIRE(ext.coordinates.size() == nominal.coordinates.size());
+  GiNaC::exmap rename;
+  for (const symbolic::FreeParameter& p : nominal.parameters)
+    if (ext.parameter_index(p.name) >= 0) rename[p.sym] = symbolic::test::symbol_of(ext, p.name);
+  return (ext.*which).sub(GiNaC::ex_to<GiNaC::matrix>((nominal.*which).subs(rename)));
+}
+
+void require_only(const GiNaC::matrix& d, const std::map<std::pair<int, int>, ex>& entries) {
+  for (unsigned i = 0; i < d.rows(); ++i)
+    for (unsigned j = 0; j < d.cols(); ++j) {
+      const auto it = entries.find({static_cast<int>(i), static_cast<int>(j)});
+      INFO("entry " << i << ", " << j << ": " << d(i, j));
+      CHECK(same(d(i, j), it == entries.end() ? ex(0) : it->second));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("compliant_ground:wall on mdof2 gives the hand-assembled three-mass chain", "[diagnosis][physics]") {
+  const test::Example ex2 = test::load("mdof2");
+  ExtensionContext ctx;
+  ctx.peak_hz = {190};
+  const Extension x = test::find(enumerate_extensions(ex2.model, ex2.text, ctx), "compliant_ground:wall");
+  CHECK(x.model.bodies.size() == ex2.model.bodies.size() + 1);
+  CHECK(x.model.find_body("wall"));
+  CHECK_FALSE(x.model.is_ground("wall"));
+  CHECK(x.model.is_ground("wall_fixed"));
+  const symbolic::SymbolicModel sm = test::check_candidate(x);
+  REQUIRE(sm.coordinates.size() == 3);
+  const int w = coordinate(sm, "wall.x"), a = coordinate(sm, "mass1.x"), b = coordinate(sm, "mass2.x");
+  auto p = [&](const char* n) { return symbolic::test::symbol_of(sm, n); };
+  GiNaC::matrix K(3, 3), M(3, 3);
+  K(w, w) = p("k_wall") + p("k11") + p("k22");
+  K(w, a) = K(a, w) = -p("k11");
+  K(w, b) = K(b, w) = -p("k22");
+  K(a, a) = p("k11") + p("k12");
+  K(b, b) = p("k22") + p("k12");
+  K(a, b) = K(b, a) = -p("k12");
+  M(w, w) = p("m_wall");
+  M(a, a) = p("m1");
+  M(b, b) = p("m2");
+  CHECK(same(sm.K, K));
+  CHECK(same(sm.M, M));
+  // Start values: the ground's own mode (wall on its support alone) at the unexplained peak.
+  const ModelValues v(x.model, {});
+  const double f = std::sqrt(v.of_parameter("k_wall") / v.of_parameter("m_wall")) / (2 * M_PI);
+  CHECK(f == Approx(190).epsilon(1e-5));
+  CHECK(v.of_parameter("m_wall") == Approx(3 * (1.39 + 1.09)).epsilon(1e-5));
+}
+
+TEST_CASE("compliant_ground:base on the spindle: the base is a translating body on one isotropic support",
+          "[diagnosis][physics]") {
+  const test::Example sp = test::load("spindle");
+  const Extension x = test::find(enumerate_extensions(sp.model, sp.text, {}), "compliant_ground:base");
+  const symbolic::SymbolicModel sm = test::check_candidate(x);
+  CHECK(sm.coordinates.size() == 11 + 3);
+  const ir::Body* base = x.model.find_body("base");
+  REQUIRE(base);
+  CHECK(base->dofs == std::vector<ir::Dof>{ir::Dof::X, ir::Dof::Y, ir::Dof::Z});
+  // Centroid of the four mount points on the base, (0, -0.080, 0); spread: the corner distance.
+  const ModelValues v(x.model, {});
+  CHECK(v.of(base->position[1]) == Approx(-0.08));
+  CHECK(v.of_parameter("r_base") == Approx(std::hypot(0.048, 0.060)).epsilon(1e-5));
+  // Each base translation: the support plus the four mounts' stiffness along that axis.
+  auto p = [&](const char* n) { return symbolic::test::symbol_of(sm, n); };
+  CHECK(same(sm.K(coordinate(sm, "base.x"), coordinate(sm, "base.x")), p("k_base") + 4 * p("k_hbx")));
+  CHECK(same(sm.K(coordinate(sm, "base.y"), coordinate(sm, "base.y")), p("k_base") + 4 * p("k_hby")));
+  CHECK(same(sm.M(coordinate(sm, "base.z"), coordinate(sm, "base.z")), p("m_base")));
+}
+
+TEST_CASE("added_mass changes the mass by exactly ma and the moments about the origin as a point mass does",
+          "[diagnosis][physics]") {
+  const test::Example sp = test::load("spindle");
+  const std::vector<Extension> xs = enumerate_extensions(sp.model, sp.text, {});
+  for (const char* body : {"spindle", "housing"}) {
+    INFO(body);
+    const Extension& x = test::find(xs, std::string("added_mass:") + body);
+    const symbolic::SymbolicModel sm = test::check_candidate(x);
+    const std::string ma = std::string("ma_") + body;
+    const ir::Body& before = *sp.model.find_body(body);
+    const ir::Body& after = *x.model.find_body(body);
+    const GiNaC::ex m0 = symbolic::test::symbol_of(sm, before.mass.text);
+    CHECK(same(sm.M(coordinate(sm, std::string(body) + ".y"), coordinate(sm, std::string(body) + ".y")),
+               m0 + symbolic::test::symbol_of(sm, ma)));
+
+    // Moments about the origin at a non-trivial added mass: body + point mass at p, written directly.
+    ModelValues v(x.model, {{ma, 1.7}});
+    const double m = v.of(before.mass), mass = 1.7;
+    const ir::Attachment& at = std::string(body) == "spindle" ? x.model.inputs[0].at : x.model.outputs[2].at;
+    const double p[3] = {v.of(at.point[0]), v.of(at.point[1]), v.of(at.point[2])};
+    double c0[3], c1[3];
+    for (int k = 0; k < 3; ++k) {
+      c0[k] = v.of(before.position[k]);
+      c1[k] = v.of(after.position[k]);
+    }
+    CHECK(v.of(after.mass) == Approx(m + mass));
+    for (int k = 0; k < 3; ++k) CHECK((m + mass) * c1[k] == Approx(m * c0[k] + mass * p[k]).margin(1e-12));
+    auto tensor = [&](const ir::Body& b, int i, int j) {
+      const int index[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};
+      const auto& e = b.inertia[index[i][j]];
+      return e ? v.of(*e) : 0.0;
+    };
+    // Second moments about the origin: J + m (|c|^2 E - c c^T) for each part.
+    auto about_origin = [](double mass_, const double* c, int i, int j) {
+      const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+      return mass_ * ((i == j ? c2 : 0.0) - c[i] * c[j]);
+    };
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        INFO("inertia " << i << j);
+        const double expected = tensor(before, i, j) + about_origin(m, c0, i, j) + about_origin(mass, p, i, j);
+        CHECK(tensor(after, i, j) + about_origin(m + mass, c1, i, j) == Approx(expected).margin(1e-12));
+      }
+  }
+}
+
+TEST_CASE("moment_stiffness:bearing_fx adds one rotational spring about y between spindle and housing",
+          "[diagnosis][physics]") {
+  const test::Example sp = test::load("spindle");
+  const Extension x = test::find(enumerate_extensions(sp.model, sp.text, {}), "moment_stiffness:bearing_fx");
+  const symbolic::SymbolicModel sm = test::check_candidate(x);
+  const symbolic::SymbolicModel nominal = derive(sp.model);
+  const ex kr = symbolic::test::symbol_of(sm, "kr_bearing_fx"), cr = symbolic::test::symbol_of(sm, "cr_bearing_fx");
+  const int s = coordinate(sm, "spindle.ry"), h = coordinate(sm, "housing.ry");
+  require_only(difference(sm, nominal, &symbolic::SymbolicModel::K), {{{s, s}, kr}, {{h, h}, kr}, {{s, h}, -kr}, {{h, s}, -kr}});
+  require_only(difference(sm, nominal, &symbolic::SymbolicModel::C), {{{s, s}, cr}, {{h, h}, cr}, {{s, h}, -cr}, {{h, s}, -cr}});
+}
+
+TEST_CASE("connection:base-spindle adds an isotropic spring at the spindle's centre of mass", "[diagnosis][physics]") {
+  const test::Example sp = test::load("spindle");
+  const Extension x = test::find(enumerate_extensions(sp.model, sp.text, {}), "connection:base-spindle");
+  const symbolic::SymbolicModel sm = test::check_candidate(x);
+  const symbolic::SymbolicModel nominal = derive(sp.model);
+  const ex k = symbolic::test::symbol_of(sm, "k_base_spindle");
+  const int cx = coordinate(sm, "spindle.x"), cy = coordinate(sm, "spindle.y"), cz = coordinate(sm, "spindle.z");
+  require_only(difference(sm, nominal, &symbolic::SymbolicModel::K), {{{cx, cx}, k}, {{cy, cy}, k}, {{cz, cz}, k}});
+}
+
+TEST_CASE("gyroscopic:spindle couples the spindle's tilts at 2 pi n_sp J_szz", "[diagnosis][physics]") {
+  const test::Example sp = test::load("spindle");
+  ExtensionContext ctx;
+  ctx.varying_parameters = {"n_sp"};
+  const Extension x = test::find(enumerate_extensions(sp.model, sp.text, ctx), "gyroscopic:spindle");
+  CHECK(x.new_parameters.empty());
+  const symbolic::SymbolicModel sm = test::check_candidate(x);
+  const ex n = symbolic::test::symbol_of(sm, "n_sp");
+  const ex jz = symbolic::test::symbol_of(sm, "m_s") *
+                (pow(symbolic::test::symbol_of(sm, "R_so"), 2) + pow(symbolic::test::symbol_of(sm, "R_si"), 2)) / 2;
+  const int rx = coordinate(sm, "spindle.rx"), ry = coordinate(sm, "spindle.ry");
+  const ex g = sm.G(rx, ry);
+  CHECK((same(g, 2 * GiNaC::Pi * n * jz) || same(g, -2 * GiNaC::Pi * n * jz)));
+  require_only(sm.G, {{{rx, ry}, g}, {{ry, rx}, -g}});
+}
+
+TEST_CASE("resonator:mass1 on mdof2: a mass on a spring at mass1, tuned to the peak", "[diagnosis][physics]") {
+  const test::Example ex2 = test::load("mdof2");
+  ExtensionContext ctx;
+  ctx.peak_hz = {190, 40};
+  const Extension x = test::find(enumerate_extensions(ex2.model, ex2.text, ctx), "resonator:mass1");
+  const symbolic::SymbolicModel sm = test::check_candidate(x);
+  const int a = coordinate(sm, "mass1.x"), b = coordinate(sm, "mass2.x"), r = coordinate(sm, "res_mass1.x");
+  auto p = [&](const char* n) { return symbolic::test::symbol_of(sm, n); };
+  GiNaC::matrix K(3, 3);
+  K(a, a) = p("k11") + p("k12") + p("kr_mass1");
+  K(b, b) = p("k22") + p("k12");
+  K(r, r) = p("kr_mass1");
+  K(a, b) = K(b, a) = -p("k12");
+  K(a, r) = K(r, a) = -p("kr_mass1");
+  CHECK(same(sm.K, K));
+  const ModelValues v(x.model, {});
+  CHECK(v.of_parameter("mr_mass1") == Approx(0.02 * 1.39));
+  CHECK(std::sqrt(v.of_parameter("kr_mass1") / v.of_parameter("mr_mass1")) / (2 * M_PI) == Approx(190).epsilon(1e-5));
+}
+
+TEST_CASE("untie_parameter:k_hbx: with every copy at k_hbx the equations are the nominal ones",
+          "[diagnosis][physics]") {
+  const test::Example sp = test::load("spindle");
+  ExtensionContext ctx;
+  ctx.values["k_hbx"] = 7.5e7;  // a fitted value: the copies start there
+  const Extension x = test::find(enumerate_extensions(sp.model, sp.text, ctx), "untie_parameter:k_hbx");
+  CHECK(x.model.find_parameter("k_hbx") == nullptr);  // no longer used anywhere
+  REQUIRE(x.new_parameters.size() == 4);
+  const symbolic::SymbolicModel sm = test::check_candidate(x);
+  const symbolic::SymbolicModel nominal = derive(sp.model);
+  GiNaC::exmap tie;
+  for (const NewParameter& np : x.new_parameters) {
+    CHECK(ModelValues(x.model, {}).of_parameter(np.name) == 7.5e7);
+    tie[symbolic::test::symbol_of(sm, np.name)] = symbolic::test::symbol_of(nominal, "k_hbx");
+  }
+  // Symbols are matched by name: the two derivations have their own symbol objects.
+  GiNaC::exmap to_nominal = tie;
+  for (const symbolic::FreeParameter& fp : sm.parameters)
+    if (nominal.parameter_index(fp.name) >= 0) to_nominal[fp.sym] = symbolic::test::symbol_of(nominal, fp.name);
+  const GiNaC::matrix K = GiNaC::ex_to<GiNaC::matrix>(sm.K.subs(to_nominal));
+  CHECK(same(K, nominal.K));
+  CHECK_FALSE(same(sm.K(0, 0).subs(to_nominal), nominal.K(0, 0) + 1));  // the comparison can fail
+}
+
+TEST_CASE("free_parameter:c12 changes the role only", "[diagnosis][physics]") {
+  const test::Example ex2 = test::load("mdof2");
+  const Extension x = test::find(enumerate_extensions(ex2.model, ex2.text, {}), "free_parameter:c12");
+  CHECK(x.freed_parameters == std::vector<std::string>{"c12"});
+  CHECK(x.new_parameters.empty());
+  CHECK(x.model.find_parameter("c12")->role == ir::Role::Estimate);
+  CHECK(x.mdl_text.find("\"N s/m\"  estimate") != std::string::npos);
+  ir::Model back = x.model;
+  for (ir::Parameter& p : back.parameters)
+    if (p.name == "c12") p.role = ir::Role::Fixed;
+  CHECK(frontend::write_model(back) == frontend::write_model(ex2.model));
+}
