@@ -1,0 +1,151 @@
+// Output-error estimation of physical parameters from measured FRFs and time records (docs/estimation.md).
+//
+//   FitResult r = mbgen::fit(model, data, options);
+//
+// Frequency domain: residuals are model minus measured FRF at the measured frequencies, real and imaginary
+// parts stacked, divided by the standard deviation of the measurement (from coherence, see FrfWeighting).
+// Time domain (the thesis's "one step" method, Sec. 3.6.3): the model is simulated from rest with the
+// record's inputs (zero-order hold, or first-order hold for `# hold=none`) and its outputs compared with the
+// measured ones, each output channel divided by its measured RMS. Both use analytic Jacobians.
+//
+// Parameters with role Estimate are fitted (or the names in FitOptions::estimate); the others stay at their
+// values. Bounds are enforced by reparameterisation (parameterization.hpp). The local solver is
+// Levenberg-Marquardt; the global search is a deterministic multi-start over std::thread workers. Parameters
+// the data cannot determine are reported identifiable = false and kept at their prior (identifiability.hpp).
+#pragma once
+
+#include "mbgen/frf_data.hpp"
+#include "mbgen/modal.hpp"
+#include "mbgen/model.hpp"
+#include "mbgen/time_record.hpp"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace mbgen {
+
+// One measured data set: an FRF table or a time record. Its `# set` values override parameters for it alone.
+struct DataSet {
+  std::variant<FrfData, TimeRecord> content;
+  DataSet(FrfData frf) : content(std::move(frf)) {}         // NOLINT: implicit on purpose
+  DataSet(TimeRecord record) : content(std::move(record)) {}  // NOLINT
+  const std::string& file() const;
+  const SetMap& set() const;
+  bool is_frf() const { return std::holds_alternative<FrfData>(content); }
+};
+
+// Bad fit input (unknown channel or parameter names, empty data, ...). what() names the file where known.
+class FitError : public std::runtime_error {
+ public:
+  explicit FitError(const std::string& what) : std::runtime_error(what) {}
+};
+
+// Standard deviation of a measured FRF value H (complex), per real and imaginary part:
+//   with coherence g2:  var|H| = (1 - g2) / (g2 n_avg) |H|^2   (Bendat & Piersol, variance of the H1 estimator),
+//   without coherence:  sigma = RMS of |H| over the channel (every point of a channel weighted alike),
+// and in both cases at least `floor` times the channel's RMS |H|, so that a coherence of exactly 1 does not
+// give infinite weight. Half of the complex variance goes to each of the real and imaginary parts.
+struct FrfWeighting {
+  int averages = 1;
+  double floor = 1e-3;
+};
+
+struct FitProgress {
+  int start = 0;       // index of the start being refined (0 = the prior)
+  int starts = 1;      // number of starts in this stage
+  int iteration = 0;   // LM iteration within that start
+  double cost = 0;     // weighted residual sum of squares
+  std::string stage;   // "search", "refine", "final"
+};
+
+struct FitOptions {
+  // Parameters to estimate; empty: those with role Estimate. Known/Fixed parameters named here are estimated too.
+  std::vector<std::string> estimate;
+  // Parameter values overriding the model's defaults (the command line's --set); they are also the priors.
+  std::map<std::string, double> values;
+
+  // Global search: `starts` local fits (start 0 at the prior, the others drawn log-uniformly within a factor
+  // `spread` of the prior, clipped to the bounds) from a std::mt19937_64 seeded with `seed`; the best final cost
+  // wins, ties to the lower start index, so the result does not depend on thread timing.
+  int starts = 16;
+  double spread = 3.0;
+  unsigned long long seed = 1;
+  int threads = 2;
+  // FRF data: the starts are first fitted on log-ratio residuals log(H_model / H_measured), whose cost stays
+  // informative when a lightly damped model peak misses the measured one; the best is then refined on the
+  // statistically weighted complex residuals.
+  bool log_search = true;
+
+  // Levenberg-Marquardt stopping rules.
+  int max_iterations = 200;
+  double cost_tolerance = 1e-10;  // relative decrease of the cost in an accepted step
+  double step_tolerance = 1e-10;  // norm of the step in internal coordinates
+  double gradient_tolerance = 1e-12;
+
+  double zero_tolerance = 1e-10;  // identifiability: see identifiability.hpp
+  double rank_tolerance = 1e-7;
+
+  FrfWeighting frf_weighting;
+  std::function<void(const FitProgress&)> progress;  // called from worker threads, one call at a time
+};
+
+struct ParameterEstimate {
+  std::string name, unit;
+  double prior = 0;
+  double value = 0;
+  double std = 0;             // standard deviation in physical units; 0 when not estimated
+  bool estimated = false;     // a candidate that was fitted
+  bool identifiable = true;   // false: kept at the prior because the data cannot determine it
+  std::vector<std::string> confounded_with;  // parameters it is not separable from (if any)
+};
+
+struct FitResult {
+  std::string model;
+  std::vector<std::string> data;  // data set file names
+  std::string method;             // "frf-output-error", "time-output-error" or "mixed-output-error"
+
+  std::vector<ParameterEstimate> parameters;  // the candidates for estimation, in model order
+  Eigen::VectorXd prior_values;               // all model parameters
+  Eigen::VectorXd values;                     // all model parameters at the estimate
+  std::vector<std::string> estimated;         // names of the identifiable, fitted ones: order of the matrices
+  Eigen::MatrixXd covariance;                 // of `estimated`, physical units
+  Eigen::MatrixXd correlation;
+  Eigen::VectorXd singular_values;  // of the unit-column-scaled Jacobian of all candidates at the estimate
+
+  long residual_count = 0;     // n: real residuals
+  double cost = 0;             // weighted residual sum of squares at the estimate (RSS)
+  double initial_cost = 0;     // at the prior
+  double residual_variance = 0;  // RSS / (n - k)
+  double nrmse = 0;            // sqrt(RSS / sum of squared weighted measurements)
+  double bic = 0;              // n log(RSS / n) + k log n, k = estimated.size()
+
+  std::vector<Mode> modes;  // of the model at the estimate (without per-data-set values)
+
+  int iterations = 0;                // LM iterations of the final refinement
+  std::vector<double> cost_history;  // cost per accepted iteration: best start's search, then refinement
+  std::vector<double> start_costs;   // final cost of every start (search stage)
+  int best_start = 0;
+  bool converged = false;
+  std::string stop_reason;
+};
+
+FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options = {});
+
+// Weighted residuals at the given full parameter vector (for reports and checks): r and, per data set, the
+// model's predicted channels. `sum_squares_measured` is the weighted measurement norm nrmse divides by.
+struct Prediction {
+  // Per data set, per channel (FRF: channel order of the file; time: the model outputs present in the record),
+  // the model's values (complex FRF, or real time signal in .real()).
+  std::vector<std::vector<Eigen::VectorXcd>> channels;
+  std::vector<std::vector<std::string>> channel_names;
+};
+Prediction predict(const Model& model, const std::vector<DataSet>& data, const Eigen::VectorXd& values);
+
+}  // namespace mbgen

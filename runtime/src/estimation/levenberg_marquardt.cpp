@@ -1,0 +1,95 @@
+#include "levenberg_marquardt.hpp"
+
+#include <Eigen/QR>
+
+#include <cmath>
+
+namespace mbgen::estimation {
+
+LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x0, const LmOptions& options,
+                             const std::function<void(int, double)>& on_iteration) {
+  LmResult res;
+  res.x = x0;
+  const Eigen::Index k = x0.size();
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J;
+  if (!f(res.x, r, &J) || !r.allFinite() || !J.allFinite()) {
+    res.cost = std::numeric_limits<double>::infinity();
+    res.stop_reason = "the model cannot be evaluated at the starting point";
+    return res;
+  }
+  res.cost = r.squaredNorm();
+  res.history.push_back(res.cost);
+  if (k == 0) {
+    res.converged = true;
+    res.stop_reason = "no parameters";
+    return res;
+  }
+  double lambda = 1e-3;
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(k);
+  Eigen::VectorXd r_new;
+  Eigen::MatrixXd J_new;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    const Eigen::VectorXd gradient = J.transpose() * r;
+    const Eigen::VectorXd col = J.colwise().norm().transpose();
+    D = D.cwiseMax(col);
+    const double dmax = D.maxCoeff();
+    const Eigen::VectorXd Ds = D.cwiseMax(1e-12 * (dmax > 0 ? dmax : 1.0));
+    if ((gradient.array().abs() / (Ds.array() * std::sqrt(std::max(res.cost, 1e-300)))).maxCoeff() <
+        options.gradient_tolerance) {
+      res.converged = true;
+      res.stop_reason = "gradient below tolerance";
+      break;
+    }
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(J);
+    const Eigen::Index m = J.rows();
+    const Eigen::Index kk = std::min(m, k);
+    Eigen::MatrixXd R = Eigen::MatrixXd::Zero(kk, k);
+    R = qr.matrixQR().topRows(kk).triangularView<Eigen::Upper>();
+    const Eigen::VectorXd qtr = (qr.householderQ().transpose() * r).head(kk);
+    bool accepted = false;
+    while (lambda < 1e16) {
+      Eigen::MatrixXd A(kk + k, k);
+      A.topRows(kk) = R;
+      A.bottomRows(k) = (std::sqrt(lambda) * Ds).asDiagonal();
+      Eigen::VectorXd b = Eigen::VectorXd::Zero(kk + k);
+      b.head(kk) = -qtr;
+      const Eigen::VectorXd dx = A.householderQr().solve(b);
+      const Eigen::VectorXd x_new = res.x + dx;
+      const bool ok = dx.allFinite() && f(x_new, r_new, &J_new) && r_new.allFinite() && J_new.allFinite();
+      const double cost_new = ok ? r_new.squaredNorm() : std::numeric_limits<double>::infinity();
+      if (ok && cost_new < res.cost) {
+        const double decrease = (res.cost - cost_new) / res.cost;
+        const double step = (dx.array() * Ds.array()).matrix().norm() / Ds.norm();
+        res.x = x_new;
+        r.swap(r_new);
+        J.swap(J_new);
+        res.cost = cost_new;
+        res.history.push_back(cost_new);
+        ++res.iterations;
+        if (on_iteration) on_iteration(res.iterations, cost_new);
+        lambda = std::max(lambda / 3, 1e-15);
+        accepted = true;
+        if (decrease < options.cost_tolerance) {
+          res.converged = true;
+          res.stop_reason = "relative cost decrease below tolerance";
+        } else if (dx.norm() < options.step_tolerance || step < options.step_tolerance) {
+          res.converged = true;
+          res.stop_reason = "step below tolerance";
+        }
+        break;
+      }
+      lambda *= 10;
+    }
+    if (!accepted) {
+      res.converged = true;  // no descent direction left at machine precision: a (local) minimum
+      res.stop_reason = "no further decrease possible";
+      break;
+    }
+    if (res.converged) break;
+  }
+  if (!res.converged && res.stop_reason.empty()) res.stop_reason = "iteration limit reached";
+  return res;
+}
+
+}  // namespace mbgen::estimation

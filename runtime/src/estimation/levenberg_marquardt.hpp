@@ -1,0 +1,40 @@
+// Levenberg-Marquardt for small dense least-squares problems. Internal header.
+//
+// Minimises ||r(x)||^2. Each iteration factors J = Q R once; a trial step for damping lambda solves
+// [R; sqrt(lambda) D] dx = [-Q^T r; 0] (D = Marquardt's column scaling, the column norms of J, kept monotone),
+// so a rejected trial costs only a small k x k problem. lambda shrinks by 3 on success and grows by 10 on
+// failure.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace mbgen::estimation {
+
+// Evaluates r(x) and, when J is non-null, the Jacobian. Returns false when x is not admissible (the model
+// cannot be evaluated there); the step is then treated as a failed trial.
+using ResidualFunction = std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J)>;
+
+struct LmOptions {
+  int max_iterations = 200;
+  double cost_tolerance = 1e-10;
+  double step_tolerance = 1e-10;
+  double gradient_tolerance = 1e-12;
+};
+
+struct LmResult {
+  Eigen::VectorXd x;
+  double cost = 0;  // ||r||^2
+  int iterations = 0;
+  std::vector<double> history;  // cost after each accepted step, starting with the initial cost
+  bool converged = false;
+  std::string stop_reason;
+};
+
+LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x0, const LmOptions& options,
+                             const std::function<void(int iteration, double cost)>& on_iteration = {});
+
+}  // namespace mbgen::estimation

@@ -1,0 +1,68 @@
+// The output-error least-squares problem over several data sets. Internal header.
+//
+// Residual layout: data sets in order; an FRF data set contributes, per channel in file order, the real parts
+// at all frequencies and then the imaginary parts, each divided by its standard deviation (FrfWeighting);
+// a time record contributes, per model output present in the record (model output order), all samples
+// divided by that output's measured RMS.
+#pragma once
+
+#include "model_response.hpp"
+
+#include "mbgen/fit.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mbgen::estimation {
+
+enum class ResidualKind {
+  Weighted,  // the statistically weighted output error
+  LogRatio,  // FRF only: log(H_model / H_measured), real and imaginary part, unweighted (global search)
+};
+
+class OutputErrorProblem {
+ public:
+  // `free_params`: model indices of the parameters the Jacobian is taken with respect to.
+  OutputErrorProblem(const Model& model, const std::vector<DataSet>& data, const FrfWeighting& weighting);
+
+  // Residuals at the full parameter vector `values` (per-data-set `# set` values are applied on top), and
+  // the Jacobian with respect to the model parameters `free_params` (physical units) when J is non-null.
+  // Throws FitError (or DynamicsError) when the model cannot be evaluated.
+  void evaluate(const Eigen::VectorXd& values, const std::vector<int>& free_params, ResidualKind kind,
+                Eigen::VectorXd& r, Eigen::MatrixXd* J) const;
+
+  Eigen::Index residual_count() const { return count_; }
+  double measured_sum_squares() const { return measured_ss_; }
+  bool has_frf() const;
+  bool has_time() const;
+  Prediction predict(const Eigen::VectorXd& values) const;
+
+ private:
+  struct Prepared {
+    bool frf = false;
+    std::vector<std::pair<int, double>> overrides;  // (parameter index, value) from `# set`
+    // FRF
+    Eigen::VectorXd f_hz;
+    std::vector<ChannelIndex> channels;
+    std::vector<Eigen::VectorXcd> measured;
+    std::vector<Eigen::VectorXd> sigma;  // per real component
+    // time
+    Eigen::MatrixXd u;
+    double dt = 0;
+    HoldMode hold = HoldMode::ZeroOrder;
+    std::vector<int> outputs;
+    std::vector<Eigen::VectorXd> measured_y;
+    std::vector<double> weight;
+    std::vector<std::string> names;
+    Eigen::Index offset = 0, size = 0;
+  };
+  const Model& model_;
+  std::vector<Prepared> sets_;
+  Eigen::Index count_ = 0;
+  double measured_ss_ = 0;
+};
+
+}  // namespace mbgen::estimation
