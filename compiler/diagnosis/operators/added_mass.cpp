@@ -60,7 +60,7 @@ Extension extend(const OperatorInput& in, std::size_t index, const SignalPoint& 
                                          "mass added to " + b.name + " at " + at.signal);
   const ir::Body moved = with_point_mass(b, at.at->point, ma);
   d.model().bodies[index] = moved;
-  d.patch().replace_statement(b.loc, "added_mass:" + b.name + ": a mass " + ma + " at the point of " + at.signal,
+  d.patch().replace_statement(b.loc, "a mass " + ma + " at the point of " + at.signal,
                               frontend::write_body(moved));
 
   // Where the text meant B's centre of mass without writing it, it keeps meaning the old one.

@@ -114,7 +114,7 @@ Extension extend(const OperatorInput& in, const ir::Ground& ground) {
   support.damping = {sym(c_g), sym(c_g), sym(c_g)};
   d.add_element(support);
 
-  return d.finish("the " + g + " is not rigid: it becomes a body of mass " + m_g + " held to a fixed " + fixed.name +
+  return d.finish("ground " + g + " is not rigid: it becomes a body of mass " + m_g + " held to a fixed " + fixed.name +
                   " by springs of stiffness " + k_g + " and damping " + c_g + " in every direction");
 }
 

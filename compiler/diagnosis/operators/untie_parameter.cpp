@@ -99,7 +99,7 @@ Extension untie(const OperatorInput& in, const ir::Parameter& p) {
   if (!used_outside_elements(x, p.name)) {
     x.parameters.erase(std::find_if(x.parameters.begin(), x.parameters.end(),
                                     [&](const ir::Parameter& q) { return q.name == p.name; }));
-    d.patch().replace_statement(p.loc, "untie_parameter:" + p.name + ": " + p.name + " is no longer used", "");
+    d.patch().replace_statement(p.loc, p.name + " is no longer used: each element has its own copy", "");
   }
   return d.finish("the elements " + join(users) + " share " + p.name + "; each gets its own copy (" + join(copies) +
                   ") so that they may differ");
