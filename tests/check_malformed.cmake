@@ -1,7 +1,8 @@
 # Runs `mbgen MODEL -o OUT` on a malformed model and checks: exit status 1, the message named in the model's
 # first line (`# expect: LINE:COL: error: ...`) printed after the file name, and no output file left behind.
 # Usage: cmake -DMBGEN=... -DMODEL=... -DOUT_DIR=... -P check_malformed.cmake
-file(STRINGS "${MODEL}" first LIMIT_COUNT 1)
+file(READ "${MODEL}" text)
+string(REGEX MATCH "^# expect: [^\n]*" first "${text}")  # file(READ), not file(STRINGS): keeps `;` intact
 string(REGEX REPLACE "^# expect: " "" expected "${first}")
 file(REMOVE_RECURSE "${OUT_DIR}")
 file(MAKE_DIRECTORY "${OUT_DIR}")
