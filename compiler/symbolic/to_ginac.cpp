@@ -153,7 +153,7 @@ GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
       if (free != symbol_of_.end()) return free->second;
       if (const ir::Parameter* p = model_.find_parameter(e.text)) return derived_value(*p);
       if (e.text == "pi") return GiNaC::Pi;
-      return fail("unknown parameter `" + e.text + "`; declare it with `param " + e.text + " = VALUE`");
+      return fail("unknown parameter `" + e.text + "`: declare it with `param " + e.text + " = VALUE`");
     }
     case K::Add: return convert(e.args.at(0)) + convert(e.args.at(1));
     case K::Sub: return convert(e.args.at(0)) - convert(e.args.at(1));
