@@ -1,6 +1,9 @@
 #include "emit/cse.hpp"
 
+#include <algorithm>
 #include <map>
+
+#include "emit/infix_printer.hpp"
 
 namespace mbgen::emit {
 namespace {
@@ -45,6 +48,7 @@ struct Hoister {
   const std::string& prefix;
   std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less> replaced;  // hoisted node -> its symbol
   std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less> rewritten;  // memo: node -> node over temporaries
+  std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> texts;     // memo: node -> canonical infix text
   CseResult& result;
 
   GiNaC::ex rewrite(const GiNaC::ex& e) {
@@ -55,12 +59,13 @@ struct Hoister {
       body = it->second;
     } else {
       // Rebuild over rewritten children (evaluation cannot merge distinct temporaries).
-      GiNaC::exvector children;
-      children.reserve(e.nops());
+      // Children are visited in the order of their text, not GiNaC's operand order (which follows the
+      // addresses of type names and so changes from run to run): temporaries are numbered the same every run.
+      GiNaC::exvector children(e.nops());
       bool changed = false;
-      for (std::size_t i = 0; i < e.nops(); ++i) {
-        children.push_back(rewrite(e.op(i)));
-        changed = changed || !children.back().is_equal(e.op(i));
+      for (std::size_t i : canonical_order(e)) {
+        children[i] = rewrite(e.op(i));
+        changed = changed || !children[i].is_equal(e.op(i));
       }
       body = changed ? rebuild(e, children) : e;
       rewritten.emplace(e, body);
@@ -73,6 +78,22 @@ struct Hoister {
       return t;
     }
     return body;
+  }
+
+  std::vector<std::size_t> canonical_order(const GiNaC::ex& e) {
+    std::vector<std::size_t> order(e.nops());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    if (!GiNaC::is_a<GiNaC::add>(e) && !GiNaC::is_a<GiNaC::mul>(e)) return order;
+    std::vector<const std::string*> keys(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) keys[i] = &text_of(e.op(i));
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return *keys[a] < *keys[b]; });
+    return order;
+  }
+
+  const std::string& text_of(const GiNaC::ex& e) {
+    auto it = texts.find(e);
+    if (it == texts.end()) it = texts.emplace(e, infix_text(e)).first;
+    return it->second;
   }
 
   static GiNaC::ex rebuild(const GiNaC::ex& e, const GiNaC::exvector& c) {
@@ -100,7 +121,7 @@ CseResult eliminate_common_subexpressions(const std::vector<GiNaC::ex>& expressi
   NodeCount uses;
   for (const auto& e : expressions) count(e, uses, 1);
   CseResult result;
-  Hoister h{uses, prefix, {}, {}, result};
+  Hoister h{uses, prefix, {}, {}, {}, result};
   result.outputs.reserve(expressions.size());
   for (const auto& e : expressions) {
     // A whole output used twice is hoisted too; that is fine (it is then printed once).
