@@ -22,7 +22,7 @@ std::mutex& fftw_planner_mutex() {
 // A real-to-complex transform of length n with its own buffers.
 class RealFft {
  public:
-  explicit RealFft(Eigen::Index n) : n_(n) {
+  explicit RealFft(Eigen::Index n) {
     in_ = fftw_alloc_real(static_cast<std::size_t>(n));
     out_ = fftw_alloc_complex(static_cast<std::size_t>(n / 2 + 1));
     std::lock_guard<std::mutex> lock(fftw_planner_mutex());
@@ -45,7 +45,6 @@ class RealFft {
   std::complex<double> output(Eigen::Index k) const { return {out_[k][0], out_[k][1]}; }
 
  private:
-  Eigen::Index n_;
   double* in_ = nullptr;
   fftw_complex* out_ = nullptr;
   fftw_plan plan_ = nullptr;
