@@ -64,7 +64,8 @@ std::string describe_roots(const GiNaC::ex& factor, const GiNaC::symbol& s) {
     if (!text.empty()) text += ", ";
     if (r.imag() > 1e-9 * std::max(1.0, std::abs(r))) {
       const double wn = std::abs(r);
-      text += format_number(wn / (2 * M_PI)) + " Hz (zeta " + format_number(-r.real() / wn) + ")";
+      const double zeta = -r.real() / wn;
+      text += format_number(wn / (2 * M_PI)) + " Hz (zeta " + format_number(zeta == 0 ? 0.0 : zeta) + ")";
     } else {
       text += "s = " + format_number(r.real());
     }
@@ -125,8 +126,8 @@ std::optional<Cancellation> find_cancellation(const SymbolicModel& sm, const Tra
   if (numerator.is_zero() || denominator.degree(sm.s) == 0) return std::nullopt;
   // gcd works over the rationals: stand-in symbols for pi, square roots etc., shared by both polynomials.
   GiNaC::exmap stand_ins;
-  numerator = numerator.to_polynomial(stand_ins);
-  denominator = denominator.to_polynomial(stand_ins);
+  numerator = numerator.to_rational(stand_ins);
+  denominator = denominator.to_rational(stand_ins);
   GiNaC::ex common = GiNaC::gcd(GiNaC::expand(numerator), GiNaC::expand(denominator));
   if (common.degree(sm.s) <= 0) return std::nullopt;
   common = GiNaC::expand(common.subs(stand_ins));  // stand_ins maps each stand-in symbol to what it replaced
