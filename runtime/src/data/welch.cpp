@@ -8,16 +8,11 @@
 #include <mutex>
 
 #include "mbgen/data_error.hpp"
+#include "mbgen/fftw_mutex.hpp"
 
 namespace mbgen {
 
 namespace {
-
-// FFTW's planner is not thread-safe (creating and destroying plans); executing a plan is.
-std::mutex& fftw_planner_mutex() {
-  static std::mutex m;
-  return m;
-}
 
 // A real-to-complex transform of length n with its own buffers.
 class RealFft {
@@ -64,6 +59,11 @@ Eigen::VectorXd window_values(WelchWindow window, Eigen::Index n) {
 }
 
 }  // namespace
+
+std::mutex& fftw_planner_mutex() {
+  static std::mutex m;
+  return m;
+}
 
 std::complex<double> zero_order_hold_response(double f_hz, double dt) {
   const double x = M_PI * f_hz * dt;

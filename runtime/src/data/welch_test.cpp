@@ -6,6 +6,7 @@
 #include <cmath>
 #include <complex>
 #include <random>
+#include <thread>
 
 #include "mbgen/data_error.hpp"
 #include "mbgen/welch.hpp"
@@ -263,4 +264,24 @@ TEST_CASE("Welch H1 errors") {
   const WelchEstimate same = welch_h1(rec, {"F", "G"}, {"x"}, opt);
   CHECK(same.frf.f_hz.size() == 0);
   CHECK(same.dropped_bins.size() == 17);
+}
+
+TEST_CASE("Welch H1 from several threads gives the sequential result") {
+  const SecondOrder sys = resonator(0.9, 2 * M_PI * 0.1, 1.0, 0.5, 0.2);
+  const Eigen::VectorXd u = white_noise(1 << 14, 8);
+  const TimeRecord rec = make_record(kDt, {{"F", u}, {"x", sys.filter(u)}});
+  std::vector<Eigen::VectorXcd> results(4);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < results.size(); ++i)
+    threads.emplace_back([&, i] {
+      WelchOptions opt;
+      opt.segment_length = 128 << i;  // different lengths: every thread plans its own transform
+      results[i] = welch_h1(rec, {"F"}, {"x"}, opt).frf.channels[0].values;
+    });
+  for (auto& t : threads) t.join();
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    WelchOptions opt;
+    opt.segment_length = 128 << i;
+    CHECK(results[i] == welch_h1(rec, {"F"}, {"x"}, opt).frf.channels[0].values);
+  }
 }
