@@ -1,0 +1,219 @@
+#include "mbgen/residual_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+
+namespace mbgen {
+
+namespace {
+
+// printf-style formatting into a std::string (the runtime keeps to the standard library and Eigen).
+__attribute__((format(printf, 1, 2))) std::string format(const char* pattern, ...) {
+  va_list args;
+  va_start(args, pattern);
+  char buffer[512];
+  std::vsnprintf(buffer, sizeof buffer, pattern, args);
+  va_end(args);
+  return buffer;
+}
+
+double db(double ratio) { return 20.0 * std::log10(std::max(ratio, 1e-300)); }
+
+// Index of the largest |h| in [lo, hi].
+int argmax_abs(const Eigen::VectorXcd& h, int lo, int hi) {
+  int best = lo;
+  for (int i = lo; i <= hi; ++i)
+    if (std::abs(h[i]) > std::abs(h[best])) best = i;
+  return best;
+}
+
+// The peak in `peaks` nearest to frequency f, or -1.
+int nearest_peak(const std::vector<int>& peaks, const std::vector<double>& f, double target) {
+  int best = -1;
+  for (int p : peaks)
+    if (best < 0 || std::abs(f[static_cast<std::size_t>(p)] - target) < std::abs(f[static_cast<std::size_t>(best)] - target))
+      best = p;
+  return best;
+}
+
+struct Band {
+  int lo, hi;
+  double mean_z;
+};
+
+std::vector<Band> significant_bands(const Eigen::VectorXd& z, const ResidualOptions& o) {
+  const int n = static_cast<int>(z.size());
+  const int half = std::max(0, o.window / 2);
+  std::vector<double> running(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const int lo = std::max(0, i - half), hi = std::min(n - 1, i + half);
+    running[static_cast<std::size_t>(i)] = z.segment(lo, hi - lo + 1).mean();
+  }
+  std::vector<Band> bands;
+  for (int i = 0; i < n;) {
+    if (running[static_cast<std::size_t>(i)] <= o.threshold) {
+      ++i;
+      continue;
+    }
+    int j = i;
+    while (j + 1 < n && running[static_cast<std::size_t>(j + 1)] > o.threshold) ++j;
+    // Widen by the window so the band covers the lines that raised the running mean.
+    const int lo = std::max(0, i - half), hi = std::min(n - 1, j + half);
+    bands.push_back({lo, hi, z.segment(lo, hi - lo + 1).mean()});
+    i = j + 1;
+  }
+  return bands;
+}
+
+Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vector<int>& data_peaks,
+                     const std::vector<int>& model_peaks, const ResidualOptions& o) {
+  const std::vector<double>& f = c.f_hz;
+  const int n = static_cast<int>(f.size());
+  Discrepancy d;
+  d.channel = c.channel;
+  d.data_set = c.data_set;
+  d.f_lo = f[static_cast<std::size_t>(band.lo)];
+  d.f_hi = f[static_cast<std::size_t>(band.hi)];
+  d.significance = band.mean_z;
+
+  // A data peak inside the band?
+  int data_peak = -1;
+  for (int p : data_peaks)
+    if (p >= band.lo && p <= band.hi && (data_peak < 0 || std::abs(c.measured[p]) > std::abs(c.measured[data_peak])))
+      data_peak = p;
+  const int at = data_peak >= 0 ? data_peak : argmax_abs(c.measured - c.model, band.lo, band.hi);
+  d.f_hz = f[static_cast<std::size_t>(at)];
+  d.size_db = db(std::abs(c.measured[at]) / std::max(std::abs(c.model[at]), 1e-300));
+
+  const std::string where = format("%s (%s)", c.channel.c_str(), c.data_set.c_str());
+  if (data_peak >= 0) {
+    const int model_peak = nearest_peak(model_peaks, f, d.f_hz);
+    const double rel = model_peak >= 0 ? std::abs(f[static_cast<std::size_t>(model_peak)] - d.f_hz) / d.f_hz : 1e300;
+    if (rel <= o.peak_tolerance) {
+      d.kind = "damping_mismatch";
+      d.model_f_hz = f[static_cast<std::size_t>(model_peak)];
+      d.text = format("the resonance near %.1f Hz on %s is %.1f dB %s than the model: its damping does not match",
+                           d.f_hz, where.c_str(), std::abs(d.size_db), d.size_db > 0 ? "higher" : "lower");
+    } else if (rel <= 0.25) {
+      d.kind = "frequency_shift";
+      d.model_f_hz = f[static_cast<std::size_t>(model_peak)];
+      d.text = format("the resonance at %.1f Hz on %s sits at %.1f Hz in the model (%+.1f %%)", d.f_hz, where.c_str(),
+                           d.model_f_hz, 100.0 * (d.model_f_hz - d.f_hz) / d.f_hz);
+    } else {
+      d.kind = "unexplained_resonance";
+      d.text = format("a resonance near %.1f Hz on %s that the model does not have (%.1f dB above it)", d.f_hz,
+                           where.c_str(), d.size_db);
+    }
+    return d;
+  }
+  if (band.lo == 0) {
+    d.kind = "static_compliance";
+    d.text = format("below %.1f Hz the measured %s is %.1f dB %s than the model: static compliance differs",
+                         d.f_hi, where.c_str(), std::abs(d.size_db), d.size_db > 0 ? "higher" : "lower");
+  } else if (band.hi == n - 1) {
+    d.kind = "mass_line";
+    d.text = format("above %.1f Hz the measured %s is %.1f dB %s than the model: the mass line differs", d.f_lo,
+                         where.c_str(), std::abs(d.size_db), d.size_db > 0 ? "higher" : "lower");
+  } else if (d.size_db < -3.0) {
+    d.kind = "unexplained_antiresonance";
+    d.text = format("a dip near %.1f Hz on %s that the model does not have (%.1f dB)", d.f_hz, where.c_str(), d.size_db);
+  } else {
+    d.kind = "misfit";
+    d.text = format("between %.1f and %.1f Hz the model misses %s by up to %.1f dB", d.f_lo, d.f_hi, where.c_str(),
+                         std::abs(d.size_db));
+  }
+  return d;
+}
+
+// A phase difference growing linearly with frequency (a delay) across the whole channel.
+bool phase_trend(const ChannelResidual& c, Discrepancy& d) {
+  const int n = static_cast<int>(c.f_hz.size());
+  if (n < 8) return false;
+  // Weighted least squares of the phase of H_meas / H_model against f, weights |H_model|^2 / sigma^2.
+  double sw = 0, sf = 0, sp = 0, sff = 0, sfp = 0;
+  for (int i = 0; i < n; ++i) {
+    const std::complex<double> ratio = c.measured[i] / c.model[i];
+    const double w = std::norm(c.model[i]) / std::max(c.sigma[i] * c.sigma[i], 1e-300);
+    const double ph = std::arg(ratio), fi = c.f_hz[static_cast<std::size_t>(i)];
+    sw += w, sf += w * fi, sp += w * ph, sff += w * fi * fi, sfp += w * fi * ph;
+  }
+  const double den = sw * sff - sf * sf;
+  if (den <= 0) return false;
+  const double slope = (sw * sfp - sf * sp) / den;          // rad per Hz
+  const double slope_std = std::sqrt(sw / den / 2.0);       // each phase has variance ~ sigma^2 / (2 |H|^2)
+  const double delay = -slope / (2 * M_PI);
+  const double phase_at_top = std::abs(slope * c.f_hz.back());
+  if (std::abs(slope) < 8.0 * slope_std || phase_at_top < 0.01) return false;  // significant and over half a degree
+  d.kind = "phase_trend";
+  d.channel = c.channel;
+  d.data_set = c.data_set;
+  d.f_lo = c.f_hz.front();
+  d.f_hi = c.f_hz.back();
+  d.f_hz = c.f_hz.back();
+  d.significance = std::abs(slope) / slope_std;
+  d.delay_s = delay;
+  d.text = format("the phase of %s (%s) drifts from the model's by %.1f degrees at %.0f Hz, as a delay of %.3g s would",
+                       c.channel.c_str(), c.data_set.c_str(), phase_at_top * 180.0 / M_PI, c.f_hz.back(), delay);
+  return true;
+}
+
+}  // namespace
+
+std::vector<int> magnitude_peaks(const Eigen::VectorXcd& h, double prominence_db) {
+  const int n = static_cast<int>(h.size());
+  std::vector<int> peaks;
+  for (int i = 1; i + 1 < n; ++i) {
+    const double m = std::abs(h[i]);
+    if (!(m > std::abs(h[i - 1]) && m >= std::abs(h[i + 1]))) continue;
+    // Prominence: the peak must rise above the lower of the minima on each side up to a higher point.
+    double left = m, right = m;
+    for (int j = i - 1; j >= 0 && std::abs(h[j]) <= m; --j) left = std::min(left, std::abs(h[j]));
+    for (int j = i + 1; j < n && std::abs(h[j]) <= m; ++j) right = std::min(right, std::abs(h[j]));
+    if (db(m / std::max(left, right)) >= prominence_db) peaks.push_back(i);
+  }
+  return peaks;
+}
+
+ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, const ResidualOptions& options) {
+  ResidualSummary summary;
+  double z_sum = 0;
+  for (const ChannelResidual& original : channels) {
+    const Eigen::Index n = static_cast<Eigen::Index>(original.f_hz.size());
+    if (n == 0) continue;
+    // A delay is one finding for the whole channel: when removing it explains most of the residual, report it
+    // and look for bands in what it leaves. (A local mode also bends the phase, but a delay does not explain it.)
+    auto normalized = [&](const Eigen::VectorXcd& measured) {
+      Eigen::VectorXd z(n);
+      for (Eigen::Index i = 0; i < n; ++i)
+        z[i] = std::norm(measured[i] - original.model[i]) / std::max(original.sigma[i] * original.sigma[i], 1e-300);
+      return z;
+    };
+    Eigen::VectorXd z = normalized(original.measured);
+    z_sum += z.sum();
+    summary.lines += n;
+    ChannelResidual c = original;
+    Discrepancy trend;
+    if (phase_trend(original, trend)) {
+      Eigen::VectorXcd undelayed = original.measured;
+      for (Eigen::Index i = 0; i < n; ++i)
+        undelayed[i] *= std::exp(std::complex<double>(0, 2 * M_PI * trend.delay_s * original.f_hz[static_cast<std::size_t>(i)]));
+      const Eigen::VectorXd z_undelayed = normalized(undelayed);
+      if (z_undelayed.mean() <= 0.5 * z.mean()) {
+        summary.discrepancies.push_back(trend);
+        c.measured = undelayed;
+        z = z_undelayed;
+      }
+    }
+    const std::vector<int> data_peaks = magnitude_peaks(c.measured), model_peaks = magnitude_peaks(c.model);
+    for (const Band& band : significant_bands(z, options))
+      summary.discrepancies.push_back(classify(c, band, data_peaks, model_peaks, options));
+  }
+  summary.mean_z = summary.lines ? z_sum / static_cast<double>(summary.lines) : 0;
+  std::stable_sort(summary.discrepancies.begin(), summary.discrepancies.end(),
+                   [](const Discrepancy& a, const Discrepancy& b) { return a.significance > b.significance; });
+  return summary;
+}
+
+}  // namespace mbgen
