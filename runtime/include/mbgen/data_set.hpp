@@ -14,7 +14,8 @@
 
 namespace mbgen {
 
-using DataSet = std::variant<TimeRecord, FrfData>;
+// What a data file holds. (The estimator wraps it as mbgen::DataSet, fit.hpp, with the data set's `# set` values.)
+using DataFile = std::variant<TimeRecord, FrfData>;
 
 // Reads a data file of any supported kind (docs/data.md):
 // - UFF 58/58b when the name ends in .uff or .unv (any case) or the first non-blank line is "-1". The
@@ -22,16 +23,16 @@ using DataSet = std::variant<TimeRecord, FrfData>;
 //   or else get default names ("node1:+X").
 // - CSV otherwise: a time record when the header's first column is `t`, FRFs when it is `f_hz`.
 // PATH "-" reads standard input (a UFF mapping must then be passed explicitly). Throws DataError.
-DataSet read_data_file(const std::string& path, const std::optional<ChannelNames>& known = std::nullopt,
+DataFile read_data_file(const std::string& path, const std::optional<ChannelNames>& known = std::nullopt,
                        const std::optional<UffMapping>& uff_mapping = std::nullopt);
-DataSet read_data_file(const std::string& path, const std::vector<std::string>& known_inputs,
+DataFile read_data_file(const std::string& path, const std::vector<std::string>& known_inputs,
                        const std::vector<std::string>& known_outputs);
 // The same from a stream; `file_name` serves the messages and the UFF-by-extension rule.
-DataSet read_data(std::istream& in, const std::string& file_name,
+DataFile read_data(std::istream& in, const std::string& file_name,
                   const std::optional<ChannelNames>& known = std::nullopt,
                   const std::optional<UffMapping>& uff_mapping = std::nullopt);
 
-const std::string& data_file(const DataSet& data);
-const SetMap& data_set_values(const DataSet& data);
+const std::string& data_file(const DataFile& data);
+const SetMap& data_set_values(const DataFile& data);
 
 }  // namespace mbgen

@@ -47,7 +47,7 @@ Kind detect(const std::string& bytes, const std::string& file_name) {
   throw DataError(file_name, 0, 0, bytes.empty() ? "empty file" : "no header row (only comments)");
 }
 
-DataSet read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
+DataFile read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
                  const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
   // Read everything first: standard input cannot be rewound after looking at the header.
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -70,12 +70,12 @@ DataSet read_any(std::istream& in, const std::string& file_name, const std::opti
 
 }  // namespace
 
-DataSet read_data(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
+DataFile read_data(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
                   const std::optional<UffMapping>& uff_mapping) {
   return read_any(in, file_name, known, uff_mapping, "");
 }
 
-DataSet read_data_file(const std::string& path, const std::optional<ChannelNames>& known,
+DataFile read_data_file(const std::string& path, const std::optional<ChannelNames>& known,
                        const std::optional<UffMapping>& uff_mapping) {
   if (path == "-") return read_data(std::cin, path, known, uff_mapping);
   std::ifstream in(path, std::ios::binary);
@@ -83,16 +83,16 @@ DataSet read_data_file(const std::string& path, const std::optional<ChannelNames
   return read_any(in, path, known, uff_mapping, path + ".map");
 }
 
-DataSet read_data_file(const std::string& path, const std::vector<std::string>& known_inputs,
+DataFile read_data_file(const std::string& path, const std::vector<std::string>& known_inputs,
                        const std::vector<std::string>& known_outputs) {
   return read_data_file(path, ChannelNames{known_inputs, known_outputs});
 }
 
-const std::string& data_file(const DataSet& data) {
+const std::string& data_file(const DataFile& data) {
   return std::visit([](const auto& d) -> const std::string& { return d.file; }, data);
 }
 
-const SetMap& data_set_values(const DataSet& data) {
+const SetMap& data_set_values(const DataFile& data) {
   return std::visit([](const auto& d) -> const SetMap& { return d.set; }, data);
 }
 
