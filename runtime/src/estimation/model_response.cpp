@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mbgen::estimation {
@@ -24,6 +25,23 @@ void scatter(const std::vector<DerivativeEntry>& entries, const std::vector<int>
     X(e.row, e.col) += e.value;
     if (e.value != 0) d.any = true;
   }
+}
+
+void check_entries(const std::vector<DerivativeEntry>& entries, const Eigen::MatrixXd& X, const char* matrix) {
+  for (const auto& e : entries)
+    if (e.row < 0 || e.row >= X.rows() || e.col < 0 || e.col >= X.cols())
+      throw FitError(std::string("model derivative entry of ") + matrix + " out of range (parameter " +
+                     std::to_string(e.param) + ", row " + std::to_string(e.row) + ", column " + std::to_string(e.col) + ")");
+}
+
+void check_derivative_entries(const ModelMatrices& m, const ModelDerivatives& d) {
+  check_entries(d.M, m.M, "M");
+  check_entries(d.C, m.C, "C");
+  check_entries(d.K, m.K, "K");
+  check_entries(d.B, m.B, "B");
+  check_entries(d.Cd, m.Cd, "Cd");
+  check_entries(d.Cv, m.Cv, "Cv");
+  check_entries(d.Ca, m.Ca, "Ca");
 }
 
 }  // namespace
@@ -54,40 +72,71 @@ std::vector<DenseDerivative> dense_derivatives(const ModelMatrices& m, const Mod
   return out;
 }
 
-FrfResponse frf_response(const ModelMatrices& m, const std::vector<DenseDerivative>* derivatives,
-                         const Eigen::VectorXd& f_hz, const std::vector<ChannelIndex>& channels) {
+FrfResponse frf_response(const ModelMatrices& m, const ModelDerivatives* derivatives, const std::vector<int>& params,
+                         const std::vector<int>& inactive, const Eigen::VectorXd& f_hz,
+                         const std::vector<ChannelIndex>& channels) {
   using Complex = std::complex<double>;
   const Eigen::Index nf = f_hz.size();
-  const std::size_t np = derivatives ? derivatives->size() : 0;
+  const Eigen::Index np = static_cast<Eigen::Index>(params.size());
+  if (derivatives) check_derivative_entries(m, *derivatives);
+  // Column of each model parameter in the Jacobian (-1: not wanted).
+  std::vector<int> column;
+  for (std::size_t j = 0; j < params.size(); ++j) {
+    if (std::find(inactive.begin(), inactive.end(), params[j]) != inactive.end()) continue;
+    if (params[j] >= static_cast<int>(column.size())) column.resize(static_cast<std::size_t>(params[j]) + 1, -1);
+    column[static_cast<std::size_t>(params[j])] = static_cast<int>(j);
+  }
+  auto col_of = [&](int param) {
+    return param >= 0 && param < static_cast<int>(column.size()) ? column[static_cast<std::size_t>(param)] : -1;
+  };
   FrfResponse out;
   out.values.assign(channels.size(), Eigen::VectorXcd(nf));
-  if (derivatives) out.jacobian.assign(channels.size(), Eigen::MatrixXcd::Zero(nf, static_cast<Eigen::Index>(np)));
+  if (derivatives) out.jacobian.assign(channels.size(), Eigen::MatrixXcd::Zero(nf, np));
   const double two_pi = 2 * std::acos(-1.0);
+  const Eigen::MatrixXcd Mc = m.M.cast<Complex>(), Cc = m.C.cast<Complex>(), Kc = m.K.cast<Complex>();
+  const Eigen::MatrixXcd Bc = m.B.cast<Complex>();
+  const Eigen::MatrixXcd Cdc = m.Cd.cast<Complex>(), Cvc = m.Cv.cast<Complex>(), Cac = m.Ca.cast<Complex>();
+  Eigen::MatrixXcd P, c, X, Y;
+  Eigen::PartialPivLU<Eigen::MatrixXcd> lu, lut;
   for (Eigen::Index k = 0; k < nf; ++k) {
     const double w = two_pi * f_hz[k];
-    const Complex jw(0, w);
-    const Eigen::MatrixXcd P = m.K.cast<Complex>() + jw * m.C.cast<Complex>() - (w * w) * m.M.cast<Complex>();
-    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(P);
-    const Eigen::MatrixXcd X = lu.solve(m.B.cast<Complex>());
-    const Eigen::MatrixXcd c = m.Cd.cast<Complex>() + jw * m.Cv.cast<Complex>() - (w * w) * m.Ca.cast<Complex>();
+    const Complex jw(0, w), s2(-w * w, 0);
+    P = Kc + jw * Cc + s2 * Mc;
+    lu.compute(P);
+    X = lu.solve(Bc);
+    c = Cdc + jw * Cvc + s2 * Cac;
     if (!X.allFinite()) throw FitError("singular dynamic stiffness at " + std::to_string(f_hz[k]) + " Hz");
-    Eigen::MatrixXcd Y;
-    if (derivatives) Y = Eigen::PartialPivLU<Eigen::MatrixXcd>(P.transpose()).solve(c.transpose()).transpose();  // c P^-1
+    for (std::size_t ch = 0; ch < channels.size(); ++ch)
+      out.values[ch][k] = (c.row(channels[ch].output) * X.col(channels[ch].input))(0, 0);
+    if (!derivatives) continue;
+    lut.compute(P.transpose());
+    Y = lut.solve(c.transpose()).transpose();  // c P^-1
+    // dH(o, i) = dc(o, :) X(:, i) + Y(o, :) (dB(:, i) - dP X(:, i)), entry by entry.
     for (std::size_t ch = 0; ch < channels.size(); ++ch) {
       const int o = channels[ch].output, i = channels[ch].input;
-      out.values[ch][k] = (c.row(o) * X.col(i))(0, 0);
-    }
-    if (!derivatives) continue;
-    for (std::size_t j = 0; j < np; ++j) {
-      const DenseDerivative& d = (*derivatives)[j];
-      if (!d.any) continue;
-      const Eigen::MatrixXcd dP = d.K.cast<Complex>() + jw * d.C.cast<Complex>() - (w * w) * d.M.cast<Complex>();
-      const Eigen::MatrixXcd dc = d.Cd.cast<Complex>() + jw * d.Cv.cast<Complex>() - (w * w) * d.Ca.cast<Complex>();
-      for (std::size_t ch = 0; ch < channels.size(); ++ch) {
-        const int o = channels[ch].output, i = channels[ch].input;
-        const Eigen::VectorXcd rhs = d.B.col(i).cast<Complex>() - dP * X.col(i);
-        out.jacobian[ch](k, static_cast<Eigen::Index>(j)) = (dc.row(o) * X.col(i))(0, 0) + (Y.row(o) * rhs)(0, 0);
+      auto& J = out.jacobian[ch];
+      auto stiffness = [&](const std::vector<DerivativeEntry>& entries, Complex factor) {
+        for (const auto& e : entries) {
+          const int j = col_of(e.param);
+          if (j >= 0) J(k, j) -= Y(o, e.row) * (factor * e.value) * X(e.col, i);
+        }
+      };
+      stiffness(derivatives->K, Complex(1, 0));
+      stiffness(derivatives->C, jw);
+      stiffness(derivatives->M, s2);
+      for (const auto& e : derivatives->B) {
+        const int j = col_of(e.param);
+        if (j >= 0 && e.col == i) J(k, j) += Y(o, e.row) * e.value;
       }
+      auto output = [&](const std::vector<DerivativeEntry>& entries, Complex factor) {
+        for (const auto& e : entries) {
+          const int j = col_of(e.param);
+          if (j >= 0 && e.row == o) J(k, j) += factor * e.value * X(e.col, i);
+        }
+      };
+      output(derivatives->Cd, Complex(1, 0));
+      output(derivatives->Cv, jw);
+      output(derivatives->Ca, s2);
     }
   }
   return out;

@@ -38,8 +38,11 @@ struct FrfResponse {
   std::vector<Eigen::VectorXcd> values;
   std::vector<Eigen::MatrixXcd> jacobian;
 };
-FrfResponse frf_response(const ModelMatrices& m, const std::vector<DenseDerivative>* derivatives,
-                         const Eigen::VectorXd& f_hz, const std::vector<ChannelIndex>& channels);
+// `derivatives` (sparse, as the model gives them) are taken for the parameters `params` (model indices);
+// parameters listed in `inactive` get zero columns (a data set's `# set` values).
+FrfResponse frf_response(const ModelMatrices& m, const ModelDerivatives* derivatives, const std::vector<int>& params,
+                         const std::vector<int>& inactive, const Eigen::VectorXd& f_hz,
+                         const std::vector<ChannelIndex>& channels);
 
 // y[o] (samples) for output index outputs[o]; sensitivity[o] is (samples x params) when requested.
 // Inputs: u is (samples x model inputs). The state starts at rest.

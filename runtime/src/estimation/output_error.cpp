@@ -1,5 +1,6 @@
 #include "output_error.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mbgen::estimation {
@@ -104,18 +105,12 @@ void OutputErrorProblem::evaluate(const Eigen::VectorXd& values, const std::vect
     Eigen::VectorXd p = values;
     for (const auto& [idx, v] : s.overrides) p[idx] = v;
     model_.evaluate(p, m);
-    std::vector<DenseDerivative> dd;
-    if (J) {
-      model_.derivatives(p, md);
-      dd = dense_derivatives(m, md, free_params);
-      // A parameter set by this data set does not act through the shared value.
-      for (const auto& [idx, v] : s.overrides)
-        for (Eigen::Index j = 0; j < k; ++j)
-          if (free_params[static_cast<std::size_t>(j)] == idx) dd[static_cast<std::size_t>(j)].any = false;
-    }
+    std::vector<int> inactive;
+    for (const auto& [idx, v] : s.overrides) inactive.push_back(idx);  // acts through the set value, not the shared one
+    if (J) model_.derivatives(p, md);
     Eigen::Index row = s.offset;
     if (s.frf) {
-      const FrfResponse h = frf_response(m, J ? &dd : nullptr, s.f_hz, s.channels);
+      const FrfResponse h = frf_response(m, J ? &md : nullptr, free_params, inactive, s.f_hz, s.channels);
       const Eigen::Index nf = s.f_hz.size();
       for (std::size_t c = 0; c < s.channels.size(); ++c) {
         if (kind == ResidualKind::LogRatio) {
@@ -144,6 +139,12 @@ void OutputErrorProblem::evaluate(const Eigen::VectorXd& values, const std::vect
         row += 2 * nf;
       }
     } else {
+      std::vector<DenseDerivative> dd;
+      if (J) {
+        dd = dense_derivatives(m, md, free_params);
+        for (std::size_t j = 0; j < free_params.size(); ++j)
+          if (std::find(inactive.begin(), inactive.end(), free_params[j]) != inactive.end()) dd[j].any = false;
+      }
       const TimeResponse y = time_response(m, J ? &dd : nullptr, s.u, s.dt, s.hold, s.outputs);
       const Eigen::Index N = s.u.rows();
       for (std::size_t o = 0; o < s.outputs.size(); ++o) {
@@ -164,7 +165,7 @@ Prediction OutputErrorProblem::predict(const Eigen::VectorXd& values) const {
     model_.evaluate(p, m);
     std::vector<Eigen::VectorXcd> channels;
     if (s.frf) {
-      channels = frf_response(m, nullptr, s.f_hz, s.channels).values;
+      channels = frf_response(m, nullptr, {}, {}, s.f_hz, s.channels).values;
     } else {
       for (const auto& y : time_response(m, nullptr, s.u, s.dt, s.hold, s.outputs).values)
         channels.push_back(y.cast<std::complex<double>>());

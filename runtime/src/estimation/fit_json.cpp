@@ -1,0 +1,70 @@
+// The `mbgen-fit/1` document (INTERFACES.md) plus documented extra members (docs/estimation.md).
+#include "mbgen/fit_report.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <ostream>
+
+namespace mbgen {
+
+namespace {
+
+// NaN and infinities are not JSON numbers: they are written as null.
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+std::string fit_result_json(const FitResult& r) {
+  nlohmann::json j;
+  j["schema"] = "mbgen-fit/1";
+  j["model"] = r.model;
+  j["data"] = r.data;
+  j["method"] = r.method;
+  nlohmann::json params = nlohmann::json::object();
+  for (const auto& e : r.parameters) {
+    nlohmann::json p;
+    p["value"] = number(e.value);
+    p["std"] = e.identifiable ? number(e.std) : nlohmann::json(nullptr);
+    p["identifiable"] = e.identifiable;
+    p["prior"] = number(e.prior);
+    p["unit"] = e.unit;
+    if (!e.confounded_with.empty()) p["confounded_with"] = e.confounded_with;
+    params[e.name] = p;
+  }
+  j["parameters"] = params;
+  nlohmann::json f;
+  f["nrmse"] = number(r.nrmse);
+  f["bic"] = number(r.bic);
+  f["cost"] = number(r.cost);
+  f["initial_cost"] = number(r.initial_cost);
+  f["residual_count"] = r.residual_count;
+  f["residual_variance"] = number(r.residual_variance);
+  f["iterations"] = r.iterations;
+  f["converged"] = r.converged;
+  f["stop_reason"] = r.stop_reason;
+  f["starts"] = r.start_costs.size();
+  f["best_start"] = r.best_start;
+  j["fit"] = f;
+  nlohmann::json corr = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < r.correlation.rows(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index k = 0; k < r.correlation.cols(); ++k) row.push_back(number(r.correlation(i, k)));
+    corr.push_back(row);
+  }
+  j["correlation"] = {{"parameters", r.estimated}, {"matrix", corr}};
+  nlohmann::json sv = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < r.singular_values.size(); ++i) sv.push_back(number(r.singular_values[i]));
+  j["singular_values"] = sv;
+  nlohmann::json modes = nlohmann::json::array();
+  for (const auto& m : r.modes) modes.push_back({{"f_hz", number(m.f_hz)}, {"zeta", number(m.zeta)}});
+  j["modes"] = modes;
+  nlohmann::json history = nlohmann::json::array();
+  for (double c : r.cost_history) history.push_back(number(c));
+  j["cost_history"] = history;
+  return j.dump(2) + "\n";
+}
+
+void write_fit_json(std::ostream& out, const FitResult& result) { out << fit_result_json(result); }
+
+}  // namespace mbgen

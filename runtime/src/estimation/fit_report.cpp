@@ -1,0 +1,193 @@
+// The report directory: report.md with tables and SVG plots drawn by gnuplot from .dat files and .gp scripts.
+#include "mbgen/fit_report.hpp"
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace mbgen {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Each file is written to a temporary name and renamed, so that it appears whole or not at all.
+void write_file(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw FitError("cannot write " + tmp.string());
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw FitError("cannot write " + path.string() + ": " + ec.message());
+}
+
+std::string safe_name(const std::string& s) {
+  std::string out;
+  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '_';
+  return out;
+}
+
+std::string fmt(double x, int digits = 6) {
+  if (!std::isfinite(x)) return "n/a";
+  std::ostringstream s;
+  s << std::setprecision(digits) << x;
+  return s.str();
+}
+
+double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
+
+bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
+
+std::string frf_script(const std::string& stem, const std::string& title) {
+  std::ostringstream gp;
+  gp << "set terminal svg size 900,700 dynamic font 'sans,11'\n"
+     << "set output '" << stem << ".svg'\n"
+     << "set multiplot layout 2,1 title '" << title << "'\n"
+     << "set logscale y\nset grid\nset ylabel '|H|'\nset key top right\n"
+     << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
+     << "     '' using 1:4 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
+     << "     '' using 1:6 with lines lc rgb '#d62728' title 'model, estimate'\n"
+     << "unset logscale y\nset ylabel 'phase [deg]'\nset xlabel 'f [Hz]'\nset yrange [-180:180]\nset ytics 90\n"
+     << "plot '" << stem << ".dat' using 1:3 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
+     << "     '' using 1:5 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
+     << "     '' using 1:7 with lines lc rgb '#d62728' title 'model, estimate'\n"
+     << "unset multiplot\n"
+     << "set terminal svg size 900,400 dynamic font 'sans,11'\n"
+     << "set output '" << stem << "_residual.svg'\n"
+     << "set title '" << title << ": residual |H_model - H_data|'\nset autoscale y\nset ytics auto\nset logscale y\n"
+     << "set ylabel '|residual|'\n"
+     << "plot '" << stem << ".dat' using 1:8 with lines lc rgb '#1f77b4' dt 2 title 'prior', \\\n"
+     << "     '' using 1:9 with lines lc rgb '#d62728' title 'estimate'\n";
+  return gp.str();
+}
+
+std::string time_script(const std::string& stem, const std::string& title) {
+  std::ostringstream gp;
+  gp << "set terminal svg size 900,700 dynamic font 'sans,11'\n"
+     << "set output '" << stem << ".svg'\n"
+     << "set multiplot layout 2,1 title '" << title << "'\nset grid\nset key top right\n"
+     << "set ylabel 'output'\n"
+     << "plot '" << stem << ".dat' using 1:2 with lines lc rgb '#555555' title 'data', \\\n"
+     << "     '' using 1:3 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
+     << "     '' using 1:4 with lines lc rgb '#d62728' title 'model, estimate'\n"
+     << "set ylabel 'residual'\nset xlabel 't [s]'\n"
+     << "plot '" << stem << ".dat' using 1:5 with lines lc rgb '#1f77b4' title 'prior', \\\n"
+     << "     '' using 1:6 with lines lc rgb '#d62728' title 'estimate'\n"
+     << "unset multiplot\n";
+  return gp.str();
+}
+
+}  // namespace
+
+void write_fit_report(const std::string& dir, const Model& model, const std::vector<DataSet>& data,
+                      const FitResult& result) {
+  const fs::path root(dir);
+  std::error_code ec;
+  fs::create_directories(root, ec);
+  if (ec) throw FitError("cannot create report directory " + dir + ": " + ec.message());
+  const Prediction before = predict(model, data, result.prior_values);
+  const Prediction after = predict(model, data, result.values);
+  const bool gnuplot = gnuplot_available();
+
+  std::ostringstream md;
+  md << "# Fit report: " << result.model << "\n\n";
+  md << "Method: `" << result.method << "`. Data:";
+  for (const auto& d : result.data) md << " `" << d << "`";
+  md << ".\n\n## Parameters\n\n| parameter | prior | estimate | std | std / |estimate| | identifiable | unit |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  for (const auto& e : result.parameters) {
+    md << "| " << e.name << " | " << fmt(e.prior) << " | " << fmt(e.value) << " | "
+       << (e.identifiable ? fmt(e.std, 3) : "—") << " | "
+       << (e.identifiable && e.value != 0 ? fmt(100 * e.std / std::abs(e.value), 3) + " %" : "—") << " | "
+       << (e.identifiable ? "yes" : "**no** (kept at prior)");
+    if (!e.confounded_with.empty()) {
+      md << "; confounded with";
+      for (const auto& c : e.confounded_with) md << " " << c;
+    }
+    md << " | " << e.unit << " |\n";
+  }
+  md << "\n## Fit\n\n"
+     << "- residuals n = " << result.residual_count << ", estimated parameters k = " << result.estimated.size() << "\n"
+     << "- weighted RSS: prior " << fmt(result.initial_cost) << ", estimate " << fmt(result.cost) << "\n"
+     << "- NRMSE (sqrt of RSS over the weighted data's sum of squares) = " << fmt(result.nrmse, 4) << "\n"
+     << "- BIC = n log(RSS/n) + k log n = " << fmt(result.bic, 8) << "\n"
+     << "- residual variance RSS/(n-k) = " << fmt(result.residual_variance, 4) << "\n"
+     << "- starts: " << result.start_costs.size() << ", best start " << result.best_start << "; final refinement "
+     << result.iterations << " iterations, " << (result.converged ? "converged" : "not converged") << " ("
+     << result.stop_reason << ")\n";
+  md << "\nFinal cost of every start:";
+  for (double c : result.start_costs) md << " " << fmt(c, 5);
+  md << "\n\n## Modes at the estimate\n\n| f [Hz] | zeta |\n|---|---|\n";
+  for (const auto& m : result.modes) md << "| " << fmt(m.f_hz, 6) << " | " << fmt(m.zeta, 4) << " |\n";
+  md << "\n## Correlation of the estimates\n\n|";
+  for (const auto& n : result.estimated) md << " | " << n;
+  md << " |\n|---";
+  for (std::size_t i = 0; i < result.estimated.size(); ++i) md << "|---";
+  md << "|\n";
+  for (std::size_t i = 0; i < result.estimated.size(); ++i) {
+    md << "| " << result.estimated[i];
+    for (std::size_t k = 0; k < result.estimated.size(); ++k)
+      md << " | " << fmt(result.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)), 3);
+    md << " |\n";
+  }
+  md << "\nSingular values of the unit-column-scaled Jacobian of all candidates:";
+  for (Eigen::Index i = 0; i < result.singular_values.size(); ++i) md << " " << fmt(result.singular_values[i], 3);
+  md << "\n\n## Data and model\n\n";
+
+  std::vector<std::string> scripts;
+  for (std::size_t d = 0; d < data.size(); ++d) {
+    md << "### Data set " << d + 1 << ": `" << data[d].file() << "`\n\n";
+    for (const auto& [name, value] : data[d].set()) md << "- set " << name << " = " << value.text << "\n";
+    for (std::size_t c = 0; c < before.channels[d].size(); ++c) {
+      const std::string label = before.channel_names[d][c];
+      const std::string stem = "set" + std::to_string(d + 1) + "_" + safe_name(label);
+      std::ostringstream dat;
+      dat << std::setprecision(10);
+      if (data[d].is_frf()) {
+        const FrfData& f = std::get<FrfData>(data[d].content);
+        const Eigen::VectorXcd& measured = f.channels[c].values;
+        dat << "# f_hz |H_data| phase_data |H_prior| phase_prior |H_estimate| phase_estimate |res_prior| |res_estimate|\n";
+        for (Eigen::Index k = 0; k < f.f_hz.size(); ++k) {
+          const auto hd = measured[k], hp = before.channels[d][c][k], he = after.channels[d][c][k];
+          dat << f.f_hz[k] << ' ' << std::abs(hd) << ' ' << phase_deg(hd) << ' ' << std::abs(hp) << ' ' << phase_deg(hp)
+              << ' ' << std::abs(he) << ' ' << phase_deg(he) << ' ' << std::abs(hp - hd) << ' ' << std::abs(he - hd) << '\n';
+        }
+        write_file(root / (stem + ".gp"), frf_script(stem, label));
+      } else {
+        const TimeRecord& t = std::get<TimeRecord>(data[d].content);
+        const Eigen::VectorXd& measured = t.at(label).values;
+        dat << "# t y_data y_prior y_estimate res_prior res_estimate\n";
+        for (Eigen::Index k = 0; k < t.samples(); ++k) {
+          const double yd = measured[k], yp = before.channels[d][c][k].real(), ye = after.channels[d][c][k].real();
+          dat << t.t[k] << ' ' << yd << ' ' << yp << ' ' << ye << ' ' << yp - yd << ' ' << ye - yd << '\n';
+        }
+        write_file(root / (stem + ".gp"), time_script(stem, label));
+      }
+      write_file(root / (stem + ".dat"), dat.str());
+      scripts.push_back(stem);
+      md << "#### " << label << "\n\n![" << label << "](" << stem << ".svg)\n\n";
+      if (data[d].is_frf()) md << "![" << label << " residual](" << stem << "_residual.svg)\n\n";
+    }
+  }
+  bool rendered = gnuplot;
+  if (gnuplot) {
+    for (const auto& stem : scripts) {
+      const std::string cmd = "cd '" + root.string() + "' && gnuplot '" + stem + ".gp' > /dev/null 2>&1";
+      if (std::system(cmd.c_str()) != 0) rendered = false;
+    }
+  }
+  if (!rendered)
+    md << "**The plots were not rendered** (" << (gnuplot ? "gnuplot failed" : "gnuplot is not installed")
+       << "): run `gnuplot NAME.gp` in this directory to draw them from the .dat files.\n";
+  write_file(root / "report.md", md.str());
+}
+
+}  // namespace mbgen
