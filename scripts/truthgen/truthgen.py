@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""truthgen: write one measured-style data set (FRF or time record) of a truth model, independent of mbgen.
+
+    python3 scripts/truthgen/truthgen.py --example mdof2 --case nominal --kind frf --snr-db 40 --seed 1 -o frf.csv
+    python3 scripts/truthgen/truthgen.py --list
+
+Writes FILE.csv in the formats of INTERFACES.md ("Measured data") and FILE.truth.json (truth values, the
+case and its hidden effect; for people and for checking recovered values, never for deciding verdicts).
+See docs/truthgen.md.
+"""
+import argparse
+import math
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from truthlib.bootstrap import ensure_numpy  # noqa: E402
+
+ensure_numpy()
+
+import numpy as np  # noqa: E402
+
+from truthlib import cases, datafiles, generate, models, response  # noqa: E402
+
+SET_PATTERN = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)=([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)$")
+
+
+class UsageError(Exception):
+    pass
+
+
+def parse_args(argv):
+    ap = argparse.ArgumentParser(prog="truthgen.py", description=__doc__.split("\n")[1])
+    ap.add_argument("--list", action="store_true", help="list the cases and exit")
+    ap.add_argument("--example", choices=sorted(models.EXAMPLES))
+    ap.add_argument("--case", help="truth case (see --list)")
+    ap.add_argument("--kind", choices=["frf", "time"], default="frf")
+    ap.add_argument("--snr-db", default="40", help="signal-to-noise ratio in dB per channel, or inf (default 40)")
+    ap.add_argument("--seed", type=int, default=1, help="seed of numpy.random.default_rng (default 1)")
+    ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                    help="set a model parameter for this data set; written as `# set NAME=VALUE`")
+    ap.add_argument("-o", "--output", help="output CSV file")
+    ap.add_argument("--f-min", type=float, help="FRF grid start, Hz (mdof2 10, spindle 50)")
+    ap.add_argument("--f-max", type=float, help="FRF grid end, Hz (mdof2 400, spindle 1200)")
+    ap.add_argument("--df", type=float, help="FRF grid spacing, Hz (mdof2 0.25, spindle 1)")
+    ap.add_argument("--fs", type=float, help="time record sample rate, Hz (mdof2 4096, spindle 8192)")
+    ap.add_argument("--duration", type=float, help="time record length, s (default 2)")
+    ap.add_argument("--amplitude", type=float, help="force amplitude, N (mdof2 10, spindle 100)")
+    ap.add_argument("--excitation", choices=["binary", "gaussian"], default="binary",
+                    help="white zero-order-hold force: random +-amplitude (default) or Gaussian")
+    return ap.parse_args(argv)
+
+
+def parse_settings(texts, case):
+    """`# set` lines: the case's defaults (e.g. n_sp=300 for the gyroscopic case), then the user's."""
+    nominal = models.EXAMPLES[case.example]["nominal"]
+    settings = {name: repr(value) if value != int(value) else str(int(value))
+                for name, value in case.default_set.items()}
+    for text in texts:
+        match = SET_PATTERN.match(text.strip())
+        if not match:
+            raise UsageError("--set %r: expected NAME=VALUE with VALUE a decimal number" % text)
+        name, value = match.group(1), match.group(2)
+        if name not in nominal:
+            raise UsageError("--set %s: not a parameter of %s (parameters: %s)"
+                             % (name, case.example, ", ".join(sorted(nominal))))
+        if not math.isfinite(float(value)):
+            raise UsageError("--set %s: value must be finite" % name)
+        settings[name] = value
+    return sorted(settings.items())
+
+
+def list_cases():
+    print("%-8s %-18s %-30s %-9s %s" % ("example", "case", "expected operator", "effect", "hidden effect"))
+    for (example, name), c in cases.CASES.items():
+        print("%-8s %-18s %-30s %-9s %s" % (example, name, c.operator or "-",
+                                           "%g Hz" % c.effect_hz if c.effect_hz else "-", c.hidden))
+
+
+def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs):
+    freqs, zetas = response.damped_modes(mats)
+    doc = {
+        "generator": "scripts/truthgen",
+        "command": "python3 scripts/truthgen/truthgen.py " + " ".join(sys.argv[1:]),
+        "example": case.example, "case": case.name, "kind": args.kind,
+        "hidden_effect": {"expected_operator": case.operator, "effect_hz": case.effect_hz,
+                          "description": case.hidden, "values": case.extra, "notes": case.notes},
+        "parameters": p,
+        "set": {name: text for name, text in settings},
+        "seed": args.seed,
+        "noise": {"snr_db": snr_db if math.isfinite(snr_db) else "inf",
+                  "definition": ("FRF: complex Gaussian, E|n|^2 = sigma^2, sigma = RMS_grid |H| / 10^(snr/20) per "
+                                 "channel; coherence |H|^2/(|H|^2 + sigma^2)" if args.kind == "frf" else
+                                 "time: white Gaussian on each output, sigma = RMS(noise-free output) / "
+                                 "10^(snr/20); inputs exact"),
+                  "sigma": {}},
+        "truth_modes": [{"f_hz": round(float(f), 4), "zeta": float("%.5g" % z)} for f, z in zip(freqs, zetas)],
+    }
+    if case.example == "spindle":
+        j_s, j_h = models.spindle_inertias(p)
+        doc["derived"] = {"J_sxx": j_s[0, 0], "J_syy": j_s[1, 1], "J_szz": j_s[2, 2],
+                          "J_hxx": j_h[0, 0], "J_hyy": j_h[1, 1], "J_hzz": j_h[2, 2]}
+    if args.kind == "frf":
+        f = data["f_hz"]
+        doc["frf"] = {"f_min": float(f[0]), "f_max": float(f[-1]), "df": float(f[1] - f[0]) if len(f) > 1 else 0}
+        for oi, o in enumerate(outputs):
+            for ii, i in enumerate(inputs):
+                doc["noise"]["sigma"]["%s/%s" % (o, i)] = float(data["sigma"][oi, ii])
+    else:
+        doc["time"] = {"fs": 1.0 / data["dt"], "samples": int(len(data["t"])), "excitation": args.excitation,
+                       "amplitude": args.amplitude, "hold": "zoh", "initial_state": "at rest"}
+        for oi, o in enumerate(outputs):
+            doc["noise"]["sigma"][o] = float(data["sigma"][oi])
+    return doc
+
+
+def run(argv):
+    args = parse_args(argv)
+    if args.list:
+        list_cases()
+        return 0
+    if not args.example or not args.case or not args.output:
+        raise UsageError("--example, --case and -o are required (or --list)")
+    try:
+        case = cases.get(args.example, args.case)
+    except KeyError as error:
+        raise UsageError(error.args[0])
+    if args.kind not in case.kinds:
+        raise UsageError("case %s/%s has no %s data" % (case.example, case.name, args.kind))
+    try:
+        snr_db = float(args.snr_db)
+    except ValueError:
+        raise UsageError("--snr-db %r: expected a number or inf" % args.snr_db)
+    settings = parse_settings(args.set, case)
+    p = case.truth_parameters({name: float(text) for name, text in settings})
+    system = case.build(p)
+    mats = system.matrices()
+    inputs, outputs = system.input_names(), system.output_names()
+    rng = np.random.default_rng(args.seed)
+    if args.kind == "frf":
+        f_min, f_max, df = generate.FRF_GRID[case.example]
+        f = generate.frequency_grid(args.f_min if args.f_min is not None else f_min,
+                                    args.f_max if args.f_max is not None else f_max,
+                                    args.df if args.df is not None else df)
+        if f[0] < 0 or len(f) < 1:
+            raise UsageError("bad frequency grid")
+        data = generate.make_frf(mats, f, snr_db, rng)
+        datafiles.write_frf_csv(args.output, data, outputs, inputs, settings)
+    else:
+        fs = args.fs or generate.SAMPLE_RATE[case.example]
+        args.amplitude = args.amplitude or generate.AMPLITUDE[case.example]
+        data = generate.make_time(mats, fs, args.duration or generate.DURATION[case.example], snr_db, rng,
+                                  args.amplitude, args.excitation)
+        datafiles.write_time_csv(args.output, data, outputs, inputs, settings)
+    base = args.output[:-4] if args.output.endswith(".csv") else args.output
+    datafiles.write_truth_json(base + ".truth.json",
+                               truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs))
+    return 0
+
+
+def main():
+    try:
+        return run(sys.argv[1:])
+    except UsageError as error:
+        sys.stderr.write("truthgen: error: %s\n" % error)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,68 @@
+"""Measured-style data sets: FRFs with complex Gaussian noise, and zero-order-hold time records with output noise.
+
+Noise definitions (docs/truthgen.md):
+- FRF: per channel OUT/IN, sigma = RMS over the grid of |H| divided by 10^(SNR/20); the noise is complex
+  Gaussian with E|n|^2 = sigma^2 (real and imaginary parts each of variance sigma^2/2), independent per
+  frequency and channel. Coherence column: |H|^2/(|H|^2 + sigma^2) with the noise-free H.
+- Time: per output, sigma = RMS of the noise-free output record divided by 10^(SNR/20), white Gaussian,
+  independent per sample and channel. Inputs are exact (a measured force taken as clean).
+"""
+import numpy as np
+
+from . import response
+
+FRF_GRID = {"mdof2": (10.0, 400.0, 0.25), "spindle": (50.0, 1200.0, 1.0)}
+SAMPLE_RATE = {"mdof2": 4096.0, "spindle": 8192.0}
+DURATION = {"mdof2": 2.0, "spindle": 2.0}
+AMPLITUDE = {"mdof2": 10.0, "spindle": 100.0}
+
+
+def frequency_grid(f_min, f_max, df):
+    count = int(round((f_max - f_min) / df)) + 1
+    return f_min + df * np.arange(count)
+
+
+def noise_sigma(rms, snr_db):
+    return rms / 10 ** (snr_db / 20.0)
+
+
+def make_frf(mats, f_hz, snr_db, rng):
+    """Noisy FRF of every output/input pair. Returns dict with f, clean H, noisy H, coherence, sigma (O x I)."""
+    H = response.frf(mats, f_hz)
+    F, O, I = H.shape
+    sigma = np.zeros((O, I))
+    noisy = H.copy()
+    coh = np.ones(H.shape)
+    for o in range(O):
+        for i in range(I):
+            sigma[o, i] = noise_sigma(np.sqrt(np.mean(np.abs(H[:, o, i]) ** 2)), snr_db)
+            if np.isfinite(snr_db):
+                n = rng.standard_normal(F) + 1j * rng.standard_normal(F)
+                noisy[:, o, i] += sigma[o, i] / np.sqrt(2) * n
+                coh[:, o, i] = np.abs(H[:, o, i]) ** 2 / (np.abs(H[:, o, i]) ** 2 + sigma[o, i] ** 2)
+    return {"f_hz": np.asarray(f_hz, float), "clean": H, "noisy": noisy, "coherence": coh, "sigma": sigma}
+
+
+def excitation(kind, count, inputs, amplitude, rng):
+    """White zero-order-hold force: `binary` (+-amplitude, random signs) or `gaussian` (RMS amplitude)."""
+    if kind == "binary":
+        return amplitude * np.where(rng.uniform(size=(count, inputs)) < 0.5, -1.0, 1.0)
+    if kind == "gaussian":
+        return amplitude * rng.standard_normal((count, inputs))
+    raise ValueError("unknown excitation %r (binary, gaussian)" % kind)
+
+
+def make_time(mats, fs, duration, snr_db, rng, amplitude, kind="binary"):
+    """Time record from rest at t = 0: inputs held over each sample interval, outputs sampled at t_k.
+
+    Returns dict with t, u (N x inputs), clean y, noisy y (N x outputs), sigma per output.
+    """
+    count = int(round(duration * fs))
+    dt = 1.0 / fs
+    u = excitation(kind, count, mats["B"].shape[1], amplitude, rng)
+    y, _ = response.simulate_zoh(mats, u, dt)
+    sigma = np.array([noise_sigma(np.sqrt(np.mean(y[:, o] ** 2)), snr_db) for o in range(y.shape[1])])
+    noisy = y.copy()
+    if np.isfinite(snr_db):
+        noisy += rng.standard_normal(y.shape) * sigma
+    return {"t": np.arange(count) * dt, "u": u, "clean": y, "noisy": noisy, "sigma": sigma, "dt": dt}

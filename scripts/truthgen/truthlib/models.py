@@ -1,0 +1,175 @@
+"""The two reference models (shared/design/REFERENCE-MODELS.md), written by hand, with optional hidden effects.
+
+Parameter names are exactly those of examples/mdof2/mdof2.mdl and examples/spindle/spindle.mdl. A hidden effect
+is passed as `effects`, a dict whose keys are listed in EFFECT_KEYS; the cases module fills it in.
+"""
+import math
+
+import numpy as np
+
+from .assembly import System
+
+# ---------------------------------------------------------------------------------------------------------
+# mdof2
+
+MDOF2_NOMINAL = {
+    "m1": 1.39, "m2": 1.09,
+    "k11": 1.38e6, "k22": 0.24e6, "k12": 0.12e6,
+    "c11": 13.42, "c22": 0.47, "c12": 0.0,
+}
+MDOF2_ESTIMABLE = ["m1", "m2", "k11", "k12", "k22", "c11", "c22"]
+
+
+def build_mdof2(p, effects=None):
+    """Two masses on cantilever beams, coupled by a helix. Effects (all optional):
+    ground_body {m, k, c}: the wall is a body (x only) held by a spring to a fixed ground;
+    added_mass {m}: a point mass at mass1's point (mass1 is a point, so its mass just grows);
+    resonator {m, k, c}: a mass on a spring-damper along x on mass1;
+    maxwell {a, b, k, c}: a Maxwell element along x between frames a and b.
+    """
+    e = effects or {}
+    s = System("mdof2")
+    if "ground_body" in e:
+        g = e["ground_body"]
+        s.body("wall", g["m"], [0.0, 0.0, 0.0], (0, 0, 0), ["x"])
+        s.ground("wall_fixed")
+        s.spring3("wall_support", "wall", None, "wall_fixed", (0, 0, 0), (g["k"],) * 3, (g["c"],) * 3)
+    else:
+        s.ground("wall")
+    m1 = p["m1"] + e.get("added_mass", {}).get("m", 0.0)
+    s.body("mass1", m1, [0.0, 0.0, 0.0], (0, 0, 0), ["x"])
+    s.body("mass2", p["m2"], [0.0, 0.0, 0.0], (0, 0, 0), ["x"])
+    s.spring("beam1", "wall", (0, 0, 0), "mass1", None, "x", p["k11"], p["c11"])
+    s.spring("beam2", "wall", (0, 0, 0), "mass2", None, "x", p["k22"], p["c22"])
+    s.spring("helix", "mass1", None, "mass2", None, "x", p["k12"], p["c12"])
+    if "resonator" in e:
+        r = e["resonator"]
+        s.body("res_mass1", r["m"], [0.0, 0.0, 0.0], (0, 0, 0), ["x"])
+        s.spring("res_mass1_spring", "mass1", None, "res_mass1", None, "x", r["k"], r["c"])
+    if "maxwell" in e:
+        mw = e["maxwell"]
+        s.maxwell("maxwell", mw["a"], None, mw["b"], None, "x", mw["k"], mw["c"])
+    s.input_force("F1", "mass1", None, "x")
+    s.output_displacement("d1", "mass1", None, "x")
+    s.output_displacement("d2", "mass2", None, "x")
+    return s
+
+
+# ---------------------------------------------------------------------------------------------------------
+# spindle
+
+SPINDLE_NOMINAL = {
+    "m_s": 10.67, "L_s": 0.612, "R_so": 0.025, "R_si": 0.013,
+    "m_h": 24.61, "a_h": 0.105, "b_h": 0.125, "c_h": 0.340,
+    "k_fx": 60e6, "k_fy": 60e6, "k_fz": 30e6, "k_rx": 60e6, "k_ry": 60e6,
+    "c_fx": 1000.0, "c_fy": 1000.0, "c_fz": 1000.0, "c_rx": 1000.0, "c_ry": 1000.0,
+    "k_hbx": 65e6, "k_hby": 130e6, "k_hbz": 65e6,
+    "c_hbx": 1000.0, "c_hby": 1000.0, "c_hbz": 1000.0,
+    "n_sp": 0.0,
+}
+SPINDLE_ESTIMABLE = ["k_fx", "k_fy", "k_fz", "k_rx", "k_ry", "c_fx", "c_fy", "c_fz", "c_rx", "c_ry",
+                     "k_hbx", "k_hby", "k_hbz", "c_hbx", "c_hby", "c_hbz"]
+
+BEARINGS = [  # name, spindle point, housing point, axis, stiffness, damping
+    ("bearing_fx", (-0.025, 0, 0.127), (-0.040, 0, 0.127), "x", "k_fx", "c_fx"),
+    ("bearing_fy", (0, -0.025, 0.127), (0, -0.040, 0.127), "y", "k_fy", "c_fy"),
+    ("bearing_fz", (0, 0, 0.127), (0, 0, 0.200), "z", "k_fz", "c_fz"),
+    ("bearing_rx", (-0.025, 0, -0.162), (-0.040, 0, -0.162), "x", "k_rx", "c_rx"),
+    ("bearing_ry", (0, -0.025, -0.162), (0, -0.040, -0.162), "y", "k_ry", "c_ry"),
+]
+MOUNTS = [  # name, housing point, base point
+    ("mount1", (-0.048, -0.064, 0.060), (-0.048, -0.080, 0.060)),
+    ("mount2", (0.048, -0.064, 0.060), (0.048, -0.080, 0.060)),
+    ("mount3", (-0.048, -0.064, -0.060), (-0.048, -0.080, -0.060)),
+    ("mount4", (0.048, -0.064, -0.060), (0.048, -0.080, -0.060)),
+]
+NOSE = (0.0, 0.0, 0.306)
+
+
+def spindle_inertias(p):
+    """Inertias from geometry (REFERENCE-MODELS.md): hollow cylinder and solid box."""
+    r2 = p["R_so"] ** 2 + p["R_si"] ** 2
+    j_sxx = p["m_s"] * (3 * r2 + p["L_s"] ** 2) / 12
+    j_szz = p["m_s"] * r2 / 2
+    j_h = [p["m_h"] * (p["b_h"] ** 2 + p["c_h"] ** 2) / 12,
+           p["m_h"] * (p["a_h"] ** 2 + p["c_h"] ** 2) / 12,
+           p["m_h"] * (p["a_h"] ** 2 + p["b_h"] ** 2) / 12]
+    return np.diag([j_sxx, j_sxx, j_szz]), np.diag(j_h)
+
+
+def _with_point_mass(mass, com, inertia, ma, point):
+    """Body plus a point mass: total mass, new centre of mass, inertia tensor about it (parallel axes)."""
+    com = np.asarray(com, float)
+    point = np.asarray(point, float)
+    total = mass + ma
+    new_com = (mass * com + ma * point) / total
+
+    def shift(m, d):
+        return m * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+
+    return total, new_com, inertia + shift(mass, com - new_com) + shift(ma, point - new_com)
+
+
+def build_spindle(p, effects=None):
+    """Spindle in a housing on four mounts. Effects (all optional):
+    ground_body {m, k, c}: the base is a body (x y z) at the centroid of the mount points, held by an
+        isotropic spring3 to a fixed ground;
+    mount_overrides {mount: {param: value}}: one mount's own value of a shared mount parameter;
+    spin: True: the spindle spins about z at n_sp rev/s (gyroscopic coupling);
+    torsions [{name, a, b, about, k, c}]: rotational springs between spindle and housing;
+    added_mass {m, point}: a point mass on the spindle;
+    resonator {m, k, c, point}: a mass on a spring-damper along x at a spindle point;
+    connection {k, c}: an isotropic spring3 between the spindle's centre of mass and the base;
+    maxwell {name, a, pa, b, pb, along, k, c}: a Maxwell element.
+    """
+    e = effects or {}
+    s = System("spindle")
+    j_s, j_h = spindle_inertias(p)
+    m_s, com_s = p["m_s"], np.zeros(3)
+    if "added_mass" in e:
+        m_s, com_s, j_s = _with_point_mass(m_s, com_s, j_s, e["added_mass"]["m"], e["added_mass"]["point"])
+    if "ground_body" in e:
+        g = e["ground_body"]
+        points = np.array([bp for _, _, bp in MOUNTS])
+        centroid = points.mean(axis=0)
+        radius = max(np.linalg.norm(points - centroid, axis=1))
+        s.body("base", g["m"], np.eye(3) * 2 * g["m"] * radius ** 2 / 5, centroid, ["x", "y", "z"])
+        s.ground("base_fixed")
+        s.spring3("base_support", "base", centroid, "base_fixed", centroid, (g["k"],) * 3, (g["c"],) * 3)
+    else:
+        s.ground("base")
+    s.body("spindle", m_s, j_s, com_s, ["x", "y", "z", "rx", "ry"])
+    s.body("housing", p["m_h"], j_h, (0, 0, 0), ["x", "y", "z", "rx", "ry", "rz"])
+    for name, ps, ph, axis, k, c in BEARINGS:
+        s.spring(name, "spindle", ps, "housing", ph, axis, p[k], p[c])
+    overrides = e.get("mount_overrides", {})
+    for name, ph, pb in MOUNTS:
+        q = dict(p)
+        q.update(overrides.get(name, {}))
+        s.spring3(name, "housing", ph, "base", pb, (q["k_hbx"], q["k_hby"], q["k_hbz"]),
+                  (q["c_hbx"], q["c_hby"], q["c_hbz"]))
+    if e.get("spin"):
+        s.spin("spindle", "z", 2 * math.pi * p["n_sp"])
+    for t in e.get("torsions", []):
+        s.torsion(t["name"], t["a"], t["b"], t["about"], t["k"], t["c"])
+    if "resonator" in e:
+        r = e["resonator"]
+        s.body("res_spindle", r["m"], [0.0, 0.0, 0.0], r["point"], ["x"])
+        s.spring("res_spindle_spring", "spindle", r["point"], "res_spindle", r["point"], "x", r["k"], r["c"])
+    if "connection" in e:
+        cn = e["connection"]
+        s.spring3("base_spindle_link", "base", com_s, "spindle", com_s, (cn["k"],) * 3, (cn["c"],) * 3)
+    if "maxwell" in e:
+        mw = e["maxwell"]
+        s.maxwell(mw["name"], mw["a"], mw["pa"], mw["b"], mw["pb"], mw["along"], mw["k"], mw["c"])
+    s.input_force("Fx", "spindle", NOSE, "x")
+    s.output_displacement("xs_front", "spindle", (0, 0, 0.250), "x")
+    s.output_displacement("xs_rear", "spindle", (0, 0, -0.250), "x")
+    s.output_displacement("xh_front", "housing", (0, 0.0625, 0.170), "x")
+    return s
+
+
+EXAMPLES = {
+    "mdof2": {"nominal": MDOF2_NOMINAL, "estimable": MDOF2_ESTIMABLE, "build": build_mdof2},
+    "spindle": {"nominal": SPINDLE_NOMINAL, "estimable": SPINDLE_ESTIMABLE, "build": build_spindle},
+}
