@@ -71,7 +71,7 @@ TEST_CASE("expressions: pi, functions and derived parameters substituted recursi
   CHECK(c_value == GiNaC::pow(GiNaC::numeric(1254, 1000), 2) / GiNaC::numeric(127, 1000));
 }
 
-TEST_CASE("--set overrides a free parameter's value exactly") {
+TEST_CASE("a --set override replaces a free parameter's value exactly") {
   const ParameterTable t(two_params, {{"a", "1.5E-3"}});
   CHECK(t.free_parameters()[0].value == GiNaC::numeric(3, 2000));
   DeriveOptions o;
