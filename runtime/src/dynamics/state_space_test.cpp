@@ -2,6 +2,7 @@
 
 #include "mbgen/dynamics_error.hpp"
 #include "test_models.hpp"
+#include "test_rk4.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -9,44 +10,12 @@
 #include <Eigen/LU>
 
 #include <cmath>
-#include <functional>
 #include <random>
 
 namespace {
 
 using cd = std::complex<double>;
 const double pi = std::acos(-1.0);
-
-// Second-order form integrated directly (independent of the state-space assembly): q'' = M^-1 (B u - C q' - K q).
-struct SecondOrderRk4 {
-  Eigen::MatrixXd M, C, K, B;
-  // Integrates from q = q' = 0 over [0, samples * dt] with `substeps` RK4 steps per sample and input u(k, a) in
-  // sample interval k at fraction a in [0, 1] of it; returns the positions at the sample instants (samples x n).
-  Eigen::MatrixXd run(const std::function<Eigen::VectorXd(int, double)>& u, int samples, double dt,
-                      int substeps) const {
-    const Eigen::Index n = M.rows();
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
-    auto f = [&](int k, double a, const Eigen::VectorXd& x) {
-      Eigen::VectorXd dx(2 * n);
-      dx.head(n) = x.tail(n);
-      dx.tail(n) = lu.solve(B * u(k, a) - C * x.tail(n) - K * x.head(n));
-      return dx;
-    };
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * n);
-    Eigen::MatrixXd q(samples, n);
-    const double h = dt / substeps;
-    for (int k = 0; k < samples; ++k) {
-      q.row(k) = x.head(n).transpose();
-      for (int j = 0; j < substeps; ++j) {
-        const double a = static_cast<double>(j) / substeps, da = 1.0 / substeps;
-        const Eigen::VectorXd k1 = f(k, a, x), k2 = f(k, a + da / 2, x + h / 2 * k1),
-                              k3 = f(k, a + da / 2, x + h / 2 * k2), k4 = f(k, a + da, x + h * k3);
-        x += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-      }
-    }
-    return q;
-  }
-};
 
 mbgen::ModelMatrices mdof2_matrices(bool extra_outputs) {
   mbgen::test::Mdof2Model model(extra_outputs);
@@ -200,7 +169,7 @@ TEST_CASE("Phi equals the exponential computed by eigendecomposition") {
 
 TEST_CASE("ZOH and FOH discretisations match a fine RK4 integration") {
   const auto m = mdof2_matrices(false);
-  const SecondOrderRk4 rk4{m.M, m.C, m.K, m.B};
+  const mbgen::test::SecondOrderRk4 rk4{m.M, m.C, m.K, m.B};
   const double dt = 1e-3;  // 166 Hz mode: w dt ~ 1
   const int samples = 60;
   std::mt19937 rng(3);
@@ -211,7 +180,7 @@ TEST_CASE("ZOH and FOH discretisations match a fine RK4 integration") {
 
   SECTION("zero-order hold: piecewise-constant input") {
     auto held = [&](int k, double) { return Eigen::VectorXd::Constant(1, u(k, 0)); };
-    const Eigen::MatrixXd reference = rk4.run(held, samples, dt, 2000);
+    const Eigen::MatrixXd reference = rk4.run(held, samples, dt, 2000).leftCols(2);
     const Eigen::MatrixXd q = simulate_positions(mbgen::discretize(ss, dt, mbgen::InputHold::ZeroOrder), u, 2);
     CHECK((q - reference).cwiseAbs().maxCoeff() <= 1e-9 * reference.cwiseAbs().maxCoeff());
   }
@@ -220,7 +189,7 @@ TEST_CASE("ZOH and FOH discretisations match a fine RK4 integration") {
       const double next = k + 1 < samples ? u(k + 1, 0) : 0.0;
       return Eigen::VectorXd::Constant(1, (1 - a) * u(k, 0) + a * next);
     };
-    const Eigen::MatrixXd reference = rk4.run(linear, samples, dt, 2000);
+    const Eigen::MatrixXd reference = rk4.run(linear, samples, dt, 2000).leftCols(2);
     const Eigen::MatrixXd q = simulate_positions(mbgen::discretize(ss, dt, mbgen::InputHold::FirstOrder), u, 2);
     CHECK((q - reference).cwiseAbs().maxCoeff() <= 1e-9 * reference.cwiseAbs().maxCoeff());
     // ... and the zero-order hold of the same samples is a different (wrong) answer for this input.

@@ -1,0 +1,122 @@
+#include "mbgen/simulate.hpp"
+
+#include "mbgen/dynamics_error.hpp"
+#include "test_models.hpp"
+#include "test_rk4.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <random>
+
+namespace {
+
+Eigen::MatrixXd random_force(int samples, int inputs, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0, 50);
+  Eigen::MatrixXd u(samples, inputs);
+  for (Eigen::Index i = 0; i < u.size(); ++i) u.data()[i] = normal(rng);
+  return u;
+}
+
+}  // namespace
+
+TEST_CASE("mdof2 simulation of displacement, velocity and acceleration outputs matches RK4") {
+  const mbgen::test::Mdof2Model model(/*extra_outputs=*/true);  // outputs d1, d2, v1, a2
+  const Eigen::VectorXd p = model.info().default_values();
+  mbgen::ModelMatrices m;
+  model.evaluate(p, m);
+  const double dt = 5e-4;
+  const int samples = 80;
+  const Eigen::MatrixXd u = random_force(samples, 1, 5);
+  const mbgen::test::SecondOrderRk4 rk4{m.M, m.C, m.K, m.B};
+
+  for (auto hold : {mbgen::InputHold::ZeroOrder, mbgen::InputHold::FirstOrder}) {
+    auto input = [&](int k, double a) {
+      if (hold == mbgen::InputHold::ZeroOrder) return Eigen::VectorXd::Constant(1, u(k, 0));
+      const double next = k + 1 < samples ? u(k + 1, 0) : 0.0;
+      return Eigen::VectorXd::Constant(1, (1 - a) * u(k, 0) + a * next);
+    };
+    const Eigen::MatrixXd x = rk4.run(input, samples, dt, 1000);
+    // Reference outputs from the integrated states: d1 = q1, d2 = q2, v1 = q1', a2 = q2'' from the equation of
+    // motion with the input at the sample instant.
+    Eigen::MatrixXd reference(samples, 4);
+    for (int k = 0; k < samples; ++k) {
+      const Eigen::Vector2d q = x.row(k).head(2).transpose(), v = x.row(k).tail(2).transpose();
+      const Eigen::Vector2d a = m.M.inverse() * (m.B * u(k, 0) - m.C * v - m.K * q);
+      reference.row(k) << q[0], q[1], v[0], a[1];
+    }
+    const Eigen::MatrixXd y = mbgen::simulate(model, p, u, dt, hold);
+    REQUIRE(y.rows() == samples);
+    REQUIRE(y.cols() == 4);
+    for (Eigen::Index c = 0; c < 4; ++c) {
+      INFO("hold " << static_cast<int>(hold) << ", output " << model.info().outputs[static_cast<std::size_t>(c)]);
+      CHECK((y.col(c) - reference.col(c)).cwiseAbs().maxCoeff() <= 1e-8 * reference.col(c).cwiseAbs().maxCoeff());
+    }
+    CHECK(y.row(0).head(3).norm() == 0.0);  // starts at rest
+  }
+}
+
+namespace {
+
+void check_sensitivities(const mbgen::Model& model, const Eigen::MatrixXd& u, double dt, mbgen::InputHold hold) {
+  const Eigen::VectorXd p = model.info().default_values();
+  const auto result = mbgen::simulate_with_sensitivity(model, p, u, dt, hold);
+  const Eigen::MatrixXd plain = mbgen::simulate(model, p, u, dt, hold);
+  CHECK((result.outputs - plain).norm() <= 1e-13 * plain.norm());
+  REQUIRE(result.doutputs.size() == static_cast<std::size_t>(p.size()));
+  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+    // Fourth-order (Richardson-extrapolated) central differences with a relative step 1e-4: the simulated
+    // outputs carry rounding noise ~1e-14 of their size from the matrix exponential, so weak parameters (c22 of
+    // mdof2 changes y by ~1e-3 relative) need a step this large, while over hundreds of cycles a mass or
+    // stiffness shifts the phase so much that plain central differences would have a truncation error ~1e-5.
+    const double h = 1e-4 * std::max(std::abs(p[i]), 1.0);
+    auto central = [&](double step) {
+      Eigen::VectorXd plus = p, minus = p;
+      plus[i] += step;
+      minus[i] -= step;
+      return Eigen::MatrixXd((mbgen::simulate(model, plus, u, dt, hold) - mbgen::simulate(model, minus, u, dt, hold)) /
+                             (2 * step));
+    };
+    const Eigen::MatrixXd fd = (4 * central(h / 2) - central(h)) / 3;
+    const Eigen::MatrixXd& analytic = result.doutputs[static_cast<std::size_t>(i)];
+    REQUIRE(analytic.rows() == u.rows());
+    INFO("parameter " << model.info().parameters[static_cast<std::size_t>(i)].name << ", hold "
+                      << static_cast<int>(hold));
+    // Per output column, relative to that column's sensitivity (columns differ by orders of magnitude).
+    for (Eigen::Index c = 0; c < analytic.cols(); ++c) {
+      const double scale = analytic.col(c).norm() + 1e-12 * plain.col(c).norm() / std::max(std::abs(p[i]), 1.0);
+      CHECK((analytic.col(c) - fd.col(c)).norm() <= 1e-6 * scale);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("mdof2 output sensitivities match central finite differences") {
+  const mbgen::test::Mdof2Model model(true);
+  const Eigen::MatrixXd u = random_force(300, 1, 9);
+  check_sensitivities(model, u, 5e-4, mbgen::InputHold::ZeroOrder);
+  check_sensitivities(model, u, 5e-4, mbgen::InputHold::FirstOrder);
+}
+
+TEST_CASE("sensitivities of a random model with every matrix parameter-dependent") {
+  const mbgen::test::RandomAffineModel model(4, 2, 3, 10, 21);
+  const Eigen::MatrixXd u = random_force(200, 2, 13);
+  check_sensitivities(model, u, 4e-3, mbgen::InputHold::ZeroOrder);
+  check_sensitivities(model, u, 4e-3, mbgen::InputHold::FirstOrder);
+}
+
+TEST_CASE("simulation errors") {
+  const mbgen::test::Mdof2Model model;
+  const Eigen::VectorXd p = model.info().default_values();
+  CHECK_THROWS_WITH(mbgen::simulate(model, p, Eigen::MatrixXd::Zero(10, 2), 1e-3, mbgen::InputHold::ZeroOrder),
+                    Catch::Contains("input record has 2 columns, the model has 1 inputs"));
+  Eigen::VectorXd massless = p;
+  massless[mbgen::test::Mdof2Model::m2] = 0;
+  CHECK_THROWS_WITH(mbgen::simulate(model, massless, Eigen::MatrixXd::Zero(10, 1), 1e-3, mbgen::InputHold::ZeroOrder),
+                    Catch::Contains("mass matrix M is singular"));
+  CHECK_THROWS_WITH(mbgen::simulate_with_sensitivity(model, p, Eigen::MatrixXd::Zero(10, 1), -1e-3,
+                                                     mbgen::InputHold::ZeroOrder),
+                    Catch::Contains("must be positive"));
+  CHECK(mbgen::simulate(model, p, Eigen::MatrixXd::Zero(0, 1), 1e-3, mbgen::InputHold::ZeroOrder).rows() == 0);
+}
