@@ -65,6 +65,7 @@ TEST_CASE("slow: global search from 20 random priors within a factor 3 of the tr
       *x *= std::pow(3.0, exponent(prior_rng));
     FitOptions o;
     o.seed = static_cast<unsigned>(run + 1);
+    o.starts = 8;
     const FitResult r = fit(test::mdof2_model(prior), {DataSet(data)}, o);
     INFO("run " << run << ": cost " << r.cost << " vs reference " << reference.cost << ", best start " << r.best_start);
     CHECK(r.cost == Approx(reference.cost).epsilon(1e-6));

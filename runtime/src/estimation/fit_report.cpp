@@ -51,7 +51,7 @@ std::string frf_script(const std::string& stem, const std::string& title) {
   gp << "set terminal svg size 900,700 dynamic font 'sans,11'\n"
      << "set output '" << stem << ".svg'\n"
      << "set multiplot layout 2,1 title '" << title << "'\n"
-     << "set logscale y\nset grid\nset ylabel '|H|'\nset key top right\n"
+     << "set logscale y\nset format y '%.0e'\nset grid\nset ylabel '|H|'\nset key top right\n"
      << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
      << "     '' using 1:4 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
      << "     '' using 1:6 with lines lc rgb '#d62728' title 'model, estimate'\n"
@@ -101,7 +101,7 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   md << "# Fit report: " << result.model << "\n\n";
   md << "Method: `" << result.method << "`. Data:";
   for (const auto& d : result.data) md << " `" << d << "`";
-  md << ".\n\n## Parameters\n\n| parameter | prior | estimate | std | std / |estimate| | identifiable | unit |\n"
+  md << ".\n\n## Parameters\n\n| parameter | prior | estimate | std | relative std | identifiable | unit |\n"
      << "|---|---|---|---|---|---|---|\n";
   for (const auto& e : result.parameters) {
     md << "| " << e.name << " | " << fmt(e.prior) << " | " << fmt(e.value) << " | "
