@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <map>
 #include <cstdio>
 #include <sstream>
 
@@ -73,9 +74,10 @@ std::string describe_roots(const GiNaC::ex& factor, const GiNaC::symbol& s) {
   return text;
 }
 
-}  // namespace
+// det P of a set of coordinates, shared by every pair on the same blocks (the costly part for large blocks).
+using DeterminantCache = std::map<std::vector<int>, GiNaC::ex>;
 
-TransferFunction transfer_function(const SymbolicModel& sm, int output, int input) {
+TransferFunction transfer_function(const SymbolicModel& sm, int output, int input, DeterminantCache& cache) {
   TransferFunction tf;
   tf.output = output;
   tf.input = input;
@@ -106,15 +108,26 @@ TransferFunction transfer_function(const SymbolicModel& sm, int output, int inpu
     bordered(r, n) = sm.B(i, u).subs(values);
     bordered(n, r) = GiNaC::expand((sm.Cd(o, i) + sm.Cv(o, i) * s + sm.Ca(o, i) * s * s).subs(values));
   }
-  GiNaC::matrix p(n, n);
-  for (unsigned r = 0; r < n; ++r)
-    for (unsigned c = 0; c < n; ++c) p(r, c) = bordered(r, c);
-  const GiNaC::ex denominator = GiNaC::expand(p.determinant());
+  auto cached = cache.find(tf.coordinates);
+  if (cached == cache.end()) {
+    GiNaC::matrix p(n, n);
+    for (unsigned r = 0; r < n; ++r)
+      for (unsigned c = 0; c < n; ++c) p(r, c) = bordered(r, c);
+    cached = cache.emplace(tf.coordinates, GiNaC::expand(p.determinant())).first;
+  }
+  const GiNaC::ex denominator = cached->second;
   const GiNaC::ex numerator = GiNaC::expand(-bordered.determinant());
   const GiNaC::ex lead = denominator.coeff(s, denominator.degree(s));
   tf.denominator = coefficients(denominator, sm.s, lead, tf.symbolic);
   tf.numerator = coefficients(numerator, sm.s, lead, tf.symbolic);
   return tf;
+}
+
+}  // namespace
+
+TransferFunction transfer_function(const SymbolicModel& sm, int output, int input) {
+  DeterminantCache cache;
+  return transfer_function(sm, output, input, cache);
 }
 
 std::optional<Cancellation> find_cancellation(const SymbolicModel& sm, const TransferFunction& tf) {
@@ -153,9 +166,10 @@ std::optional<Cancellation> find_cancellation(const SymbolicModel& sm, const Tra
 void add_transfer_functions(SymbolicModel& sm) {
   sm.transfer_functions.clear();
   sm.cancellations.clear();
+  DeterminantCache cache;
   for (size_t o = 0; o < sm.model->outputs.size(); ++o)
     for (size_t u = 0; u < sm.model->inputs.size(); ++u) {
-      sm.transfer_functions.push_back(transfer_function(sm, static_cast<int>(o), static_cast<int>(u)));
+      sm.transfer_functions.push_back(transfer_function(sm, static_cast<int>(o), static_cast<int>(u), cache));
       if (auto c = find_cancellation(sm, sm.transfer_functions.back())) sm.cancellations.push_back(*c);
     }
 }
