@@ -92,3 +92,15 @@ TEST_CASE("a spin about an axis that is not an axis of symmetry is rejected at t
         "principal axis with equal transverse inertias (products of inertia zero, Jxx = Jyy)");
   CHECK(derive_error(one_body("x y z rx ry", "inertia 1, 3, 3", "spin a about x speed 10\n")) == "no error");
 }
+
+TEST_CASE("a model without inputs and outputs derives, with empty B and output matrices") {
+  const ir::Model model = frontend::parse_string(
+      "model z\nparam k = 1\nground g\nbody a {\n  mass 1\n  dof x\n}\n"
+      "spring s {\n  from g\n  to a\n  along x\n  stiffness k\n}\n", "z.mdl");
+  const SymbolicModel sm = derive(model);
+  CHECK(sm.B.rows() == 1);
+  CHECK(sm.B.cols() == 0);
+  CHECK(sm.Cd.rows() == 0);
+  CHECK(sm.transfer_functions.empty());
+  CHECK(sm.K(0, 0) == sm.parameters[0].sym);
+}
