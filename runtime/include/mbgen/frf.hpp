@@ -30,11 +30,18 @@ struct FrfResult {
 
 struct FrfJacobianResult {
   std::vector<double> freqs_hz;
-  std::vector<Eigen::MatrixXcd> H;                // H[k]: outputs x inputs at freqs_hz[k]
-  std::vector<std::vector<Eigen::MatrixXcd>> dH;  // dH[k][p] = dH[k]/dp_p, outputs x inputs
+  std::vector<Eigen::MatrixXcd> H;  // H[k]: outputs x inputs at freqs_hz[k]
+  // dH[k]: (outputs * inputs) x parameters, the Jacobian block of frequency k: column p is vec(dH[k]/dp_p),
+  // column-major like Eigen (entry (o, i) of the FRF matrix in row o + i * outputs). Use derivative() for one
+  // parameter's outputs x inputs matrix.
+  std::vector<Eigen::MatrixXcd> dH;
   // Work done, for benchmarks: LU factorisations of P and right-hand-side columns solved with them.
   std::size_t lu_factorizations = 0;
   std::size_t solved_columns = 0;
+
+  Eigen::MatrixXcd derivative(std::size_t k, Eigen::Index p) const {
+    return Eigen::Map<const Eigen::MatrixXcd>(dH[k].col(p).data(), H[k].rows(), H[k].cols());
+  }
 };
 
 // Throws DynamicsError for inconsistent matrix sizes or a singular P at some frequency (an undamped resonance

@@ -85,33 +85,42 @@ FrfJacobianResult frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d
     const cd s(0, two_pi * f), s2 = s * s;
     const Eigen::MatrixXcd Cout = output_matrix(m, s);
     const Eigen::MatrixXcd X = lu.solve(B);                                     // n x inputs
-    const Eigen::MatrixXcd Yt = lu.transpose().solve(Cout.transpose());  // n x outputs: P^T Y^T = Cout^T
-    const Eigen::MatrixXcd Y = Yt.transpose();                           // outputs x n
+    // Adjoint solve P^T Y^T = Cout^T; Yt = Y^T (n x outputs) is used directly: Y(o, r) = Yt(r, o).
+    const Eigen::MatrixXcd Yt = lu.transpose().solve(Cout.transpose());
     result.lu_factorizations += 1;
     result.solved_columns += static_cast<std::size_t>(inputs + outputs);
     result.H.push_back(Cout * X);
 
-    std::vector<Eigen::MatrixXcd> dH(static_cast<std::size_t>(parameter_count),
-                                     Eigen::MatrixXcd::Zero(outputs, inputs));
+    // Column p of J is vec(dH/dp_p); entry (o, i) lives in row o + i * outputs. Every derivative entry is a
+    // rank-one (or row/column) update, written as plain loops: no temporaries.
+    Eigen::MatrixXcd J = Eigen::MatrixXcd::Zero(outputs * inputs, parameter_count);
     // -Y dP X: each entry (r, c) of dP contributes -factor * Y(:, r) X(c, :).
     auto stiffness_term = [&](const std::vector<DerivativeEntry>& entries, cd factor) {
-      for (const auto& e : entries)
-        dH[static_cast<std::size_t>(e.param)].noalias() -= (factor * e.value) * Y.col(e.row) * X.row(e.col);
+      for (const auto& e : entries) {
+        const cd a = -factor * e.value;
+        for (Eigen::Index i = 0; i < inputs; ++i) {
+          const cd ax = a * X(e.col, i);
+          for (Eigen::Index o = 0; o < outputs; ++o) J(o + i * outputs, e.param) += ax * Yt(e.row, o);
+        }
+      }
     };
     stiffness_term(d.K, 1.0);
     stiffness_term(d.C, s);
     stiffness_term(d.M, s2);
-    // Y dB: entry (r, c) adds Y(:, r) to column c.
-    for (const auto& e : d.B) dH[static_cast<std::size_t>(e.param)].col(e.col) += e.value * Y.col(e.row);
-    // dCout X: entry (r, c) adds X(c, :) to row r.
+    // Y dB: entry (r, c) adds value * Y(:, r) to FRF column c.
+    for (const auto& e : d.B)
+      for (Eigen::Index o = 0; o < outputs; ++o) J(o + e.col * outputs, e.param) += e.value * Yt(e.row, o);
+    // dCout X: entry (r, c) adds factor * value * X(c, :) to FRF row r.
     auto output_term = [&](const std::vector<DerivativeEntry>& entries, cd factor) {
-      for (const auto& e : entries)
-        dH[static_cast<std::size_t>(e.param)].row(e.row) += (factor * e.value) * X.row(e.col);
+      for (const auto& e : entries) {
+        const cd a = factor * e.value;
+        for (Eigen::Index i = 0; i < inputs; ++i) J(e.row + i * outputs, e.param) += a * X(e.col, i);
+      }
     };
     output_term(d.Cd, 1.0);
     output_term(d.Cv, s);
     output_term(d.Ca, s2);
-    result.dH.push_back(std::move(dH));
+    result.dH.push_back(std::move(J));
   }
   return result;
 }
