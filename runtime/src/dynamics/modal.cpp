@@ -1,5 +1,6 @@
 #include "mbgen/modal.hpp"
 
+#include "balance.hpp"
 #include "matrix_checks.hpp"
 #include "mbgen/dynamics_error.hpp"
 
@@ -46,10 +47,13 @@ std::vector<Mode> modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd
   A.bottomLeftCorner(n, n) = -lu.solve(K);
   A.bottomRightCorner(n, n) = -lu.solve(C);
 
-  Eigen::EigenSolver<Eigen::MatrixXd> solver(A, /*computeEigenvectors=*/true);
+  // Balance first (Eigen's EigenSolver does not): stiff systems have -M^-1 K ~ 1e9 next to the identity block.
+  const Eigen::VectorXd scale = detail::balancing_scale(A);
+  const Eigen::MatrixXd A_balanced = scale.cwiseInverse().asDiagonal() * A * scale.asDiagonal();
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(A_balanced, /*computeEigenvectors=*/true);
   if (solver.info() != Eigen::Success) throw DynamicsError("modal_analysis: the eigenvalue iteration did not converge");
   const Eigen::VectorXcd lambda = solver.eigenvalues();
-  const Eigen::MatrixXcd vectors = solver.eigenvectors();
+  const Eigen::MatrixXcd vectors = scale.cast<std::complex<double>>().asDiagonal() * solver.eigenvectors();
 
   // Eigen's real Schur form returns real eigenvalues with an imaginary part of exactly zero and complex ones
   // in conjugate pairs, so the sign of the imaginary part selects one member of each pair without tolerance.

@@ -153,3 +153,32 @@ TEST_CASE("the hand-written mdof2 Model gives the same modes") {
   CHECK(modes[0].f_hz == Approx(89.72).margin(0.005));
   CHECK(modes[1].f_hz == Approx(166.29).margin(0.005));
 }
+
+TEST_CASE("stiff spindle-sized system with stiffness-proportional damping") {
+  // 11 coordinates, masses 0.05..25 and springs 3e7..1.3e8 (spindle magnitudes), C = beta K. For proportional
+  // damping every mode has |lambda| = w_n exactly and zeta = beta w_n / 2: independent of the state-space route.
+  const int n = 11;
+  const double beta = 1e-5;
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), K = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) M(i, i) = i % 2 == 0 ? 5.0 + 2.0 * i : 0.05 + 0.03 * i;
+  auto spring = [&](int a, int b, double k) {
+    K(a, a) += k;
+    if (b >= 0) {
+      K(b, b) += k;
+      K(a, b) -= k;
+      K(b, a) -= k;
+    }
+  };
+  for (int i = 0; i < n; ++i) spring(i, i - 1, 3e7 + 1e7 * i);
+  spring(0, 7, 6e7);
+  spring(3, 10, 1.3e8);
+  const Eigen::MatrixXd C = beta * K;
+  const auto modes = mbgen::modal_analysis(M, C, K);
+  const Eigen::VectorXd f = mbgen::undamped_natural_frequencies_hz(M, K);
+  REQUIRE(modes.size() == static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    INFO("mode " << i);
+    CHECK(modes[static_cast<std::size_t>(i)].f_hz == Approx(f[i]).epsilon(1e-10));
+    CHECK(modes[static_cast<std::size_t>(i)].zeta == Approx(beta * 2 * pi * f[i] / 2).epsilon(1e-7));
+  }
+}
