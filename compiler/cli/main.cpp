@@ -13,7 +13,10 @@ void print_usage() {
   std::cout << "mbgen " << mbgen::cli::kVersion << ": a symbolic-to-numeric model compiler for mechanical systems\n\n"
                "usage:\n"
                "  mbgen MODEL.mdl -o OUT.cpp [--header OUT.hpp] [--namespace NS]   compile to C++\n"
-               "  mbgen inspect MODEL.mdl [--format markdown|latex|json]          symbolic matrices, TFs, modes\n\n"
+               "  mbgen inspect MODEL.mdl [--format markdown|latex|json]          symbolic matrices, TFs, modes\n"
+               "  mbgen fit MODEL.mdl --data FILE... [--json OUT] [--report DIR]  estimate parameters\n"
+               "  mbgen diagnose MODEL.mdl --data FILE... [--json OUT] [--report DIR] [--extended OUT.mdl]\n"
+               "                                                                  find and fix what the model misses\n\n"
                "Run `mbgen COMMAND --help` for a command's options.\n";
 }
 
@@ -34,5 +37,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (first == "inspect") return mbgen::cli::run_inspect(argc - 1, argv + 1);
+  if (first == "fit") return mbgen::cli::run_fit(argc - 1, argv + 1);
+  if (first == "diagnose") return mbgen::cli::run_diagnose(argc - 1, argv + 1);
   return mbgen::cli::run_compile(argc, argv);
 }

@@ -30,6 +30,17 @@ void write_file(const std::string& path, const std::string& content, const std::
 
 }  // namespace
 
+void OutputFiles::require_writable(const std::string& path) {
+  if (path.empty() || path == "-") return;
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw std::runtime_error(path + ": error: cannot write: directory `" + dir.string() + "` does not exist");
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw std::runtime_error(path + ": error: cannot write: directory `" + dir.string() + "` is not writable");
+}
+
 OutputFiles::~OutputFiles() {
   if (committed_) return;
   std::error_code ec;
@@ -46,17 +57,13 @@ void OutputFiles::add(const std::string& path, const std::string& content) {
   write_file(temp, content, path);
 }
 
-void OutputFiles::add_directory(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& files) {
+std::string OutputFiles::stage_directory(const std::string& dir) {
   const std::string temp = temp_name_for(fs::path(dir).lexically_normal().string());
   std::error_code ec;
   fs::remove_all(temp, ec);
   staged_.push_back({temp, dir, true});
   if (!fs::create_directories(temp, ec) && ec) throw std::runtime_error(dir + ": error: cannot create: " + ec.message());
-  for (const auto& [name, content] : files) {
-    const fs::path target = fs::path(temp) / name;
-    fs::create_directories(target.parent_path(), ec);
-    write_file(target.string(), content, (fs::path(dir) / name).string());
-  }
+  return temp;
 }
 
 void OutputFiles::commit() {

@@ -14,10 +14,13 @@ class OutputFiles {
   OutputFiles& operator=(const OutputFiles&) = delete;
   ~OutputFiles();  // removes temporaries of an uncommitted set
 
+  // Fails early (before long work) when `path` could not be written: its directory is missing or read-only.
+  static void require_writable(const std::string& path);
+
   // Stages `content` for `path`. Nothing is visible at `path` until commit().
   void add(const std::string& path, const std::string& content);
-  // Stages a whole directory (e.g. a report): `files` are relative paths inside it.
-  void add_directory(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& files);
+  // Stages a directory that the caller fills (e.g. a report writer): returns the temporary path to write into.
+  std::string stage_directory(const std::string& dir);
   // Renames every staged file into place; throws std::runtime_error on failure.
   void commit();
 

@@ -61,7 +61,12 @@ std::vector<Band> significant_bands(const Eigen::VectorXd& z, const ResidualOpti
     while (j + 1 < n && running[static_cast<std::size_t>(j + 1)] > o.threshold) ++j;
     // Widen by the window so the band covers the lines that raised the running mean.
     const int lo = std::max(0, i - half), hi = std::min(n - 1, j + half);
-    bands.push_back({lo, hi, z.segment(lo, hi - lo + 1).mean()});
+    if (!bands.empty() && lo - bands.back().hi <= o.window) {
+      bands.back().hi = hi;  // a short gap between two bands is one finding, split by noise
+      bands.back().mean_z = z.segment(bands.back().lo, hi - bands.back().lo + 1).mean();
+    } else {
+      bands.push_back({lo, hi, z.segment(lo, hi - lo + 1).mean()});
+    }
     i = j + 1;
   }
   return bands;
@@ -159,6 +164,39 @@ bool phase_trend(const ChannelResidual& c, Discrepancy& d) {
   return true;
 }
 
+// The measured magnitude averaged over three lines, so that noise does not make peaks of its own.
+Eigen::VectorXcd smoothed(const Eigen::VectorXcd& h) {
+  Eigen::VectorXcd out = h;
+  for (Eigen::Index i = 1; i + 1 < h.size(); ++i) out[i] = (std::abs(h[i - 1]) + std::abs(h[i]) + std::abs(h[i + 1])) / 3.0;
+  return out;
+}
+
+// One mode shows on every channel: findings of one kind within a few per cent of each other are one finding,
+// kept on the channel where it is strongest and noting the others.
+std::vector<Discrepancy> merge_across_channels(std::vector<Discrepancy> all) {
+  std::stable_sort(all.begin(), all.end(), [](const Discrepancy& a, const Discrepancy& b) { return a.significance > b.significance; });
+  std::vector<Discrepancy> kept;
+  std::vector<int> others;
+  for (const Discrepancy& d : all) {
+    bool merged = false;
+    for (std::size_t k = 0; k < kept.size() && !merged; ++k) {
+      const Discrepancy& m = kept[k];
+      if (m.kind == d.kind && std::abs(m.f_hz - d.f_hz) <= 0.02 * std::max(m.f_hz, d.f_hz) &&
+          (m.channel != d.channel || m.data_set != d.data_set)) {
+        ++others[k];
+        merged = true;
+      }
+    }
+    if (!merged) {
+      kept.push_back(d);
+      others.push_back(0);
+    }
+  }
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    if (others[k] > 0) kept[k].text += format(" (also seen on %d other channel%s)", others[k], others[k] > 1 ? "s" : "");
+  return kept;
+}
+
 }  // namespace
 
 std::vector<int> magnitude_peaks(const Eigen::VectorXcd& h, double prominence_db) {
@@ -206,13 +244,12 @@ ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, 
         z = z_undelayed;
       }
     }
-    const std::vector<int> data_peaks = magnitude_peaks(c.measured), model_peaks = magnitude_peaks(c.model);
+    const std::vector<int> data_peaks = magnitude_peaks(smoothed(c.measured)), model_peaks = magnitude_peaks(c.model);
     for (const Band& band : significant_bands(z, options))
       summary.discrepancies.push_back(classify(c, band, data_peaks, model_peaks, options));
   }
   summary.mean_z = summary.lines ? z_sum / static_cast<double>(summary.lines) : 0;
-  std::stable_sort(summary.discrepancies.begin(), summary.discrepancies.end(),
-                   [](const Discrepancy& a, const Discrepancy& b) { return a.significance > b.significance; });
+  summary.discrepancies = merge_across_channels(std::move(summary.discrepancies));
   return summary;
 }
 

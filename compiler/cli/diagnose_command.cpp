@@ -1,0 +1,114 @@
+// `mbgen diagnose MODEL.mdl --data FILE [--data FILE ...] [--json OUT.json] [--report DIR] [--extended OUT.mdl]`:
+// what the model gets wrong, which extension explains it, and the extended model with its generated code.
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "cli/commands.hpp"
+#include "cli/load_data.hpp"
+#include "cli/output_files.hpp"
+#include "cli/run_guarded.hpp"
+#include "cli/version.hpp"
+#include "diagnosis/engine/diagnose.hpp"
+#include "diagnosis/engine/diagnosis_json.hpp"
+#include "diagnosis/engine/diagnosis_report.hpp"
+#include "emit/cpp_emitter.hpp"
+#include "evaluator/symbolic_evaluator.hpp"
+#include "frontend/diagnostics.hpp"
+#include "frontend/parser.hpp"
+
+namespace mbgen::cli {
+
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw frontend::ModelError(path, {}, "cannot open the model file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string summary(const diagnosis::DiagnosisResult& r) {
+  std::ostringstream out;
+  out << "verdict: " << r.verdict << "\n";
+  for (const std::string& id : r.selected) out << "selected: " << id << "\n";
+  if (!r.nominal.residual.discrepancies.empty()) out << "what the nominal model gets wrong:\n";
+  for (const Discrepancy& d : r.nominal.residual.discrepancies) out << "  - " << d.text << "\n";
+  if (r.verdict == "extended" && !r.final.residual.discrepancies.empty()) {
+    out << "still unexplained after extension:\n";
+    for (const Discrepancy& d : r.final.residual.discrepancies) out << "  - " << d.text << "\n";
+  }
+  return out.str();
+}
+
+// OUT.mdl -> OUT_model.cpp / OUT_model.hpp beside it.
+std::string sibling(const std::string& mdl, const std::string& suffix) {
+  const std::size_t dot = mdl.find_last_of('.'), slash = mdl.find_last_of('/');
+  const std::string stem = dot == std::string::npos || (slash != std::string::npos && dot < slash) ? mdl : mdl.substr(0, dot);
+  return stem + suffix;
+}
+
+}  // namespace
+
+int run_diagnose(int argc, char** argv) {
+  CLI::App app{"Fit the model, find what its simulation gets wrong beyond the noise, try extensions of the model "
+               "built from its own structure, and keep one only on strong evidence.",
+               "mbgen diagnose"};
+  std::string model_path, json_path, report_dir, extended_path;
+  std::vector<std::string> data_paths, sets;
+  diagnosis::DiagnoseOptions options;
+  app.add_option("model", model_path, "model file (.mdl)")->required();
+  app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable")->required();
+  app.add_option("--json", json_path, "write the result (schema mbgen-diagnosis/1); - for standard output");
+  app.add_option("--report", report_dir, "write a report directory (Markdown with plots)");
+  app.add_option("--extended", extended_path,
+                 "when extended, write the extended model here (and its C++ as OUT_model.cpp/.hpp beside it)");
+  app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
+  app.add_option("--starts", options.fit.starts, "starts of the nominal fit's global search (default 16)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)");
+  app.set_version_flag("--version", std::string("mbgen ") + kVersion);
+  return run_guarded(app, argc, argv, [&] {
+    options.set = parse_set_options(sets);
+    OutputFiles::require_writable(json_path);
+    OutputFiles::require_writable(report_dir);
+    OutputFiles::require_writable(extended_path);
+    const ir::Model model = frontend::parse_file(model_path);
+    const std::string text = read_text(model_path);
+    symbolic::DeriveOptions derive;
+    derive.set = options.set;
+    const std::vector<DataSet> data = load_data(data_paths, evaluator::make_evaluator(model, derive)->info());
+    options.progress = [](const std::string& line) {
+      progress_done();
+      std::cerr << "diagnose: " << line << "\n";
+    };
+    options.fit.progress = [](const FitProgress& p) {
+      progress_line("  fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
+                    ", iteration " + std::to_string(p.iteration));
+    };
+    const diagnosis::DiagnosisResult result = diagnosis::diagnose(model, text, data, options);
+    progress_done();
+
+    OutputFiles out;
+    const bool extended = result.verdict == "extended";
+    if (extended && !extended_path.empty()) {
+      out.add(extended_path, result.final.text);
+      const ir::Model ext = frontend::parse_string(result.final.text, extended_path);
+      emit::CppEmitOptions cpp;
+      cpp.header_file = sibling(extended_path, "_model.hpp");
+      cpp.source_file = sibling(extended_path, "_model.cpp");
+      cpp.model_file = extended_path;
+      const emit::CppEmitResult code = emit::emit_cpp(symbolic::derive(ext, derive), cpp);
+      out.add(cpp.header_file, code.header);
+      out.add(cpp.source_file, code.source);
+    }
+    if (!json_path.empty()) out.add(json_path, diagnosis::diagnosis_json(result, extended ? extended_path : ""));
+    if (!report_dir.empty()) diagnosis::write_diagnosis_report(out.stage_directory(report_dir), result);
+    out.commit();
+    if (json_path != "-") std::cout << summary(result);
+    return 0;
+  });
+}
+
+}  // namespace mbgen::cli

@@ -1,0 +1,85 @@
+#include "diagnosis/engine/channel_residuals.hpp"
+
+#include <mbgen/frf.hpp>
+#include <mbgen/welch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "diagnosis/engine/data_split.hpp"
+
+namespace mbgen::diagnosis {
+
+namespace {
+
+Eigen::VectorXd with_set_values(const Model& model, const DataSet& d, Eigen::VectorXd values) {
+  for (const auto& [name, v] : d.set()) {
+    const int i = model.info().parameter_index(name);
+    if (i >= 0) values[i] = v.value;
+  }
+  return values;
+}
+
+// A record's FRFs by Welch H1 with segments of ~1 s (at least 8 averages), the hold's half-sample delay removed
+// so that they compare with the continuous-time model.
+WelchEstimate record_frfs(const Model& model, const TimeRecord& rec) {
+  std::vector<std::string> inputs, outputs;
+  for (const std::string& in : model.info().inputs)
+    if (rec.find(in)) inputs.push_back(in);
+  for (const std::string& out : model.info().outputs)
+    if (rec.find(out)) outputs.push_back(out);
+  WelchOptions o;
+  Eigen::Index length = 256;
+  while (length * 2 <= rec.samples() / 8) length *= 2;
+  o.segment_length = length;
+  o.compensate_hold = rec.hold == HoldMode::ZeroOrder;
+  return welch_h1(rec, inputs, outputs, o);
+}
+
+}  // namespace
+
+std::vector<ChannelResidual> channel_residuals(const Model& model, const std::vector<DataSet>& data,
+                                               const Eigen::VectorXd& values, const FrfWeighting& weighting) {
+  std::vector<ChannelResidual> out;
+  const ModelInfo& info = model.info();
+  for (const DataSet& d : data) {
+    FrfData frf;
+    FrfWeighting w = weighting;
+    if (const FrfData* measured = std::get_if<FrfData>(&d.content)) {
+      frf = *measured;
+    } else {
+      const WelchEstimate est = record_frfs(model, std::get<TimeRecord>(d.content));
+      frf = est.frf;
+      w.averages = static_cast<int>(std::max<Eigen::Index>(1, est.segments));
+      // Above 90 % of Nyquist the anti-aliasing roll-off of any real record dominates; judge below it.
+      const double f_max = 0.45 / est.dt;
+      Eigen::Index keep = 0;
+      while (keep < frf.f_hz.size() && frf.f_hz[keep] <= f_max) ++keep;
+      Eigen::Index first = 0;
+      while (first < keep && frf.f_hz[first] <= 0.0) ++first;  // no DC line
+      frf.f_hz = frf.f_hz.segment(first, keep - first).eval();
+      for (FrfChannel& c : frf.channels) {
+        c.values = c.values.segment(first, keep - first).eval();
+        if (c.coherence) *c.coherence = c.coherence->segment(first, keep - first).eval();
+      }
+    }
+    const std::vector<double> f(frf.f_hz.data(), frf.f_hz.data() + frf.f_hz.size());
+    const FrfResult h = mbgen::frf(model, with_set_values(model, d, values), f);
+    for (const FrfChannel& c : frf.channels) {
+      const int o = info.output_index(c.output), i = info.input_index(c.input);
+      if (o < 0 || i < 0) continue;
+      ChannelResidual r;
+      r.channel = c.output + "/" + c.input;
+      r.data_set = d.file();
+      r.f_hz = f;
+      r.measured = c.values;
+      r.model.resize(c.values.size());
+      for (std::size_t k = 0; k < f.size(); ++k) r.model[static_cast<Eigen::Index>(k)] = h.H[k](o, i);
+      r.sigma = frf_sigma(c, w);
+      out.push_back(std::move(r));
+    }
+  }
+  return out;
+}
+
+}  // namespace mbgen::diagnosis

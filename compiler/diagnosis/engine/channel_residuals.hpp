@@ -1,0 +1,17 @@
+// Measured vs model FRFs per channel, with the measurement's standard deviation: the input of the residual
+// analysis (mbgen/residual_analysis.hpp). FRF data is used as measured; a time record is first turned into FRFs by
+// Welch H1 (its coherence gives the noise level), so both kinds of data are judged the same way.
+#pragma once
+
+#include <mbgen/fit.hpp>
+#include <mbgen/residual_analysis.hpp>
+
+#include <vector>
+
+namespace mbgen::diagnosis {
+
+// `values`: all model parameters; each data set's `# set` values are applied on top.
+std::vector<ChannelResidual> channel_residuals(const Model& model, const std::vector<DataSet>& data,
+                                               const Eigen::VectorXd& values, const FrfWeighting& weighting);
+
+}  // namespace mbgen::diagnosis

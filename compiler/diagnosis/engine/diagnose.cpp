@@ -1,0 +1,240 @@
+#include "diagnosis/engine/diagnose.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "diagnosis/engine/channel_residuals.hpp"
+#include "diagnosis/engine/data_split.hpp"
+#include "evaluator/symbolic_evaluator.hpp"
+#include "frontend/diagnostics.hpp"
+
+namespace mbgen::diagnosis {
+
+namespace {
+
+std::string format(const char* pattern, double a, double b = 0, double c = 0) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
+  return buffer;
+}
+
+// Parameters the data sets set to different values (e.g. a spin speed), counting "not set" as a value of its own:
+// what a model must follow across data sets.
+std::set<std::string> varying_parameters(const std::vector<DataSet>& data) {
+  std::set<std::string> names;
+  for (const DataSet& d : data)
+    for (const auto& entry : d.set()) names.insert(entry.first);
+  std::set<std::string> out;
+  for (const std::string& name : names) {
+    std::set<std::string> values;
+    for (const DataSet& d : data) {
+      const auto it = d.set().find(name);
+      values.insert(it == d.set().end() ? std::string("<default>") : it->second.text);
+    }
+    if (values.size() > 1) out.insert(name);
+  }
+  return out;
+}
+
+std::map<std::string, double> values_by_name(const Model& model, const Eigen::VectorXd& values) {
+  std::map<std::string, double> out;
+  const ModelInfo& info = model.info();
+  for (std::size_t i = 0; i < info.parameters.size(); ++i) out[info.parameters[i].name] = values[static_cast<Eigen::Index>(i)];
+  return out;
+}
+
+class Diagnoser {
+ public:
+  Diagnoser(const std::vector<DataSet>& data, const DiagnoseOptions& options)
+      : data_(data), options_(options), split_(split_for_validation(data)) {}
+
+  // Fits `model` (parameters started at `start` where named) and judges it.
+  ModelState assess(const ir::Model& model, const std::string& text, const std::map<std::string, double>& start,
+                    int starts) const {
+    symbolic::DeriveOptions derive;
+    derive.set = options_.set;
+    const auto evaluator = evaluator::make_evaluator(model, derive);
+    FitOptions fo = options_.fit;
+    for (const auto& [name, v] : start)
+      if (evaluator->info().parameter_index(name) >= 0) fo.values[name] = v;
+    fo.starts = starts;
+    ModelState s;
+    s.model = model;
+    s.text = text;
+    s.info = evaluator->info();
+    s.fit = fit(*evaluator, split_.fit, fo);
+    s.values = values_by_name(*evaluator, s.fit.values);
+    s.validation_nrmse = validation_nrmse(*evaluator, split_, s.fit.values, fo.frf_weighting);
+    s.channels = channel_residuals(*evaluator, data_, s.fit.values, fo.frf_weighting);
+    s.residual = analyse_residuals(s.channels, options_.residual);
+    return s;
+  }
+
+  DiagnosisResult run(const ir::Model& model, const std::string& text) {
+    DiagnosisResult result;
+    result.model_file = model.file;
+    for (const DataSet& d : data_) result.data.push_back(d.file());
+    prior_peaks_ = prior_peaks(model);
+    say("nominal model: fitting " + std::to_string(model.parameters.size()) + " parameters");
+    result.nominal = assess(model, text, {}, options_.fit.starts);
+    say(format("nominal model: nrmse %.4g, validation %.4g, mean normalized residual %.3g", result.nominal.fit.nrmse,
+               result.nominal.validation_nrmse, result.nominal.residual.mean_z));
+    for (const Discrepancy& d : result.nominal.residual.discrepancies) say("  finding: " + d.text);
+
+    ModelState current = result.nominal;
+    std::set<std::string> promising;  // ids that qualified in the previous round (later rounds re-fit only those)
+    for (int round = 1; round <= options_.max_extensions; ++round) {
+      std::vector<Extension> extensions = enumerate_extensions(current.model, current.text, context(current));
+      if (round > 1)
+        extensions.erase(std::remove_if(extensions.begin(), extensions.end(),
+                                        [&](const Extension& e) { return !promising.count(e.id); }),
+                         extensions.end());
+      if (extensions.empty()) break;
+      std::vector<CandidateOutcome> outcomes;
+      std::vector<ModelState> states;
+      for (std::size_t k = 0; k < extensions.size(); ++k) {
+        const Extension& ext = extensions[k];
+        outcomes.push_back(score(ext, current, round, states));
+        const CandidateOutcome& o = outcomes.back();
+        say(format("[%.0f/%.0f] ", static_cast<double>(k + 1), static_cast<double>(extensions.size())) + ext.id + ": " +
+            (o.error.empty() ? format("delta BIC %.1f, validation %.4g", o.delta_bic, o.validation_nrmse) +
+                                   (o.qualifies ? "  (qualifies)" : "")
+                             : "failed: " + o.error));
+      }
+      promising.clear();
+      int best = -1;
+      for (std::size_t k = 0; k < outcomes.size(); ++k) {
+        if (!outcomes[k].qualifies) continue;
+        promising.insert(outcomes[k].id);
+        if (best < 0 || outcomes[k].delta_bic < outcomes[static_cast<std::size_t>(best)].delta_bic) best = static_cast<int>(k);
+      }
+      result.candidates.insert(result.candidates.end(), outcomes.begin(), outcomes.end());
+      if (best < 0) break;
+      ModelState& chosen = states[static_cast<std::size_t>(best)];
+      // The extension must explain the discrepancy, not merely shave the cost: the residual at least halves or
+      // falls to the noise level. Otherwise it is a partial, likely wrong, explanation and is not taken.
+      const double before = current.residual.mean_z, after = chosen.residual.mean_z;
+      if (!(after <= 0.5 * before || after <= 2.0)) {
+        say(format("best candidate leaves the mean normalized residual at %.3g (from %.3g): not an explanation", after,
+                   before));
+        break;
+      }
+      result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
+      promising.erase(outcomes[static_cast<std::size_t>(best)].id);
+      say("selected " + result.selected.back());
+      current = std::move(chosen);
+      if (promising.empty()) break;
+    }
+    result.final = current;
+    if (!result.selected.empty())
+      result.verdict = "extended";
+    else if (!result.nominal.residual.discrepancies.empty())
+      result.verdict = "unexplained";
+    else
+      result.verdict = "no_extension_justified";
+    say("verdict: " + result.verdict);
+    return result;
+  }
+
+ private:
+  void say(const std::string& line) const {
+    if (options_.progress) options_.progress(line);
+  }
+
+  // Unexplained resonances of the model at its prior values. A fit can hide a missing mode by bending other
+  // parameters (a soft mount standing in for a compliant base), so the fitted residual alone may not show it.
+  std::vector<double> prior_peaks(const ir::Model& model) const {
+    symbolic::DeriveOptions derive;
+    derive.set = options_.set;
+    const auto evaluator = evaluator::make_evaluator(model, derive);
+    const ResidualSummary prior = analyse_residuals(
+        channel_residuals(*evaluator, data_, evaluator->info().default_values(), options_.fit.frf_weighting),
+        options_.residual);
+    std::vector<double> peaks;
+    for (const Discrepancy& d : prior.discrepancies)
+      if (d.kind == "unexplained_resonance") peaks.push_back(d.f_hz);
+    return peaks;
+  }
+
+  // Peaks for new parameters' start values: the fitted model's unexplained resonances, strongest first, then
+  // those of the prior model.
+  ExtensionContext context(const ModelState& s) const {
+    ExtensionContext ctx;
+    for (const Discrepancy& d : s.residual.discrepancies)  // already strongest first
+      if (d.kind == "unexplained_resonance") ctx.peak_hz.push_back(d.f_hz);
+    for (double f : prior_peaks_)
+      if (std::none_of(ctx.peak_hz.begin(), ctx.peak_hz.end(), [&](double g) { return std::abs(f - g) <= 0.02 * f; }))
+        ctx.peak_hz.push_back(f);
+    ctx.varying_parameters = varying_parameters(data_);
+    ctx.values = s.values;
+    return ctx;
+  }
+
+  CandidateOutcome score(const Extension& ext, const ModelState& base, int round, std::vector<ModelState>& states) const {
+    CandidateOutcome o;
+    o.id = ext.id;
+    o.description = ext.description;
+    o.round = round;
+    o.new_parameters = ext.new_parameters;
+    o.freed_parameters = ext.freed_parameters;
+    states.emplace_back();
+    try {
+      // Two searches: around the current estimate, and around the priors (where the current estimate has bent
+      // parameters to mimic the missing effect, the priors are the better start). The lower cost wins.
+      ModelState s = assess(ext.model, ext.mdl_text, base.values, options_.candidate_starts);
+      ModelState from_priors = assess(ext.model, ext.mdl_text, {}, options_.candidate_starts);
+      if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);
+      o.fit = s.fit;
+      o.validation_nrmse = s.validation_nrmse;
+      o.delta_bic = s.fit.bic - base.fit.bic;
+      judge_plausibility(ext, s.info, o);
+      o.qualifies = o.plausible && o.delta_bic < options_.min_delta_bic &&
+                    o.validation_nrmse < (1.0 - options_.min_validation_gain) * base.validation_nrmse;
+      states.back() = std::move(s);
+    } catch (const std::exception& e) {
+      o.error = e.what();
+    }
+    return o;
+  }
+
+  // New (and freed) parameters must be determined by the data and physically sensible: identifiable, known to
+  // better than 50 %, and not pressed against a bound (the optimum would lie beyond what is physical).
+  static void judge_plausibility(const Extension& ext, const ModelInfo& info, CandidateOutcome& o) {
+    std::vector<std::string> names = o.freed_parameters;
+    for (const NewParameter& p : ext.new_parameters) names.push_back(p.name);
+    for (const std::string& name : names) {
+      const auto it = std::find_if(o.fit.parameters.begin(), o.fit.parameters.end(),
+                                   [&](const ParameterEstimate& p) { return p.name == name; });
+      if (it == o.fit.parameters.end()) continue;  // not estimated (e.g. a damping the operator fixes)
+      const ParameterEstimate& p = *it;
+      if (!p.identifiable) {
+        o.doubts.push_back(name + " is not identifiable from the data");
+        continue;
+      }
+      if (p.std > 0.5 * std::abs(p.value)) o.doubts.push_back(name + " is poorly determined (std over 50 % of its value)");
+      const int index = info.parameter_index(name);
+      if (index < 0) continue;
+      const ParameterInfo& pi = info.parameters[static_cast<std::size_t>(index)];
+      const double tol = 1e-3 * std::max(std::abs(p.value), 1e-12);
+      if (std::isfinite(pi.lower) && p.value - pi.lower <= tol) o.doubts.push_back(name + " sits at its lower bound");
+      if (std::isfinite(pi.upper) && pi.upper - p.value <= tol) o.doubts.push_back(name + " sits at its upper bound");
+    }
+    o.plausible = o.doubts.empty();
+  }
+
+  const std::vector<DataSet>& data_;
+  const DiagnoseOptions& options_;
+  SplitData split_;
+  std::vector<double> prior_peaks_;
+};
+
+}  // namespace
+
+DiagnosisResult diagnose(const ir::Model& model, const std::string& model_text, const std::vector<DataSet>& data,
+                         const DiagnoseOptions& options) {
+  return Diagnoser(data, options).run(model, model_text);
+}
+
+}  // namespace mbgen::diagnosis

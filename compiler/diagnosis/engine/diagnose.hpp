@@ -1,0 +1,80 @@
+// `mbgen diagnose`: show what a model's simulation gets wrong, name the cause, extend the model, measure the gain.
+//
+//   1. Fit the nominal model on the fit part of the data (data_split.hpp) and score it on the held-back part.
+//   2. Compare measured and model FRFs against the noise level: the discrepancies (residual_analysis.hpp).
+//   3. Enumerate candidate extensions from the model's own structure (extension.hpp), fit each (new parameters
+//      started where the residual points, e.g. a new mode at an unexplained peak) and score it: BIC, validation
+//      error, physical plausibility.
+//   4. Select the best candidate only on strong evidence: BIC lower by more than 10 (Kass & Raftery's "very
+//      strong"), validation error lower, new parameters plausible (identifiable, well determined, off their
+//      bounds), and the discrepancy it explains gone (the residual at least halves, or falls to the noise level).
+//      Repeat on the extended model (greedy forward selection) while a candidate qualifies.
+//   5. Verdict: `extended`; `no_extension_justified` when nothing beyond noise remains; `unexplained` when a clear
+//      discrepancy remains that no candidate explains. A confident wrong extension is the worst outcome, so every
+//      rule above errs towards `unexplained`.
+#pragma once
+
+#include <mbgen/fit.hpp>
+#include <mbgen/residual_analysis.hpp>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "diagnosis/extension.hpp"
+#include "ir/model.hpp"
+
+namespace mbgen::diagnosis {
+
+struct DiagnoseOptions {
+  std::map<std::string, std::string> set;  // --set overrides (decimal text)
+  FitOptions fit;                          // the nominal fit (starts, seed, threads, weighting)
+  int candidate_starts = 4;                // starts per candidate (start 0: the current estimate)
+  double min_delta_bic = -10.0;
+  double min_validation_gain = 0.01;       // relative decrease of the validation error required
+  int max_extensions = 3;
+  ResidualOptions residual;
+  std::function<void(const std::string&)> progress;  // one line per step
+};
+
+struct CandidateOutcome {
+  std::string id, description;
+  int round = 1;
+  std::vector<NewParameter> new_parameters;
+  std::vector<std::string> freed_parameters;
+  FitResult fit;
+  double validation_nrmse = 0;
+  double delta_bic = 0;
+  bool plausible = false;
+  std::vector<std::string> doubts;  // why it is not plausible
+  bool qualifies = false;           // strong evidence by BIC, validation and plausibility
+  std::string error;                // it could not be derived or fitted
+};
+
+// One model with its fit and judgement: the nominal, then each accepted extension.
+struct ModelState {
+  ir::Model model;
+  std::string text;  // its .mdl text
+  ModelInfo info;    // parameters with bounds, signals
+  FitResult fit;
+  std::map<std::string, double> values;  // fitted values of all its parameters, by name
+  double validation_nrmse = 0;
+  std::vector<ChannelResidual> channels;  // measured vs this model, for plots
+  ResidualSummary residual;
+};
+
+struct DiagnosisResult {
+  std::string model_file;
+  std::vector<std::string> data;
+  ModelState nominal;
+  std::vector<CandidateOutcome> candidates;  // every round
+  std::vector<std::string> selected;
+  std::string verdict;  // "extended", "no_extension_justified", "unexplained"
+  ModelState final;     // the extended model when extended, else the nominal
+};
+
+DiagnosisResult diagnose(const ir::Model& model, const std::string& model_text, const std::vector<DataSet>& data,
+                         const DiagnoseOptions& options);
+
+}  // namespace mbgen::diagnosis

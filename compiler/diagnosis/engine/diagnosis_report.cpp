@@ -1,0 +1,144 @@
+#include "diagnosis/engine/diagnosis_report.hpp"
+
+#include <mbgen/gnuplot.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace mbgen::diagnosis {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error(path.string() + ": error: cannot write the report");
+}
+
+std::string num(double x, int digits = 4) {
+  std::ostringstream s;
+  s << std::setprecision(digits) << x;
+  return s.str();
+}
+
+std::string frf_script(const std::string& stem, const std::string& title, bool extended) {
+  std::ostringstream gp;
+  gp << "set terminal svg size 900,420 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
+     << "set title '" << title << "' noenhanced\nset logscale y\nset grid\nset xlabel 'f [Hz]'\nset ylabel '|H|'\n"
+     << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
+     << "     '' using 1:3 with lines lc rgb '#1f77b4' dt 2 title 'nominal model'";
+  if (extended) gp << ", \\\n     '' using 1:4 with lines lc rgb '#d62728' title 'extended model'";
+  gp << "\n";
+  return gp.str();
+}
+
+std::string residual_script(const std::string& stem, const std::string& title, bool extended) {
+  std::ostringstream gp;
+  gp << "set terminal svg size 900,320 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
+     << "set title '" << title << " (1 = noise level)' noenhanced\nset logscale y\nset grid\nset xlabel 'f [Hz]'\n"
+     << "set ylabel '|residual|^2 / noise^2'\n"
+     << "plot '" << stem << ".dat' using 1:2 with lines lc rgb '#1f77b4' title 'nominal'";
+  if (extended) gp << ", \\\n     '' using 1:3 with lines lc rgb '#d62728' title 'extended'";
+  gp << ", 1 with lines lc rgb '#2ca02c' dt 3 title 'noise'\n";
+  return gp.str();
+}
+
+void parameter_table(std::ostringstream& md, const FitResult& fit) {
+  md << "| parameter | prior | estimate | std | identifiable |\n|---|---|---|---|---|\n";
+  for (const ParameterEstimate& p : fit.parameters)
+    md << "| `" << p.name << "` | " << num(p.prior, 6) << " | " << num(p.value, 6) << " | " << num(p.std, 3) << " | "
+       << (p.identifiable ? "yes" : "**no** (kept at prior)") << " |\n";
+  md << "\n";
+}
+
+}  // namespace
+
+void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
+  const fs::path root(dir);
+  fs::create_directories(root);
+  const bool extended = r.verdict == "extended";
+  std::ostringstream md;
+  md << "# Diagnosis of `" << r.model_file << "`\n\n";
+  md << "Data: ";
+  for (std::size_t i = 0; i < r.data.size(); ++i) md << (i ? ", " : "") << "`" << r.data[i] << "`";
+  md << "\n\n## Verdict: " << r.verdict << "\n\n";
+  if (extended) {
+    md << "Selected: ";
+    for (std::size_t i = 0; i < r.selected.size(); ++i) md << (i ? ", " : "") << "`" << r.selected[i] << "`";
+    md << ". Mean normalized residual " << num(r.nominal.residual.mean_z) << " -> " << num(r.final.residual.mean_z)
+       << " (1 is the noise level); validation error " << num(r.nominal.validation_nrmse) << " -> "
+       << num(r.final.validation_nrmse) << ".\n\n";
+  } else if (r.verdict == "unexplained") {
+    md << "The model misses the data beyond the noise, and no candidate extension explains it (see the findings "
+          "and the ranking below).\n\n";
+  } else {
+    md << "Nothing beyond the noise remains: the nominal model explains the data.\n\n";
+  }
+
+  md << "## What the nominal model gets wrong\n\n";
+  if (r.nominal.residual.discrepancies.empty()) md << "No finding above the noise level.\n\n";
+  for (const Discrepancy& d : r.nominal.residual.discrepancies) md << "- " << d.text << " (`" << d.kind << "`)\n";
+  md << "\n## Candidates\n\n| round | id | ΔBIC | validation nrmse | plausible | qualifies | what it adds |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  md << "| | nominal | 0 | " << num(r.nominal.validation_nrmse) << " | | | |\n";
+  for (const CandidateOutcome& c : r.candidates) {
+    md << "| " << c.round << " | `" << c.id << "` | ";
+    if (!c.error.empty()) {
+      md << "failed | | | | " << c.error << " |\n";
+      continue;
+    }
+    md << num(c.delta_bic, 5) << " | " << num(c.validation_nrmse) << " | "
+       << (c.plausible ? "yes" : "no: " + (c.doubts.empty() ? std::string() : c.doubts.front())) << " | "
+       << (c.qualifies ? "**yes**" : "no") << " | " << c.description << " |\n";
+  }
+  md << "\nA candidate qualifies when its BIC is lower by more than 10, its validation error is lower, and its new "
+        "parameters are plausible; the best one is selected if it also explains the discrepancy.\n\n";
+
+  md << "## Parameters of the nominal model\n\n";
+  parameter_table(md, r.nominal.fit);
+  if (extended) {
+    md << "## Parameters of the extended model\n\n";
+    parameter_table(md, r.final.fit);
+  }
+
+  md << "## Plots\n\n";
+  std::vector<std::string> stems;
+  for (std::size_t c = 0; c < r.nominal.channels.size(); ++c) {
+    const ChannelResidual& nominal = r.nominal.channels[c];
+    const ChannelResidual* final = extended && c < r.final.channels.size() ? &r.final.channels[c] : nullptr;
+    const std::string label = nominal.channel + " (" + fs::path(nominal.data_set).filename().string() + ")";
+    const std::string frf_stem = "frf_" + std::to_string(c), res_stem = "residual_" + std::to_string(c);
+    std::ostringstream frf_dat, res_dat;
+    frf_dat << std::setprecision(9);
+    res_dat << std::setprecision(9);
+    for (std::size_t k = 0; k < nominal.f_hz.size(); ++k) {
+      const Eigen::Index i = static_cast<Eigen::Index>(k);
+      const double s2 = nominal.sigma[i] * nominal.sigma[i];
+      frf_dat << nominal.f_hz[k] << ' ' << std::abs(nominal.measured[i]) << ' ' << std::abs(nominal.model[i]);
+      res_dat << nominal.f_hz[k] << ' ' << std::norm(nominal.measured[i] - nominal.model[i]) / s2;
+      if (final) {
+        frf_dat << ' ' << std::abs(final->model[i]);
+        res_dat << ' ' << std::norm(final->measured[i] - final->model[i]) / s2;
+      }
+      frf_dat << '\n';
+      res_dat << '\n';
+    }
+    write_file(root / (frf_stem + ".dat"), frf_dat.str());
+    write_file(root / (res_stem + ".dat"), res_dat.str());
+    write_file(root / (frf_stem + ".gp"), frf_script(frf_stem, label, final != nullptr));
+    write_file(root / (res_stem + ".gp"), residual_script(res_stem, "normalized residual, " + label, final != nullptr));
+    stems.push_back(frf_stem);
+    stems.push_back(res_stem);
+    md << "### " << label << "\n\n![" << label << "](" << frf_stem << ".svg)\n\n![residual](" << res_stem << ".svg)\n\n";
+  }
+  md << render_gnuplot(root.string(), stems);
+  write_file(root / "report.md", md.str());
+}
+
+}  // namespace mbgen::diagnosis
