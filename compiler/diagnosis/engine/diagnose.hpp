@@ -30,7 +30,7 @@ namespace mbgen::diagnosis {
 struct DiagnoseOptions {
   std::map<std::string, std::string> set;  // --set overrides (decimal text)
   FitOptions fit;                          // the nominal fit (starts, seed, threads, weighting)
-  int candidate_starts = 4;                // starts per candidate (start 0: the current estimate)
+  int candidate_starts = 2;                // starts per search of a candidate (start 0: the search's centre)
   double min_delta_bic = -10.0;
   double min_validation_gain = 0.01;       // relative decrease of the validation error required
   int max_extensions = 3;
