@@ -103,14 +103,34 @@ class Diagnoser {
                                    (o.qualifies ? "  (qualifies)" : "")
                              : "failed: " + o.error));
       }
-      promising.clear();
-      int best = -1;
-      for (std::size_t k = 0; k < outcomes.size(); ++k) {
-        if (!outcomes[k].qualifies) continue;
-        promising.insert(outcomes[k].id);
-        if (best < 0 || outcomes[k].delta_bic < outcomes[static_cast<std::size_t>(best)].delta_bic) best = static_cast<int>(k);
-      }
       result.candidates.insert(result.candidates.end(), outcomes.begin(), outcomes.end());
+      const std::size_t first_of_round = result.candidates.size() - outcomes.size();
+      int best = best_qualifying(outcomes);
+      // A candidate may win only because its search found a better optimum of the parameters it shares with the
+      // current model. Re-fit the current model from the winner's estimates: if that closes the gap, the gain was
+      // a better fit, not an effect; the current model improves and the candidates are judged again against it.
+      for (int guard = 0; best >= 0 && guard < 3; ++guard) {
+        ModelState refit = assess(current.model, current.text, states[static_cast<std::size_t>(best)].values,
+                                  options_.candidate_starts);
+        if (!(refit.fit.cost < current.fit.cost * (1.0 - 1e-9))) break;
+        say("the current model fits better started from the estimate of " + outcomes[static_cast<std::size_t>(best)].id +
+            format(" (BIC %.1f -> %.1f): a better optimum, not an effect; judging the candidates again",
+                   current.fit.bic, refit.fit.bic));
+        if (round == 1) result.nominal = refit;
+        current = std::move(refit);
+        for (std::size_t k = 0; k < outcomes.size(); ++k) {
+          CandidateOutcome& o = outcomes[k];
+          if (!o.error.empty()) continue;
+          o.delta_bic = o.fit.bic - current.fit.bic;
+          o.qualifies = o.plausible && o.delta_bic < options_.min_delta_bic &&
+                        o.validation_nrmse < (1.0 - options_.min_validation_gain) * current.validation_nrmse;
+          result.candidates[first_of_round + k] = o;
+        }
+        best = best_qualifying(outcomes);
+      }
+      promising.clear();
+      for (const CandidateOutcome& o : outcomes)
+        if (o.qualifies) promising.insert(o.id);
       if (best < 0) break;
       ModelState& chosen = states[static_cast<std::size_t>(best)];
       // The extension must explain the discrepancy, not merely shave the cost: the residual at least halves or
@@ -139,6 +159,14 @@ class Diagnoser {
   }
 
  private:
+  static int best_qualifying(const std::vector<CandidateOutcome>& outcomes) {
+    int best = -1;
+    for (std::size_t k = 0; k < outcomes.size(); ++k)
+      if (outcomes[k].qualifies && (best < 0 || outcomes[k].delta_bic < outcomes[static_cast<std::size_t>(best)].delta_bic))
+        best = static_cast<int>(k);
+    return best;
+  }
+
   void say(const std::string& line) const {
     if (options_.progress) options_.progress(line);
   }
