@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 
+#include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
 #include "mdof2.hpp"
 #include "spindle.hpp"
@@ -283,6 +285,48 @@ void check_runtime_adapter() {
   CHECK_THROWS_AS(model->evaluate(Eigen::VectorXd::Zero(1), mats), std::invalid_argument);
 }
 
+
+// The two backends of the runtime's Model interface, generated code and the in-process evaluator, agree to
+// rounding at random parameter values: matrices and (densified) parameter derivatives.
+template <typename Model>
+void check_backends_agree() {
+  const auto generated = Model::make();
+  const auto evaluated = mbgen::evaluator::make_evaluator(mbgen::frontend::parse_file(Model::path()));
+  REQUIRE(generated->info().parameters.size() == evaluated->info().parameters.size());
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> factor(0.7, 1.3);
+  for (int trial = 0; trial < 3; ++trial) {
+    Eigen::VectorXd p = generated->info().default_values();
+    for (Eigen::Index i = 0; i < p.size(); ++i) p[i] = p[i] == 0 ? factor(rng) : p[i] * factor(rng);
+    mbgen::ModelMatrices a, b;
+    generated->evaluate(p, a);
+    evaluated->evaluate(p, b);
+    const std::pair<const Eigen::MatrixXd*, const Eigen::MatrixXd*> pairs[] = {
+        {&a.M, &b.M}, {&a.C, &b.C}, {&a.K, &b.K}, {&a.B, &b.B}, {&a.Cd, &b.Cd}, {&a.Cv, &b.Cv}, {&a.Ca, &b.Ca}};
+    for (const auto& [x, y] : pairs) {
+      REQUIRE(x->rows() == y->rows());
+      REQUIRE(x->cols() == y->cols());
+      CHECK((*x - *y).norm() <= 1e-13 * std::max(1.0, x->norm()));
+    }
+    mbgen::ModelDerivatives da, db;
+    generated->derivatives(p, da);
+    evaluated->derivatives(p, db);
+    const auto dense = [&](const std::vector<mbgen::DerivativeEntry>& entries, Eigen::Index rows, Eigen::Index cols) {
+      std::vector<Eigen::MatrixXd> out(static_cast<std::size_t>(p.size()), Eigen::MatrixXd::Zero(rows, cols));
+      for (const auto& e : entries) out[static_cast<std::size_t>(e.param)](e.row, e.col) += e.value;
+      return out;
+    };
+    const std::tuple<const std::vector<mbgen::DerivativeEntry>*, const std::vector<mbgen::DerivativeEntry>*,
+                     const Eigen::MatrixXd*>
+        entries[] = {{&da.M, &db.M, &a.M}, {&da.C, &db.C, &a.C}, {&da.K, &db.K, &a.K}, {&da.B, &db.B, &a.B}};
+    for (const auto& [x, y, shape] : entries) {
+      const auto dx = dense(*x, shape->rows(), shape->cols()), dy = dense(*y, shape->rows(), shape->cols());
+      for (std::size_t j = 0; j < dx.size(); ++j)
+        CHECK((dx[j] - dy[j]).norm() <= 1e-12 * std::max(1.0, dx[j].norm()));
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("mdof2: generated matrices equal the symbolic ones") { check_matrices_against_symbolic<mdof2_model>(); }
@@ -315,6 +359,12 @@ TEST_CASE("spinning spindle: transfer-function Jacobians match central differenc
 
 TEST_CASE("mdof2: make_model() serves the runtime interface") { check_runtime_adapter<mdof2_model>(); }
 TEST_CASE("spindle: make_model() serves the runtime interface") { check_runtime_adapter<spindle_model>(); }
+
+TEST_CASE("mdof2: generated code and the in-process evaluator agree") { check_backends_agree<mdof2_model>(); }
+TEST_CASE("spindle: generated code and the in-process evaluator agree") { check_backends_agree<spindle_model>(); }
+TEST_CASE("spinning spindle: generated code and the in-process evaluator agree") {
+  check_backends_agree<spindle_spin_model>();
+}
 
 TEST_CASE("mdof2: state space from the generated code") {
   // x = [q; q']: A = [[0, I], [-M^-1 K, -M^-1 C]] checked entry by entry for the diagonal M of mdof2.
