@@ -1,5 +1,10 @@
 #include "output_error.hpp"
 
+#include "excited_block.hpp"
+
+#include "mbgen/frf.hpp"
+#include "mbgen/simulate.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -29,13 +34,20 @@ OutputErrorProblem::OutputErrorProblem(const Model& model, const std::vector<Dat
     if (d.is_frf()) {
       const FrfData& f = std::get<FrfData>(d.content);
       p.frf = true;
-      p.f_hz = f.f_hz;
+      p.f_hz.assign(f.f_hz.data(), f.f_hz.data() + f.f_hz.size());
       if (f.channels.empty() || f.f_hz.size() == 0) throw FitError(where(d) + ": no FRF channels or frequencies");
       for (const FrfChannel& c : f.channels) {
         const int o = info.output_index(c.output), i = info.input_index(c.input);
         if (o < 0) throw FitError(where(d) + ": channel " + c.output + "/" + c.input + ": the model has no output " + c.output);
         if (i < 0) throw FitError(where(d) + ": channel " + c.output + "/" + c.input + ": the model has no input " + c.input);
-        p.channels.push_back({o, i});
+        auto slot = [](std::vector<int>& used, int index) {
+          const auto it = std::find(used.begin(), used.end(), index);
+          if (it != used.end()) return static_cast<int>(it - used.begin());
+          used.push_back(index);
+          return static_cast<int>(used.size()) - 1;
+        };
+        p.channel_output.push_back(slot(p.frf_outputs, o));
+        p.channel_input.push_back(slot(p.inputs, i));
         p.names.push_back(c.output + "/" + c.input);
         p.measured.push_back(c.values);
         const Eigen::VectorXd mag = c.values.cwiseAbs();
@@ -62,6 +74,7 @@ OutputErrorProblem::OutputErrorProblem(const Model& model, const std::vector<Dat
       p.dt = t.dt();
       p.hold = t.hold;
       p.u.resize(t.samples(), static_cast<Eigen::Index>(info.inputs.size()));
+      for (std::size_t i = 0; i < info.inputs.size(); ++i) p.inputs.push_back(static_cast<int>(i));
       for (std::size_t i = 0; i < info.inputs.size(); ++i) p.u.col(static_cast<Eigen::Index>(i)) = t.at(info.inputs[i]).values;
       for (std::size_t o = 0; o < info.outputs.size(); ++o) {
         const Signal* s = t.find(info.outputs[o]);
@@ -94,6 +107,12 @@ bool OutputErrorProblem::has_time() const {
   return false;
 }
 
+namespace {
+
+InputHold input_hold(HoldMode hold) { return hold == HoldMode::None ? InputHold::FirstOrder : InputHold::ZeroOrder; }
+
+}  // namespace
+
 void OutputErrorProblem::evaluate(const Eigen::VectorXd& values, const std::vector<int>& free_params,
                                   ResidualKind kind, Eigen::VectorXd& r, Eigen::MatrixXd* J) const {
   const Eigen::Index k = static_cast<Eigen::Index>(free_params.size());
@@ -101,55 +120,78 @@ void OutputErrorProblem::evaluate(const Eigen::VectorXd& values, const std::vect
   if (J) J->setZero(count_, k);
   ModelMatrices m;
   ModelDerivatives md;
+  std::vector<int> column;
   for (const Prepared& s : sets_) {
     Eigen::VectorXd p = values;
     for (const auto& [idx, v] : s.overrides) p[idx] = v;
     model_.evaluate(p, m);
-    std::vector<int> inactive;
-    for (const auto& [idx, v] : s.overrides) inactive.push_back(idx);  // acts through the set value, not the shared one
+    // Jacobian column of each model parameter; a data set's `# set` parameters act through the set value,
+    // not the shared one, so they get none.
+    column.assign(static_cast<std::size_t>(values.size()), -1);
+    for (std::size_t j = 0; j < free_params.size(); ++j) column[static_cast<std::size_t>(free_params[j])] = static_cast<int>(j);
+    for (const auto& [idx, v] : s.overrides) column[static_cast<std::size_t>(idx)] = -1;
     if (J) model_.derivatives(p, md);
+    const std::vector<int>& outputs = s.frf ? s.frf_outputs : s.outputs;
+    const ReducedModel red = reduce_to_excited_block(m, J ? &md : nullptr, s.inputs, outputs, column);
     Eigen::Index row = s.offset;
     if (s.frf) {
-      const FrfResponse h = frf_response(m, J ? &md : nullptr, free_params, inactive, s.f_hz, s.channels);
-      const Eigen::Index nf = s.f_hz.size();
-      for (std::size_t c = 0; c < s.channels.size(); ++c) {
-        if (kind == ResidualKind::LogRatio) {
-          // log(Hm / Hd): real part log-magnitude ratio, imaginary part phase difference in (-pi, pi].
-          for (Eigen::Index f = 0; f < nf; ++f) {
-            const std::complex<double> hm = h.values[c][f], hd = s.measured[c][f];
-            const std::complex<double> lr = (hm == 0.0 || hd == 0.0) ? 0.0 : std::log(hm / hd);
+      const Eigen::Index nf = static_cast<Eigen::Index>(s.f_hz.size());
+      const Eigen::Index no = static_cast<Eigen::Index>(s.frf_outputs.size());
+      FrfJacobianResult h;
+      if (J) {
+        h = frf_jacobian(red.m, red.d, static_cast<int>(k), s.f_hz);
+      } else {
+        FrfResult values_only = frf(red.m, s.f_hz);
+        h.H = std::move(values_only.H);
+      }
+      for (std::size_t c = 0; c < s.channel_output.size(); ++c) {
+        const Eigen::Index o = s.channel_output[c], i = s.channel_input[c], entry = o + i * no;
+        const Eigen::VectorXd& sigma = s.sigma[c];
+        for (Eigen::Index f = 0; f < nf; ++f) {
+          const std::size_t fk = static_cast<std::size_t>(f);
+          const std::complex<double> hm = h.H[fk](o, i), hd = s.measured[c][f];
+          if (kind == ResidualKind::LogRatio) {
+            // log(Hm / Hd): real part log-magnitude ratio, imaginary part phase difference in (-pi, pi].
+            const bool defined = hm != 0.0 && hd != 0.0;
+            const std::complex<double> lr = defined ? std::log(hm / hd) : 0.0;
             r[row + f] = lr.real();
             r[row + nf + f] = lr.imag();
-            if (J && hm != 0.0 && hd != 0.0)
+            if (J && defined)
               for (Eigen::Index j = 0; j < k; ++j) {
-                const std::complex<double> g = h.jacobian[c](f, j) / hm;
+                const std::complex<double> g = h.dH[fk](entry, j) / hm;
                 (*J)(row + f, j) = g.real();
                 (*J)(row + nf + f, j) = g.imag();
               }
-          }
-        } else {
-          const Eigen::VectorXcd e = h.values[c] - s.measured[c];
-          r.segment(row, nf) = e.real().cwiseQuotient(s.sigma[c]);
-          r.segment(row + nf, nf) = e.imag().cwiseQuotient(s.sigma[c]);
-          if (J) {
-            J->block(row, 0, nf, k) = s.sigma[c].cwiseInverse().asDiagonal() * h.jacobian[c].real();
-            J->block(row + nf, 0, nf, k) = s.sigma[c].cwiseInverse().asDiagonal() * h.jacobian[c].imag();
+          } else {
+            const std::complex<double> e = hm - hd;
+            const double w = 1 / sigma[f];
+            r[row + f] = e.real() * w;
+            r[row + nf + f] = e.imag() * w;
+            if (J)
+              for (Eigen::Index j = 0; j < k; ++j) {
+                const std::complex<double> g = h.dH[fk](entry, j);
+                (*J)(row + f, j) = g.real() * w;
+                (*J)(row + nf + f, j) = g.imag() * w;
+              }
           }
         }
         row += 2 * nf;
       }
     } else {
-      std::vector<DenseDerivative> dd;
-      if (J) {
-        dd = dense_derivatives(m, md, free_params);
-        for (std::size_t j = 0; j < free_params.size(); ++j)
-          if (std::find(inactive.begin(), inactive.end(), free_params[j]) != inactive.end()) dd[j].any = false;
-      }
-      const TimeResponse y = time_response(m, J ? &dd : nullptr, s.u, s.dt, s.hold, s.outputs);
       const Eigen::Index N = s.u.rows();
+      const InputHold hold = input_hold(s.hold);
+      SimulationSensitivity y;
+      if (J)
+        y = simulate_with_sensitivity(red.m, red.d, static_cast<int>(k), s.u, s.dt, hold);
+      else
+        y.outputs = simulate(red.m, s.u, s.dt, hold);
+      if (!y.outputs.allFinite()) throw FitError("time simulation diverged (unstable model at these parameter values)");
       for (std::size_t o = 0; o < s.outputs.size(); ++o) {
-        r.segment(row, N) = s.weight[o] * (y.values[o] - s.measured_y[o]);
-        if (J) J->block(row, 0, N, k) = s.weight[o] * y.sensitivity[o];
+        const auto oi = static_cast<Eigen::Index>(o);
+        r.segment(row, N) = s.weight[o] * (y.outputs.col(oi) - s.measured_y[o]);
+        if (J)
+          for (Eigen::Index j = 0; j < k; ++j)
+            J->block(row, j, N, 1) = s.weight[o] * y.doutputs[static_cast<std::size_t>(j)].col(oi);
         row += N;
       }
     }
@@ -163,12 +205,19 @@ Prediction OutputErrorProblem::predict(const Eigen::VectorXd& values) const {
     Eigen::VectorXd p = values;
     for (const auto& [idx, v] : s.overrides) p[idx] = v;
     model_.evaluate(p, m);
+    const ReducedModel red = reduce_to_excited_block(m, nullptr, s.inputs, s.frf ? s.frf_outputs : s.outputs, {});
     std::vector<Eigen::VectorXcd> channels;
     if (s.frf) {
-      channels = frf_response(m, nullptr, {}, {}, s.f_hz, s.channels).values;
+      const FrfResult h = frf(red.m, s.f_hz);
+      for (std::size_t c = 0; c < s.channel_output.size(); ++c) {
+        Eigen::VectorXcd v(static_cast<Eigen::Index>(s.f_hz.size()));
+        for (std::size_t f = 0; f < s.f_hz.size(); ++f)
+          v[static_cast<Eigen::Index>(f)] = h.H[f](s.channel_output[c], s.channel_input[c]);
+        channels.push_back(std::move(v));
+      }
     } else {
-      for (const auto& y : time_response(m, nullptr, s.u, s.dt, s.hold, s.outputs).values)
-        channels.push_back(y.cast<std::complex<double>>());
+      const Eigen::MatrixXd y = simulate(red.m, s.u, s.dt, input_hold(s.hold));
+      for (Eigen::Index o = 0; o < y.cols(); ++o) channels.push_back(y.col(o).cast<std::complex<double>>());
     }
     out.channels.push_back(std::move(channels));
     out.channel_names.push_back(s.names);

@@ -6,8 +6,7 @@
 // divided by that output's measured RMS.
 #pragma once
 
-#include "model_response.hpp"
-
+#include "mbgen/data_settings.hpp"
 #include "mbgen/fit.hpp"
 
 #include <Eigen/Core>
@@ -44,9 +43,11 @@ class OutputErrorProblem {
   struct Prepared {
     bool frf = false;
     std::vector<std::pair<int, double>> overrides;  // (parameter index, value) from `# set`
-    // FRF
-    Eigen::VectorXd f_hz;
-    std::vector<ChannelIndex> channels;
+    // FRF: the model inputs and outputs the channels use; channel c is entry (channel_output[c],
+    // channel_input[c]) of the FRF matrix of those.
+    std::vector<double> f_hz;
+    std::vector<int> inputs, frf_outputs;
+    std::vector<int> channel_output, channel_input;
     std::vector<Eigen::VectorXcd> measured;
     std::vector<Eigen::VectorXd> sigma;  // per real component
     // time
