@@ -152,13 +152,17 @@ void OutputErrorProblem::evaluate(const Eigen::VectorXd& values, const std::vect
           const std::complex<double> hm = h.H[fk](o, i), hd = s.measured[c][f];
           if (kind == ResidualKind::LogRatio) {
             // log(Hm / Hd): real part log-magnitude ratio, imaginary part phase difference in (-pi, pi].
+            // Weighted by |Hd| / sigma (sigma of the complex value): to first order log(Hm/Hd) = (Hm - Hd)/Hd,
+            // so near the fit this is the weighted residual, while noise-dominated points (anti-resonances,
+            // |Hd| ~ sigma) get little weight; far from the fit a missed peak still costs only a log ratio.
             const bool defined = hm != 0.0 && hd != 0.0;
-            const std::complex<double> lr = defined ? std::log(hm / hd) : 0.0;
+            const double w = std::abs(hd) / (std::sqrt(2.0) * sigma[f]);
+            const std::complex<double> lr = defined ? w * std::log(hm / hd) : 0.0;
             r[row + f] = lr.real();
             r[row + nf + f] = lr.imag();
             if (J && defined)
               for (Eigen::Index j = 0; j < k; ++j) {
-                const std::complex<double> g = h.dH[fk](entry, j) / hm;
+                const std::complex<double> g = w * h.dH[fk](entry, j) / hm;
                 (*J)(row + f, j) = g.real();
                 (*J)(row + nf + f, j) = g.imag();
               }

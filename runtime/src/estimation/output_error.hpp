@@ -19,7 +19,7 @@ namespace mbgen::estimation {
 
 enum class ResidualKind {
   Weighted,  // the statistically weighted output error
-  LogRatio,  // FRF only: log(H_model / H_measured), real and imaginary part, unweighted (global search)
+  LogRatio,  // FRF only: log(H_model / H_measured) * |H_measured| / sigma, real and imaginary part (global search)
 };
 
 class OutputErrorProblem {
