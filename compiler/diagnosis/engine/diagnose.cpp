@@ -76,7 +76,6 @@ class Diagnoser {
     DiagnosisResult result;
     result.model_file = model.file;
     for (const DataSet& d : data_) result.data.push_back(d.file());
-    prior_peaks_ = prior_peaks(model);
     say("nominal model: fitting " + std::to_string(model.parameters.size()) + " parameters");
     result.nominal = assess(model, text, {}, options_.fit.starts);
     say(format("nominal model: nrmse %.4g, validation %.4g, mean normalized residual %.3g", result.nominal.fit.nrmse,
@@ -86,7 +85,12 @@ class Diagnoser {
     ModelState current = result.nominal;
     std::set<std::string> promising;  // ids that qualified in the previous round (later rounds re-fit only those)
     for (int round = 1; round <= options_.max_extensions; ++round) {
-      std::vector<Extension> extensions = enumerate_extensions(current.model, current.text, context(current));
+      prior_peaks_ = prior_peaks(current.model);
+      const ExtensionContext ctx = context(current);
+      std::string hints;
+      for (double f : ctx.peak_hz) hints += format(" %.1f", f);
+      if (!hints.empty()) say("round " + std::to_string(round) + ": peaks to place new modes at (Hz):" + hints);
+      std::vector<Extension> extensions = enumerate_extensions(current.model, current.text, ctx);
       if (round > 1)
         extensions.erase(std::remove_if(extensions.begin(), extensions.end(),
                                         [&](const Extension& e) { return !promising.count(e.id); }),
@@ -171,30 +175,46 @@ class Diagnoser {
     if (options_.progress) options_.progress(line);
   }
 
-  // Unexplained resonances of the model at its prior values. A fit can hide a missing mode by bending other
-  // parameters (a soft mount standing in for a compliant base), so the fitted residual alone may not show it.
+  // Peaks of the measured FRFs that no peak of the model at its prior values accounts for (none within 8 %),
+  // strongest first. A fit can hide a missing mode by bending other parameters (a soft mount standing in for a
+  // compliant base), so the fitted residual alone may not point at it; the data's own peaks against the prior
+  // model do.
   std::vector<double> prior_peaks(const ir::Model& model) const {
     symbolic::DeriveOptions derive;
     derive.set = options_.set;
     const auto evaluator = evaluator::make_evaluator(model, derive);
-    const ResidualSummary prior = analyse_residuals(
-        channel_residuals(*evaluator, data_, evaluator->info().default_values(), options_.fit.frf_weighting),
-        options_.residual);
+    std::vector<std::pair<double, double>> found;  // (magnitude relative to the channel's RMS, f)
+    for (const ChannelResidual& c : channel_residuals(*evaluator, data_, evaluator->info().default_values(),
+                                                      options_.fit.frf_weighting)) {
+      const std::vector<int> model_peaks = magnitude_peaks(c.model);
+      const double rms = std::sqrt(c.measured.cwiseAbs2().mean());
+      for (int i : magnitude_peaks(c.measured, 6.0)) {
+        const double f = c.f_hz[static_cast<std::size_t>(i)];
+        const bool explained = std::any_of(model_peaks.begin(), model_peaks.end(), [&](int m) {
+          return std::abs(c.f_hz[static_cast<std::size_t>(m)] - f) <= 0.08 * f;
+        });
+        if (!explained) found.emplace_back(std::abs(c.measured[i]) / rms, f);
+      }
+    }
+    std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     std::vector<double> peaks;
-    for (const Discrepancy& d : prior.discrepancies)
-      if (d.kind == "unexplained_resonance") peaks.push_back(d.f_hz);
+    for (const auto& [strength, f] : found)
+      if (std::none_of(peaks.begin(), peaks.end(), [&](double g) { return std::abs(f - g) <= 0.02 * f; }))
+        peaks.push_back(f);
     return peaks;
   }
 
-  // Peaks for new parameters' start values: the fitted model's unexplained resonances, strongest first, then
-  // those of the prior model.
+  // Peaks for new parameters' start values: first the data's peaks that the prior model does not account for
+  // (strongest first: the most direct evidence of a missing mode), then the fitted model's unexplained resonances.
   ExtensionContext context(const ModelState& s) const {
     ExtensionContext ctx;
-    for (const Discrepancy& d : s.residual.discrepancies)  // already strongest first
-      if (d.kind == "unexplained_resonance") ctx.peak_hz.push_back(d.f_hz);
-    for (double f : prior_peaks_)
+    const auto add = [&](double f) {
       if (std::none_of(ctx.peak_hz.begin(), ctx.peak_hz.end(), [&](double g) { return std::abs(f - g) <= 0.02 * f; }))
         ctx.peak_hz.push_back(f);
+    };
+    for (double f : prior_peaks_) add(f);
+    for (const Discrepancy& d : s.residual.discrepancies)  // already strongest first
+      if (d.kind == "unexplained_resonance") add(d.f_hz);
     ctx.varying_parameters = varying_parameters(data_);
     ctx.values = s.values;
     return ctx;
