@@ -36,6 +36,23 @@ WelchEstimate record_frfs(const Model& model, const TimeRecord& rec) {
   return welch_h1(rec, inputs, outputs, o);
 }
 
+// The noise level for judging residuals: the H1 variance (1 - coh^2)/(coh^2 n) |H|^2 with |H|^2 averaged over
+// five lines. A single line's |H| is itself noisy; where noise dominates (anti-resonances) a low draw would
+// shrink sigma and make noise look like a finding, while the average includes the noise power and errs safe.
+Eigen::VectorXd judging_sigma(const FrfChannel& c, const FrfWeighting& w) {
+  Eigen::VectorXd sigma = frf_sigma(c, w);
+  if (!c.coherence) return sigma;
+  const Eigen::Index n = c.values.size();
+  const double rms = std::sqrt(c.values.cwiseAbs2().mean());
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Index lo = std::max<Eigen::Index>(0, k - 2), hi = std::min<Eigen::Index>(n - 1, k + 2);
+    const double h2 = c.values.segment(lo, hi - lo + 1).cwiseAbs2().mean();
+    const double g2 = std::clamp((*c.coherence)[k], 1e-12, 1.0);
+    sigma[k] = std::max(std::sqrt((1.0 - g2) / (g2 * w.averages) * h2), w.floor * rms);
+  }
+  return sigma;
+}
+
 }  // namespace
 
 std::vector<ChannelResidual> channel_residuals(const Model& model, const std::vector<DataSet>& data,
@@ -75,7 +92,7 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
       r.measured = c.values;
       r.model.resize(c.values.size());
       for (std::size_t k = 0; k < f.size(); ++k) r.model[static_cast<Eigen::Index>(k)] = h.H[k](o, i);
-      r.sigma = frf_sigma(c, w);
+      r.sigma = judging_sigma(c, w);
       out.push_back(std::move(r));
     }
   }

@@ -57,8 +57,13 @@ class Diagnoser {
     derive.set = options_.set;
     const auto evaluator = evaluator::make_evaluator(model, derive);
     FitOptions fo = options_.fit;
-    for (const auto& [name, v] : start)
-      if (evaluator->info().parameter_index(name) >= 0) fo.values[name] = v;
+    // Start values apply to what this model estimates; its known and fixed parameters keep their values (a
+    // candidate's estimate of a parameter the current model holds fixed must not leak into it).
+    const ModelInfo& info = evaluator->info();
+    for (const auto& [name, v] : start) {
+      const int i = info.parameter_index(name);
+      if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
+    }
     fo.starts = starts;
     ModelState s;
     s.model = model;
