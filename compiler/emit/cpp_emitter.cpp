@@ -15,14 +15,10 @@
 #error "MBGEN_VERSION must be defined by the build"
 #endif
 
+#include "emit/ginac_text.hpp"
+
 namespace mbgen::emit {
 namespace {
-
-std::string dflt(const GiNaC::ex& e) {
-  std::ostringstream os;
-  os << e;
-  return os.str();
-}
 
 using symbolic::SymbolicModel;
 
@@ -83,7 +79,7 @@ std::string double_literal(double x) {
 double to_double(const GiNaC::ex& e) {
   const GiNaC::ex v = GiNaC::evalf(e);
   if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
-    throw std::invalid_argument("emit_cpp: value is not a real number: " + dflt(e));
+    throw std::invalid_argument("emit_cpp: value is not a real number: " + ginac_text(e));
   return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
 }
 

@@ -6,14 +6,10 @@
 
 #include "emit/cse.hpp"
 
+#include "emit/ginac_text.hpp"
+
 namespace mbgen::emit {
 namespace {
-
-std::string dflt(const GiNaC::ex& e) {
-  std::ostringstream os;
-  os << e;
-  return os.str();
-}
 
 // Printed text and its binding strength: 0 sum, 1 product/quotient/negation, 2 atom.
 struct Printed {
@@ -53,7 +49,7 @@ Printed print_nonneg_rational(const GiNaC::numeric& n) {
 
 Printed print_number(const GiNaC::numeric& n) {
   if (!n.is_rational()) {
-    if (!n.is_real()) throw std::logic_error("cxx_printer: complex number " + dflt(n));
+    if (!n.is_real()) throw std::logic_error("cxx_printer: complex number " + ginac_text(n));
     // Not expected from the exact symbolic stage; printed with enough digits for long double.
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.21Lg", static_cast<long double>(n.to_double()));
@@ -74,18 +70,18 @@ class Printer {
     if (GiNaC::is_a<GiNaC::numeric>(e)) return print_number(GiNaC::ex_to<GiNaC::numeric>(e));
     if (GiNaC::is_a<GiNaC::symbol>(e)) {
       auto it = names_.find(e);
-      if (it == names_.end()) throw std::logic_error("cxx_printer: no C++ name for symbol " + dflt(e));
+      if (it == names_.end()) throw std::logic_error("cxx_printer: no C++ name for symbol " + ginac_text(e));
       return {it->second, 2};
     }
     if (GiNaC::is_a<GiNaC::constant>(e)) {
       if (e.is_equal(GiNaC::Pi)) return {"c_pi", 2};
-      throw std::logic_error("cxx_printer: unsupported constant " + dflt(e));
+      throw std::logic_error("cxx_printer: unsupported constant " + ginac_text(e));
     }
     if (GiNaC::is_a<GiNaC::add>(e)) return print_add(e);
     if (GiNaC::is_a<GiNaC::mul>(e)) return print_mul(e);
     if (GiNaC::is_a<GiNaC::power>(e)) return print_power(e);
     if (GiNaC::is_a<GiNaC::function>(e)) return print_function(e);
-    throw std::logic_error("cxx_printer: unsupported expression " + dflt(e));
+    throw std::logic_error("cxx_printer: unsupported expression " + ginac_text(e));
   }
 
  private:

@@ -6,14 +6,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include "emit/ginac_text.hpp"
+
 namespace mbgen::emit {
 namespace {
-
-std::string dflt(const GiNaC::ex& e) {
-  std::ostringstream os;
-  os << e;
-  return os.str();
-}
 
 // Binding strength: 0 sum, 1 product/quotient/negation, 2 power, 3 atom.
 struct Printed {
@@ -31,7 +27,7 @@ std::string integer_text(const GiNaC::numeric& n) {
 // represents exactly, so the syntax stays integers and ratios.
 GiNaC::numeric exact(const GiNaC::numeric& n) {
   if (n.is_rational()) return n;
-  if (!n.is_real()) throw std::logic_error("infix_text: complex number " + dflt(n));
+  if (!n.is_real()) throw std::logic_error("infix_text: complex number " + ginac_text(n));
   // A double's binary value, exactly: mantissa * 2^exponent.
   int exponent = 0;
   const double mantissa = std::frexp(n.to_double(), &exponent);
@@ -53,7 +49,7 @@ class Printer {
     if (GiNaC::is_a<GiNaC::symbol>(e)) return {GiNaC::ex_to<GiNaC::symbol>(e).get_name(), 3};
     if (GiNaC::is_a<GiNaC::constant>(e)) {
       if (e.is_equal(GiNaC::Pi)) return {"pi", 3};
-      throw std::logic_error("infix_text: unsupported constant " + dflt(e));
+      throw std::logic_error("infix_text: unsupported constant " + ginac_text(e));
     }
     if (GiNaC::is_a<GiNaC::add>(e)) return add(e);
     if (GiNaC::is_a<GiNaC::mul>(e)) return mul(e);
@@ -63,7 +59,7 @@ class Printer {
       for (std::size_t i = 0; i < e.nops(); ++i) s += (i ? ", " : "") + print(e.op(i)).text;
       return {s + ")", 3};
     }
-    throw std::logic_error("infix_text: unsupported expression " + dflt(e));
+    throw std::logic_error("infix_text: unsupported expression " + ginac_text(e));
   }
 
  private:
