@@ -53,6 +53,27 @@ Eigen::VectorXd judging_sigma(const FrfChannel& c, const FrfWeighting& w) {
   return sigma;
 }
 
+void keep_coherent_lines(ChannelResidual& r, const Eigen::VectorXd& coherence, double min_coherence) {
+  std::vector<double> f;
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index k = 0; k < coherence.size(); ++k)
+    if (coherence[k] >= min_coherence) kept.push_back(k);
+  const auto n = static_cast<Eigen::Index>(kept.size());
+  Eigen::VectorXcd measured(n), model(n);
+  Eigen::VectorXd sigma(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Index k = kept[static_cast<std::size_t>(i)];
+    f.push_back(r.f_hz[static_cast<std::size_t>(k)]);
+    measured[i] = r.measured[k];
+    model[i] = r.model[k];
+    sigma[i] = r.sigma[k];
+  }
+  r.f_hz = std::move(f);
+  r.measured = std::move(measured);
+  r.model = std::move(model);
+  r.sigma = std::move(sigma);
+}
+
 }  // namespace
 
 std::vector<ChannelResidual> channel_residuals(const Model& model, const std::vector<DataSet>& data,
@@ -62,6 +83,7 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
   for (const DataSet& d : data) {
     FrfData frf;
     FrfWeighting w = weighting;
+    bool estimated_from_record = false;
     if (const FrfData* measured = std::get_if<FrfData>(&d.content)) {
       frf = *measured;
     } else {
@@ -79,6 +101,7 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
         c.values = c.values.segment(first, keep - first).eval();
         if (c.coherence) *c.coherence = c.coherence->segment(first, keep - first).eval();
       }
+      estimated_from_record = true;
     }
     const std::vector<double> f(frf.f_hz.data(), frf.f_hz.data() + frf.f_hz.size());
     const FrfResult h = mbgen::frf(model, with_set_values(model, d, values), f);
@@ -93,6 +116,9 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
       r.model.resize(c.values.size());
       for (std::size_t k = 0; k < f.size(); ++k) r.model[static_cast<Eigen::Index>(k)] = h.H[k](o, i);
       r.sigma = judging_sigma(c, w);
+      // A coherence estimated from a record is biased upwards where the true coherence is low (about 1/averages
+      // even for pure noise), which would make sigma too small there: such lines are not judged.
+      if (estimated_from_record && c.coherence) keep_coherent_lines(r, *c.coherence, 0.5);
       out.push_back(std::move(r));
     }
   }

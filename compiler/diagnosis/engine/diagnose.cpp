@@ -151,6 +151,8 @@ class Diagnoser {
         break;
       }
       result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
+      for (const std::string& id : equivalents(outcomes, best))
+        say("  " + id + " fits exactly as well: the same extension in another place");
       promising.erase(outcomes[static_cast<std::size_t>(best)].id);
       say("selected " + result.selected.back());
       current = std::move(chosen);
@@ -168,12 +170,26 @@ class Diagnoser {
   }
 
  private:
+  // The qualifying candidate with the lowest BIC. Candidates that tie (within 0.01 in BIC: e.g. a torsion spring
+  // between the same two bodies at different points is one and the same extension) go to the first in
+  // enumeration order, so the choice does not hang on rounding.
   static int best_qualifying(const std::vector<CandidateOutcome>& outcomes) {
     int best = -1;
     for (std::size_t k = 0; k < outcomes.size(); ++k)
-      if (outcomes[k].qualifies && (best < 0 || outcomes[k].delta_bic < outcomes[static_cast<std::size_t>(best)].delta_bic))
+      if (outcomes[k].qualifies &&
+          (best < 0 || outcomes[k].delta_bic < outcomes[static_cast<std::size_t>(best)].delta_bic - 0.01))
         best = static_cast<int>(k);
     return best;
+  }
+
+  // Names of other qualifying candidates that fit exactly as well as `best` (equivalent extensions).
+  static std::vector<std::string> equivalents(const std::vector<CandidateOutcome>& outcomes, int best) {
+    std::vector<std::string> out;
+    for (std::size_t k = 0; k < outcomes.size(); ++k)
+      if (static_cast<int>(k) != best && outcomes[k].qualifies &&
+          std::abs(outcomes[k].delta_bic - outcomes[static_cast<std::size_t>(best)].delta_bic) <= 0.01)
+        out.push_back(outcomes[k].id);
+    return out;
   }
 
   void say(const std::string& line) const {
