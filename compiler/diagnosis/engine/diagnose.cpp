@@ -142,12 +142,13 @@ class Diagnoser {
         if (o.qualifies) promising.insert(o.id);
       if (best < 0) break;
       ModelState& chosen = states[static_cast<std::size_t>(best)];
-      // The extension must explain the discrepancy, not merely shave the cost: the residual at least halves or
-      // falls to the noise level. Otherwise it is a partial, likely wrong, explanation and is not taken.
+      // The extension must explain the discrepancy, not merely shave the cost: the residual's excess over the
+      // noise level (mean normalized residual minus 1) at least halves. Otherwise it is a partial, likely wrong,
+      // explanation and is not taken.
       const double before = current.residual.mean_z, after = chosen.residual.mean_z;
-      if (!(after <= 0.5 * before || after <= 2.0)) {
-        say(format("best candidate leaves the mean normalized residual at %.3g (from %.3g): not an explanation", after,
-                   before));
+      if (!(before > 1.0 && after - 1.0 <= 0.5 * (before - 1.0))) {
+        say(format("best candidate leaves the mean normalized residual at %.3g (from %.3g; noise alone gives 1): "
+                   "not an explanation", after, before));
         break;
       }
       result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
