@@ -7,7 +7,7 @@
 //      error, physical plausibility.
 //   4. Select the best candidate only on strong evidence: BIC lower by more than 10 (Kass & Raftery's "very
 //      strong"), validation error lower, new parameters plausible (identifiable, well determined, off their
-//      bounds), and the discrepancy it explains gone (the residual at least halves, or falls to the noise level).
+//      bounds), and the discrepancy explained (the excess of the residual over the noise level at least halves).
 //      Repeat on the extended model (greedy forward selection) while a candidate qualifies.
 //   5. Verdict: `extended`; `no_extension_justified` when nothing beyond noise remains; `unexplained` when a clear
 //      discrepancy remains that no candidate explains. A confident wrong extension is the worst outcome, so every
