@@ -46,7 +46,7 @@ DataSet example_data(const std::string& relative) {
 
 }  // namespace
 
-TEST_CASE("mdof2 FRF example: the global fit from the model's defaults reaches the truth", "[fit][frf][examples]") {
+TEST_CASE("slow: mdof2 FRF example: the global fit from the model's defaults reaches the truth", "[fit][frf][examples]") {
   const LinearModel model = mdof2_as_in_model_file();
   // examples/mdof2/data/frf_F1.truth.json
   const std::vector<std::pair<std::string, double>> truth = {{"m1", 1.262},    {"m2", 1.022},   {"k11", 1300000.0},
