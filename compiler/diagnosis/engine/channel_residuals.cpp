@@ -116,9 +116,10 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
       r.model.resize(c.values.size());
       for (std::size_t k = 0; k < f.size(); ++k) r.model[static_cast<Eigen::Index>(k)] = h.H[k](o, i);
       r.sigma = judging_sigma(c, w);
-      // A coherence estimated from a record is biased upwards where the true coherence is low (about 1/averages
-      // even for pure noise), which would make sigma too small there: such lines are not judged.
-      if (estimated_from_record && c.coherence) keep_coherent_lines(r, *c.coherence, 0.5);
+      // A coherence estimated from a record is biased upwards and uncertain where the true coherence is low (about
+      // 1/averages even for pure noise), and so is the sigma derived from it: such lines are not judged
+      // (docs/diagnosis.md says why 0.8).
+      if (estimated_from_record && c.coherence) keep_coherent_lines(r, *c.coherence, 0.8);
       out.push_back(std::move(r));
     }
   }

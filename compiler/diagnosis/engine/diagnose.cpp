@@ -159,6 +159,14 @@ class Diagnoser {
       current = std::move(chosen);
       if (promising.empty()) break;
     }
+    // An extension that leaves a clear discrepancy (the residual well above the noise level) explains only part
+    // of what is wrong: better to say so than to extend with a confident, partly wrong model.
+    if (!result.selected.empty() && current.residual.mean_z > options_.max_final_residual) {
+      say(format("the extended model still leaves a mean normalized residual of %.3g (noise alone gives 1): a clear "
+                 "discrepancy remains; not extending", current.residual.mean_z));
+      result.selected.clear();
+      current = result.nominal;
+    }
     result.final = current;
     if (!result.selected.empty())
       result.verdict = "extended";
