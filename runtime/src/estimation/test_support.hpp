@@ -124,14 +124,18 @@ inline std::complex<double> mdof2_g21(const Mdof2Values& v, double f_hz) {
   return g11_den * (v.c12 / mm * s + v.k12 / mm);
 }
 
-// The mdof2 model as a LinearModel (independent of the dynamics engineer's test model).
-inline LinearModel mdof2_model(const Mdof2Values& v = {}) {
+// The mdof2 model as a LinearModel (independent of the dynamics engineer's test model). With
+// `model_file_bounds`, the upper bounds of examples/mdof2/mdof2.mdl (100 kg, 1e9 N/m, 1e4 N s/m); else none.
+inline LinearModel mdof2_model(const Mdof2Values& v = {}, bool model_file_bounds = false) {
   using R = ParameterRole;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double mass_max = model_file_bounds ? 100 : inf, k_max = model_file_bounds ? 1e9 : inf,
+               c_max = model_file_bounds ? 1e4 : inf;
   LinearModel m("mdof2", 2, {"F1"}, {"d1", "d2"});
-  const int m1 = m.parameter("m1", v.m1, R::Estimate), m2 = m.parameter("m2", v.m2, R::Estimate);
-  const int k11 = m.parameter("k11", v.k11, R::Estimate), k22 = m.parameter("k22", v.k22, R::Estimate);
-  const int k12 = m.parameter("k12", v.k12, R::Estimate), c11 = m.parameter("c11", v.c11, R::Estimate);
-  const int c22 = m.parameter("c22", v.c22, R::Estimate), c12 = m.parameter("c12", v.c12, R::Fixed);
+  const int m1 = m.parameter("m1", v.m1, R::Estimate, 0, mass_max), m2 = m.parameter("m2", v.m2, R::Estimate, 0, mass_max);
+  const int k11 = m.parameter("k11", v.k11, R::Estimate, 0, k_max), k22 = m.parameter("k22", v.k22, R::Estimate, 0, k_max);
+  const int k12 = m.parameter("k12", v.k12, R::Estimate, 0, k_max), c11 = m.parameter("c11", v.c11, R::Estimate, 0, c_max);
+  const int c22 = m.parameter("c22", v.c22, R::Estimate, 0, c_max), c12 = m.parameter("c12", v.c12, R::Fixed);
   m.linear(LinearModel::M, m1, 0, 0, 1);
   m.linear(LinearModel::M, m2, 1, 1, 1);
   m.element(LinearModel::K, k11, 0, -1);
