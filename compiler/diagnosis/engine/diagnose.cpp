@@ -38,6 +38,41 @@ std::set<std::string> varying_parameters(const std::vector<DataSet>& data) {
   return out;
 }
 
+// The names of the parameters the selected extensions added.
+std::set<std::string> added_parameters(const DiagnosisResult& r) {
+  std::set<std::string> names;
+  for (const CandidateOutcome& c : r.candidates)
+    if (std::find(r.selected.begin(), r.selected.end(), c.id) != r.selected.end())
+      for (const NewParameter& p : c.new_parameters) names.insert(p.name);
+  return names;
+}
+
+// The extended model's text with the added parameters' start values replaced by their estimates, so the written
+// model is the fitted one. Only `param NAME = NUMBER` declarations of those names change.
+std::string with_estimates(const std::string& text, const std::map<std::string, double>& values,
+                           const std::set<std::string>& names) {
+  std::string out;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(pos, end - pos);
+    for (const std::string& name : names) {
+      const std::string head = "param " + name + " = ";
+      const auto it = values.find(name);
+      if (line.rfind(head, 0) != 0 || it == values.end()) continue;
+      const std::size_t value_end = line.find(' ', head.size());
+      char number[64];
+      std::snprintf(number, sizeof number, "%.6g", it->second);
+      line = head + number + (value_end == std::string::npos ? "" : line.substr(value_end));
+    }
+    out += line;
+    if (end < text.size()) out += '\n';
+    pos = end + 1;
+  }
+  return out;
+}
+
 std::map<std::string, double> values_by_name(const Model& model, const Eigen::VectorXd& values) {
   std::map<std::string, double> out;
   const ModelInfo& info = model.info();
@@ -167,6 +202,7 @@ class Diagnoser {
       result.selected.clear();
       current = result.nominal;
     }
+    if (!result.selected.empty()) current.text = with_estimates(current.text, current.values, added_parameters(result));
     result.final = current;
     if (!result.selected.empty())
       result.verdict = "extended";
