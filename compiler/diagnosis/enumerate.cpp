@@ -21,13 +21,19 @@ std::vector<Extension> enumerate_extensions(const ir::Model& nominal, const std:
   const OperatorInput in{located, text, ctx, ModelValues(located, ctx.values)};
   std::vector<Extension> out;
   for (auto op : {compliant_ground, gyroscopic, free_parameter, untie_parameter, moment_stiffness, added_mass,
-                  resonator, connection}) {
+                  resonator, sensor_dynamics, connection}) {
     std::vector<Extension> found = op(in);
     for (Extension& e : found) out.push_back(std::move(e));
   }
-  std::set<std::string> ids;
-  for (const Extension& e : out)
-    if (!ids.insert(e.id).second) throw std::logic_error("enumerate_extensions: candidate id `" + e.id + "` twice");
+  // An id appears once, or as a run of consecutive variants with distinct names.
+  std::set<std::string> ids, variants;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const Extension& e = out[i];
+    const bool continues = i > 0 && out[i - 1].id == e.id && !e.variant.empty() && !out[i - 1].variant.empty();
+    if (!continues) variants.clear();
+    if ((!continues && !ids.insert(e.id).second) || (!e.variant.empty() && !variants.insert(e.variant).second))
+      throw std::logic_error("enumerate_extensions: candidate id `" + e.id + "` twice");
+  }
   return out;
 }
 

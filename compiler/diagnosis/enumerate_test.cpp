@@ -24,13 +24,16 @@ TEST_CASE("mdof2: the candidates come from its structure", "[diagnosis]") {
 TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {
   const test::Example ex = test::load("spindle");
   const std::vector<std::string> common_head = {"compliant_ground:base"};
-  const std::vector<std::string> common_tail = {
-      "untie_parameter:k_hbx",     "untie_parameter:k_hby",     "untie_parameter:k_hbz",
-      "untie_parameter:c_hbx",     "untie_parameter:c_hby",     "untie_parameter:c_hbz",
+  std::vector<std::string> common_tail;
+  // untie_parameter: one variant per mount (which one differs), all under the parameter's id.
+  for (const char* p : {"k_hbx", "k_hby", "k_hbz", "c_hbx", "c_hby", "c_hbz"})
+    for (int mount = 0; mount < 4; ++mount) common_tail.push_back(std::string("untie_parameter:") + p);
+  for (const char* id : {
       "moment_stiffness:bearing_fx", "moment_stiffness:bearing_fy", "moment_stiffness:bearing_fz",
       "moment_stiffness:bearing_rx", "moment_stiffness:bearing_ry", "moment_stiffness:mount1",
       "moment_stiffness:mount2",   "moment_stiffness:mount3",   "moment_stiffness:mount4",
-      "added_mass:spindle",        "added_mass:housing"};
+      "added_mass:spindle",        "added_mass:housing"})
+    common_tail.push_back(id);
 
   SECTION("n_sp is zero and the same in every data set: no gyroscopic candidate") {
     std::vector<std::string> expected = common_head;
@@ -48,6 +51,19 @@ TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {
     expected.push_back("gyroscopic:spindle");
     expected.insert(expected.end(), common_tail.begin(), common_tail.end());
     for (const char* id : {"resonator:spindle", "resonator:housing", "connection:base-spindle"}) expected.push_back(id);
+    const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, ctx);
+    CHECK_THAT(test::ids_of(xs), Equals(expected));
+    for (const Extension& x : xs) test::check_candidate(x);
+  }
+  SECTION("an unexplained peak in one output's channels brings that output's sensor candidate") {
+    ExtensionContext ctx;
+    ctx.peak_hz = {1000};
+    ctx.output_peak_hz["xs_front"] = {1000};
+    std::vector<std::string> expected = common_head;
+    expected.insert(expected.end(), common_tail.begin(), common_tail.end());
+    for (const char* id : {"resonator:spindle", "resonator:housing", "sensor_dynamics:xs_front",
+                           "connection:base-spindle"})
+      expected.push_back(id);
     const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, ctx);
     CHECK_THAT(test::ids_of(xs), Equals(expected));
     for (const Extension& x : xs) test::check_candidate(x);

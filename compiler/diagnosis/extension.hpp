@@ -24,6 +24,10 @@ struct Extension {
   std::string id;             // "<operator>:<target>", e.g. "compliant_ground:base"
   std::string operator_name;  // "compliant_ground"
   std::string target;         // "base" (for connection: "A-B")
+  // Variants: an operator may offer several versions of one candidate under one id (untie_parameter: which
+  // element differs). They are consecutive in the list, each named here; the diagnosis fits them all and keeps
+  // the best. Empty for a candidate without variants.
+  std::string variant;
   std::string description;    // one plain sentence a test engineer understands
   ir::Model model;            // the extended model; new parameters have role estimate and a start value
   std::vector<NewParameter> new_parameters;
@@ -33,12 +37,15 @@ struct Extension {
 
 struct ExtensionContext {
   std::vector<double> peak_hz;               // unexplained resonances in the residual, strongest first (may be empty)
+  // The same per output (the channels "OUTPUT/INPUT" of that output), strongest first; outputs without one absent.
+  std::map<std::string, std::vector<double>> output_peak_hz;
   std::set<std::string> varying_parameters;  // parameters the data sets set differently (e.g. n_sp)
   std::map<std::string, double> values;      // current (fitted) values of the nominal model's free parameters
 };
 
 // All candidates, in a fixed order: by operator (compliant_ground, gyroscopic, free_parameter, untie_parameter,
-// moment_stiffness, added_mass, resonator, connection), then in the model's declaration order. Ids are unique.
+// moment_stiffness, added_mass, resonator, sensor_dynamics, connection), then in the model's declaration order.
+// Ids are unique, except that the variants of one candidate (distinct `variant`s) share its id.
 // `nominal_text` is the text `nominal` was parsed from; each candidate's mdl_text parses to its model.
 std::vector<Extension> enumerate_extensions(const ir::Model& nominal, const std::string& nominal_text,
                                             const ExtensionContext& ctx);

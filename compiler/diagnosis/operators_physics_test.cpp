@@ -201,28 +201,100 @@ TEST_CASE("resonator:mass1 on mdof2: a mass on a spring at mass1, tuned to the p
   CHECK(std::sqrt(v.of_parameter("kr_mass1") / v.of_parameter("mr_mass1")) / (2 * M_PI) == Approx(190).epsilon(1e-5));
 }
 
-TEST_CASE("untie_parameter:k_hbx: with every copy at k_hbx the equations are the nominal ones",
+TEST_CASE("untie_parameter:k_hbx: one variant per mount; with its copy at k_hbx the equations are the nominal ones",
           "[diagnosis][physics]") {
   const test::Example sp = test::load("spindle");
   ExtensionContext ctx;
-  ctx.values["k_hbx"] = 7.5e7;  // a fitted value: the copies start there
-  const Extension x = test::find(enumerate_extensions(sp.model, sp.text, ctx), "untie_parameter:k_hbx");
-  CHECK(x.model.find_parameter("k_hbx") == nullptr);  // no longer used anywhere
-  REQUIRE(x.new_parameters.size() == 4);
-  const symbolic::SymbolicModel sm = test::check_candidate(x);
-  const symbolic::SymbolicModel nominal = derive(sp.model);
-  GiNaC::exmap tie;
-  for (const NewParameter& np : x.new_parameters) {
-    CHECK(ModelValues(x.model, {}).of_parameter(np.name) == 7.5e7);
-    tie[symbolic::test::symbol_of(sm, np.name)] = symbolic::test::symbol_of(nominal, "k_hbx");
+  ctx.values["k_hbx"] = 7.5e7;  // a fitted value: the copy starts there
+  std::vector<std::string> variants;
+  for (const Extension& x : enumerate_extensions(sp.model, sp.text, ctx)) {
+    if (x.id != "untie_parameter:k_hbx") continue;
+    variants.push_back(x.variant);
+    REQUIRE(x.new_parameters.size() == 1);
+    const std::string copy = "k_hbx_" + x.variant;
+    CHECK(x.new_parameters[0].name == copy);
+    CHECK(x.model.find_parameter("k_hbx") != nullptr);  // the other three mounts still share it
+    CHECK(ModelValues(x.model, {}).of_parameter(copy) == 7.5e7);
+    // Only the variant's own element reads the copy.
+    for (const ir::Element& e : x.model.elements) {
+      if (e.kind != ir::ElementKind::Spring3) continue;
+      CHECK(ir::to_string(e.stiffness[0]) == (e.name == x.variant ? copy : std::string("k_hbx")));
+    }
+    const symbolic::SymbolicModel sm = test::check_candidate(x);
+    const symbolic::SymbolicModel nominal = derive(sp.model);
+    GiNaC::exmap to_nominal;
+    for (const symbolic::FreeParameter& fp : sm.parameters)
+      if (nominal.parameter_index(fp.name) >= 0) to_nominal[fp.sym] = symbolic::test::symbol_of(nominal, fp.name);
+    to_nominal[symbolic::test::symbol_of(sm, copy)] = symbolic::test::symbol_of(nominal, "k_hbx");
+    const GiNaC::matrix K = GiNaC::ex_to<GiNaC::matrix>(sm.K.subs(to_nominal));
+    CHECK(same(K, nominal.K));
+    // At another value the copy changes the equations (the comparison can fail).
+    GiNaC::exmap apart = to_nominal;
+    apart[symbolic::test::symbol_of(sm, copy)] = 2 * symbolic::test::symbol_of(nominal, "k_hbx");
+    CHECK_FALSE(same(GiNaC::ex_to<GiNaC::matrix>(sm.K.subs(apart)), nominal.K));
   }
-  // Symbols are matched by name: the two derivations have their own symbol objects.
-  GiNaC::exmap to_nominal = tie;
-  for (const symbolic::FreeParameter& fp : sm.parameters)
-    if (nominal.parameter_index(fp.name) >= 0) to_nominal[fp.sym] = symbolic::test::symbol_of(nominal, fp.name);
-  const GiNaC::matrix K = GiNaC::ex_to<GiNaC::matrix>(sm.K.subs(to_nominal));
-  CHECK(same(K, nominal.K));
-  CHECK_FALSE(same(sm.K(0, 0).subs(to_nominal), nominal.K(0, 0) + 1));  // the comparison can fail
+  CHECK(variants == std::vector<std::string>{"mount1", "mount2", "mount3", "mount4"});
+}
+
+TEST_CASE("untie_parameter with two users offers one variant: freeing either is the same model", "[diagnosis]") {
+  const std::string text =
+      "model two\nparam m = 1 \"kg\"\nparam k = 100 \"N/m\" estimate in [0, 1e6]\nground wall\n"
+      "body a { mass m\n at (0, 0, 0)\n dof x }\n"
+      "spring s1 { from wall\n to a\n along x\n stiffness k }\n"
+      "spring s2 { from wall\n to a\n along x\n stiffness k }\n"
+      "input F force on a along x\noutput d displacement of a along x\n";
+  const ir::Model m = frontend::parse_string(text, "two.mdl");
+  const std::vector<Extension> xs = enumerate_extensions(m, text, {});
+  REQUIRE(std::count_if(xs.begin(), xs.end(), [](const Extension& x) { return x.id == "untie_parameter:k"; }) == 1);
+  const Extension& x = test::find(xs, "untie_parameter:k");
+  CHECK(x.variant == "s1");
+  test::check_candidate(x);
+}
+
+TEST_CASE("sensor_dynamics:d2 on mdof2: d2 reads a mass on a spring-damper at mass2, tuned to its peak",
+          "[diagnosis][physics]") {
+  const test::Example ex2 = test::load("mdof2");
+  ExtensionContext ctx;
+  ctx.peak_hz = {40, 190};
+  ctx.output_peak_hz["d2"] = {190, 40};
+  const std::vector<Extension> xs = enumerate_extensions(ex2.model, ex2.text, ctx);
+  CHECK(std::none_of(xs.begin(), xs.end(), [](const Extension& x) { return x.id == "sensor_dynamics:d1"; }));
+  const Extension& x = test::find(xs, "sensor_dynamics:d2");
+  const symbolic::SymbolicModel sm = test::check_candidate(x);
+  REQUIRE(sm.coordinates.size() == 3);
+  const int a = coordinate(sm, "mass1.x"), b = coordinate(sm, "mass2.x"), s = coordinate(sm, "sensor_d2.x");
+  auto p = [&](const char* n) { return symbolic::test::symbol_of(sm, n); };
+  // Hand-assembled: the sensor mass ms on k_s = ms (2 pi fs)^2, c_s = 2 zs ms (2 pi fs) between mass2 and itself.
+  const ex w = 2 * GiNaC::Pi * p("fs_d2");
+  const ex ks = p("ms_d2") * w * w, cs = 2 * p("zs_d2") * p("ms_d2") * w;
+  GiNaC::matrix K(3, 3), C(3, 3), M(3, 3), Cd(2, 3);
+  K(a, a) = p("k11") + p("k12");
+  K(b, b) = p("k22") + p("k12") + ks;
+  K(s, s) = ks;
+  K(a, b) = K(b, a) = -p("k12");
+  K(b, s) = K(s, b) = -ks;
+  C(a, a) = p("c11") + p("c12");
+  C(b, b) = p("c22") + p("c12") + cs;
+  C(s, s) = cs;
+  C(a, b) = C(b, a) = -p("c12");
+  C(b, s) = C(s, b) = -cs;
+  M(a, a) = p("m1");
+  M(b, b) = p("m2");
+  M(s, s) = p("ms_d2");
+  Cd(0, a) = 1;  // d1 still reads mass1
+  Cd(1, s) = 1;  // d2 reads the sensor
+  CHECK(same(sm.K, K));
+  CHECK(same(sm.C, C));
+  CHECK(same(sm.M, M));
+  CHECK(same(sm.Cd, Cd));
+  CHECK_FALSE(same(sm.K, M));  // the comparison can fail
+  const ModelValues v(x.model, {});
+  CHECK(v.of_parameter("ms_d2") == Approx(1e-3 * 1.09));
+  CHECK(v.of_parameter("fs_d2") == Approx(190));
+  CHECK(x.model.find_parameter("ms_d2")->role == ir::Role::Known);
+  REQUIRE(x.new_parameters.size() == 2);  // fs_d2 and zs_d2: the data determine the resonance, not the mass
+  // The output statement is replaced in place; the text keeps the old one commented out.
+  CHECK(x.mdl_text.find("output d2 displacement of sensor_d2 along x") != std::string::npos);
 }
 
 TEST_CASE("free_parameter:c12 changes the role only", "[diagnosis][physics]") {

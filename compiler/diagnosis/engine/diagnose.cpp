@@ -142,11 +142,13 @@ class Diagnoser {
         const Extension& ext = extensions[k];
         outcomes.push_back(score(ext, current, round, states));
         const CandidateOutcome& o = outcomes.back();
-        say(format("[%.0f/%.0f] ", static_cast<double>(k + 1), static_cast<double>(extensions.size())) + ext.id + ": " +
+        say(format("[%.0f/%.0f] ", static_cast<double>(k + 1), static_cast<double>(extensions.size())) + ext.id +
+            (ext.variant.empty() ? "" : " (" + ext.variant + ")") + ": " +
             (o.error.empty() ? format("delta BIC %.1f, validation %.4g", o.delta_bic, o.validation_nrmse) +
                                    (o.qualifies ? "  (qualifies)" : "")
                              : "failed: " + o.error));
       }
+      keep_best_variants(outcomes, states);
       result.candidates.insert(result.candidates.end(), outcomes.begin(), outcomes.end());
       const std::size_t first_of_round = result.candidates.size() - outcomes.size();
       int best = best_qualifying(outcomes);
@@ -227,6 +229,39 @@ class Diagnoser {
     return best;
   }
 
+  // The variants of one candidate (consecutive, one id) are one candidate: the one with the lowest BIC stands
+  // for it; those that fit exactly as well (a mirror-symmetric element, which the data cannot tell apart) are
+  // named with it.
+  static void keep_best_variants(std::vector<CandidateOutcome>& outcomes, std::vector<ModelState>& states) {
+    std::vector<CandidateOutcome> kept_outcomes;
+    std::vector<ModelState> kept_states;
+    for (std::size_t first = 0; first < outcomes.size();) {
+      std::size_t end = first + 1;
+      while (end < outcomes.size() && outcomes[end].id == outcomes[first].id) ++end;
+      std::size_t best = first;
+      for (std::size_t k = first; k < end; ++k)
+        if (outcomes[k].error.empty() &&
+            (!outcomes[best].error.empty() || outcomes[k].delta_bic < outcomes[best].delta_bic - 0.01))
+          best = k;
+      CandidateOutcome o = outcomes[best];
+      o.variants_tried = static_cast<int>(end - first);
+      for (std::size_t k = first; k < end; ++k)
+        if (k != best && outcomes[k].error.empty() && o.error.empty() &&
+            std::abs(outcomes[k].delta_bic - o.delta_bic) <= 0.01)
+          o.equivalent_variants.push_back(outcomes[k].variant);
+      if (!o.equivalent_variants.empty()) {
+        std::string names;
+        for (const std::string& v : o.equivalent_variants) names += (names.empty() ? "" : ", ") + v;
+        o.description += " (" + names + " instead fits exactly as well: the data cannot tell them apart)";
+      }
+      kept_outcomes.push_back(std::move(o));
+      kept_states.push_back(std::move(states[best]));
+      first = end;
+    }
+    outcomes = std::move(kept_outcomes);
+    states = std::move(kept_states);
+  }
+
   // Names of other qualifying candidates that fit exactly as well as `best` (equivalent extensions).
   static std::vector<std::string> equivalents(const std::vector<CandidateOutcome>& outcomes, int best) {
     std::vector<std::string> out;
@@ -245,11 +280,13 @@ class Diagnoser {
   // strongest first. A fit can hide a missing mode by bending other parameters (a soft mount standing in for a
   // compliant base), so the fitted residual alone may not point at it; the data's own peaks against the prior
   // model do.
-  std::vector<double> prior_peaks(const ir::Model& model) const {
+  // Also fills prior_output_peaks_, the same per output.
+  std::vector<double> prior_peaks(const ir::Model& model) {
     symbolic::DeriveOptions derive;
     derive.set = options_.set;
     const auto evaluator = evaluator::make_evaluator(model, derive);
     std::vector<std::pair<double, double>> found;  // (magnitude relative to the channel's RMS, f)
+    std::map<std::string, std::vector<std::pair<double, double>>> by_output;
     for (const ChannelResidual& c : channel_residuals(*evaluator, data_, evaluator->info().default_values(),
                                                       options_.fit.frf_weighting)) {
       const std::vector<int> model_peaks = magnitude_peaks(c.model);
@@ -259,9 +296,21 @@ class Diagnoser {
         const bool explained = std::any_of(model_peaks.begin(), model_peaks.end(), [&](int m) {
           return std::abs(c.f_hz[static_cast<std::size_t>(m)] - f) <= 0.08 * f;
         });
-        if (!explained) found.emplace_back(std::abs(c.measured[i]) / rms, f);
+        if (!explained) {
+          found.emplace_back(std::abs(c.measured[i]) / rms, f);
+          by_output[output_of(c.channel)].emplace_back(found.back());
+        }
       }
     }
+    prior_output_peaks_.clear();
+    for (auto& [output, list] : by_output) prior_output_peaks_[output] = strongest_first(list);
+    return strongest_first(found);
+  }
+
+  static std::string output_of(const std::string& channel) { return channel.substr(0, channel.find('/')); }
+
+  // Frequencies of (strength, f) pairs, strongest first, those within 2 % of a stronger one left out.
+  static std::vector<double> strongest_first(std::vector<std::pair<double, double>> found) {
     std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     std::vector<double> peaks;
     for (const auto& [strength, f] : found)
@@ -281,6 +330,13 @@ class Diagnoser {
     for (double f : prior_peaks_) add(f);
     for (const Discrepancy& d : s.residual.discrepancies)  // already strongest first
       if (d.kind == "unexplained_resonance") add(d.f_hz);
+    ctx.output_peak_hz = prior_output_peaks_;
+    for (const Discrepancy& d : s.residual.discrepancies)
+      if (d.kind == "unexplained_resonance") {
+        std::vector<double>& list = ctx.output_peak_hz[output_of(d.channel)];
+        if (std::none_of(list.begin(), list.end(), [&](double g) { return std::abs(d.f_hz - g) <= 0.02 * d.f_hz; }))
+          list.push_back(d.f_hz);
+      }
     ctx.varying_parameters = varying_parameters(data_);
     ctx.values = s.values;
     return ctx;
@@ -290,6 +346,7 @@ class Diagnoser {
     CandidateOutcome o;
     o.id = ext.id;
     o.description = ext.description;
+    o.variant = ext.variant;
     o.round = round;
     o.new_parameters = ext.new_parameters;
     o.freed_parameters = ext.freed_parameters;
@@ -342,6 +399,7 @@ class Diagnoser {
   const DiagnoseOptions& options_;
   SplitData split_;
   std::vector<double> prior_peaks_;
+  std::map<std::string, std::vector<double>> prior_output_peaks_;
 };
 
 }  // namespace

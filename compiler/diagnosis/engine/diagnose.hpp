@@ -42,6 +42,11 @@ struct DiagnoseOptions {
 
 struct CandidateOutcome {
   std::string id, description;
+  // For a candidate with variants (Extension::variant): the one reported (the lowest BIC), and the others that
+  // fit exactly as well (within 0.01 in BIC), which the data cannot tell from it.
+  std::string variant;
+  std::vector<std::string> equivalent_variants;
+  int variants_tried = 1;
   int round = 1;
   std::vector<NewParameter> new_parameters;
   std::vector<std::string> freed_parameters;

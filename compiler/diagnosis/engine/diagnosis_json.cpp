@@ -58,6 +58,11 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
                           {"plausible", c.plausible},
                           {"doubts", c.doubts},
                           {"qualifies", c.qualifies}};
+    if (!c.variant.empty()) {
+      entry["variant"] = c.variant;
+      entry["variants_tried"] = c.variants_tried;
+      entry["equivalent_variants"] = c.equivalent_variants;
+    }
     if (!c.error.empty()) {
       entry["fit"] = nullptr;
       entry["delta_bic"] = nullptr;

@@ -41,6 +41,7 @@ class Draft {
   void add_element(ir::Element e);
   void add_spin(ir::Spin s);
   void free_parameter(const std::string& name) { ext_.freed_parameters.push_back(name); }
+  void set_variant(const std::string& variant) { ext_.variant = variant; }
 
   Extension finish(const std::string& description);
 
@@ -84,6 +85,7 @@ std::vector<Extension> untie_parameter(const OperatorInput& in);
 std::vector<Extension> moment_stiffness(const OperatorInput& in);
 std::vector<Extension> added_mass(const OperatorInput& in);
 std::vector<Extension> resonator(const OperatorInput& in);
+std::vector<Extension> sensor_dynamics(const OperatorInput& in);
 std::vector<Extension> connection(const OperatorInput& in);
 
 }  // namespace mbgen::diagnosis

@@ -1,5 +1,6 @@
 // untie_parameter:P -- one estimated parameter written into several elements (four mounts sharing one
-// stiffness) says they are identical; this candidate lets each element have its own copy.
+// stiffness) says they are identical; this candidate lets one of them differ. It has one variant per element
+// (Extension::variant names it); the diagnosis fits them all and reports the best under the one id.
 #include <algorithm>
 
 #include "diagnosis/expr_build.hpp"
@@ -44,65 +45,29 @@ void rename(ir::Expr& e, const std::string& from, const std::string& to, std::ve
   for (ir::Expr& a : e.args) rename(a, from, to, locs);
 }
 
-// Whether anything but elements (parameters, bodies, spins, signals' written points and directions) uses it.
-bool used_outside_elements(const ir::Model& m, const std::string& name) {
-  for (const ir::Parameter& p : m.parameters)
-    if (uses(p.value, name) || (p.lower && uses(*p.lower, name)) || (p.upper && uses(*p.upper, name))) return true;
-  for (const ir::Body& b : m.bodies) {
-    if (uses(b.mass, name)) return true;
-    for (const auto& j : b.inertia)
-      if (j && uses(*j, name)) return true;
-    for (const ir::Expr& x : b.position)
-      if (uses(x, name)) return true;
-  }
-  for (const ir::Spin& s : m.spins)
-    if (uses(s.speed, name)) return true;
-  auto signal_uses = [&](const ir::Attachment& a, const ir::Direction& d) {
-    for (int k = 0; k < 3; ++k)
-      if ((a.has_point && uses(a.point[k], name)) || (d.axis.empty() && uses(d.vector[k], name))) return true;
-    return false;
-  };
-  for (const ir::Input& in : m.inputs)
-    if (signal_uses(in.at, in.direction)) return true;
-  for (const ir::Output& out : m.outputs)
-    if (signal_uses(out.at, out.direction)) return true;
-  return false;
-}
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
-  return out;
-}
-
-Extension untie(const OperatorInput& in, const ir::Parameter& p) {
+// Variant of the candidate in which the single element `element` gets its own copy `P_<element>`, starting at P's
+// current (fitted) value, with P's unit and bounds; the other elements keep sharing P.
+Extension untie_one(const OperatorInput& in, const ir::Parameter& p, const std::string& element, std::size_t users) {
   Draft d(in, "untie_parameter", p.name);
   ir::Model& x = d.model();
   const bool overridden = in.ctx.values.count(p.name) > 0;
-  std::vector<std::string> copies, users;
+  ir::Parameter copy = p;
+  copy.name = d.names().fresh(p.name + "_" + element);
+  copy.value = overridden ? number_expr(in.values.of_parameter(p.name)) : p.value;
+  copy.role = ir::Role::Estimate;
+  copy.comment.clear();
+  copy.loc = {};
   for (ir::Element& e : x.elements) {
-    if (!element_uses(e, p.name)) continue;
-    // Each copy starts where P is now (its fitted value if there is one), with P's unit and bounds.
-    ir::Parameter copy = p;
-    copy.name = d.names().fresh(p.name + "_" + e.name);
-    copy.value = overridden ? number_expr(in.values.of_parameter(p.name)) : p.value;
-    copy.role = ir::Role::Estimate;
-    copy.comment.clear();
-    copy.loc = {};
-    copies.push_back(copy.name);
-    users.push_back(e.name);
+    if (e.name != element) continue;
     std::vector<ir::SourceLoc> locs;
     for (ir::Expr* ex : written_expressions(e)) rename(*ex, p.name, copy.name, locs);
     for (const ir::SourceLoc& loc : locs) d.patch().rename(loc, p.name, copy.name);
-    d.add_parameter(copy, p.name + " as seen by " + e.name);
   }
-  if (!used_outside_elements(x, p.name)) {
-    x.parameters.erase(std::find_if(x.parameters.begin(), x.parameters.end(),
-                                    [&](const ir::Parameter& q) { return q.name == p.name; }));
-    d.patch().replace_statement(p.loc, p.name + " is no longer used: each element has its own copy", "");
-  }
-  return d.finish("the elements " + join(users) + " share " + p.name + "; each gets its own copy (" + join(copies) +
-                  ") so that they may differ");
+  d.add_parameter(copy, p.name + " as seen by " + element);
+  d.set_variant(element);
+  const std::string others = users == 2 ? "the other element keeps " + p.name
+                                        : "the other " + std::to_string(users - 1) + " keep sharing " + p.name;
+  return d.finish(element + " gets its own " + p.name + " (" + copy.name + "), so that it may differ; " + others);
 }
 
 }  // namespace
@@ -113,7 +78,15 @@ std::vector<Extension> untie_parameter(const OperatorInput& in) {
     if (p.role != ir::Role::Estimate || p.derived) continue;
     const auto users = std::count_if(in.model.elements.begin(), in.model.elements.end(),
                                      [&](const ir::Element& e) { return element_uses(e, p.name); });
-    if (users >= 2) out.push_back(untie(in, p));
+    if (users < 2) continue;
+    // One element at a time: a single element that differs (one loose mount) adds one parameter the data can
+    // determine, where a copy for every element would add several that the data may see only as a sum. With
+    // two users, freeing either one is the same model.
+    for (const ir::Element& e : in.model.elements) {
+      if (!element_uses(e, p.name)) continue;
+      out.push_back(untie_one(in, p, e.name, static_cast<std::size_t>(users)));
+      if (users == 2) break;
+    }
   }
   return out;
 }

@@ -106,6 +106,9 @@ def _spindle_cases():
     c_c = 1000.0
     mw_k, mw_fc = 6e6, 300.0
     mw_c = mw_k / (2 * math.pi * mw_fc)
+    m_sen, f_sen = 0.01, 1000.0
+    k_sen = m_sen * (2 * math.pi * f_sen) ** 2
+    c_sen = critical_fraction(0.05, k_sen, m_sen)
     return [
         Case("spindle", "nominal", None, None, "nothing: the nominal model with its parameters off nominal",
              lambda p: {}),
@@ -148,6 +151,13 @@ def _spindle_cases():
                                     "b": "housing", "pb": (-0.040, 0, 0.127), "along": "x",
                                     "k": mw_k, "c": mw_c}},
              {"maxwell_k": mw_k, "maxwell_c": mw_c, "maxwell_corner_hz": mw_fc}),
+        Case("spindle", "sensor_dynamics", "sensor_dynamics:xs_front", f_sen,
+             "xs_front is read by a %.0f g accelerometer on a mounting (spring-damper along x at its point on the "
+             "spindle) with its own resonance at %.0f Hz, zeta 5 %%: a second-order low-pass on that output"
+             % (m_sen * 1000, f_sen),
+             lambda p: {"sensor": {"output": "xs_front", "m": m_sen, "k": k_sen, "c": c_sen}},
+             {"ms_xs_front": m_sen, "ks_xs_front": k_sen, "cs_xs_front": c_sen, "fs_xs_front": f_sen,
+              "zs_xs_front": 0.05}),
     ]
 
 

@@ -120,7 +120,10 @@ def build_spindle(p, effects=None):
     added_mass {m, point}: a point mass on the spindle;
     resonator {m, k, c, point}: a mass on a spring-damper along x at a spindle point;
     connection {k, c}: an isotropic spring3 between the spindle's centre of mass and the base;
-    maxwell {name, a, pa, b, pb, along, k, c}: a Maxwell element.
+    maxwell {name, a, pa, b, pb, along, k, c}: a Maxwell element;
+    sensor {output, m, k, c}: that output is read by a sensor, a mass m on a spring-damper (k, c) along the
+        output's direction at its point on the spindle, with the one coordinate along it: the output measures
+        the sensor's mass (an accelerometer's mounting resonance; the sensor also loads the spindle).
     """
     e = effects or {}
     s = System("spindle")
@@ -163,9 +166,15 @@ def build_spindle(p, effects=None):
         mw = e["maxwell"]
         s.maxwell(mw["name"], mw["a"], mw["pa"], mw["b"], mw["pb"], mw["along"], mw["k"], mw["c"])
     s.input_force("Fx", "spindle", NOSE, "x")
-    s.output_displacement("xs_front", "spindle", (0, 0, 0.250), "x")
-    s.output_displacement("xs_rear", "spindle", (0, 0, -0.250), "x")
-    s.output_displacement("xh_front", "housing", (0, 0.0625, 0.170), "x")
+    sensor = e.get("sensor")
+    for name, frame, point in [("xs_front", "spindle", (0, 0, 0.250)), ("xs_rear", "spindle", (0, 0, -0.250)),
+                               ("xh_front", "housing", (0, 0.0625, 0.170))]:
+        if sensor and sensor["output"] == name:
+            body = "sensor_" + name
+            s.body(body, sensor["m"], [0.0, 0.0, 0.0], point, ["x"])
+            s.spring(body + "_mount", frame, point, body, point, "x", sensor["k"], sensor["c"])
+            frame = body
+        s.output_displacement(name, frame, point, "x")
     return s
 
 
