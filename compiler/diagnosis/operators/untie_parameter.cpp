@@ -45,15 +45,18 @@ void rename(ir::Expr& e, const std::string& from, const std::string& to, std::ve
   for (ir::Expr& a : e.args) rename(a, from, to, locs);
 }
 
-// Variant of the candidate in which the single element `element` gets its own copy `P_<element>`, starting at P's
-// current (fitted) value, with P's unit and bounds; the other elements keep sharing P.
+// Variant of the candidate in which the single element `element` gets its own copy `P_<element>`, with P's unit
+// and bounds; the other elements keep sharing P.
 Extension untie_one(const OperatorInput& in, const ir::Parameter& p, const std::string& element, std::size_t users) {
   Draft d(in, "untie_parameter", p.name);
   ir::Model& x = d.model();
-  const bool overridden = in.ctx.values.count(p.name) > 0;
   ir::Parameter copy = p;
   copy.name = d.names().fresh(p.name + "_" + element);
-  copy.value = overridden ? number_expr(in.values.of_parameter(p.name)) : p.value;
+  // The copy starts at half of P's current value: a loose element (a loosened bolt, a worn mount) is the usual
+  // way one of several identical elements differs, and at P itself the model is symmetric again, where the
+  // data's sensitivity to the copy can vanish (an asymmetry that couples otherwise separate motions acts on
+  // the response to second order), so a search started there need not move.
+  copy.value = number_expr(0.5 * in.values.of_parameter(p.name));
   copy.role = ir::Role::Estimate;
   copy.comment.clear();
   copy.loc = {};
