@@ -62,7 +62,7 @@ struct FitProgress {
   int starts = 1;      // number of starts in this stage
   int iteration = 0;   // LM iteration within that start
   double cost = 0;     // weighted residual sum of squares
-  std::string stage;   // "search", "refine", "final"
+  std::string stage;   // "search", "refine", "refine records" (time records), "final"
 };
 
 struct FitOptions {
@@ -82,6 +82,10 @@ struct FitOptions {
   // informative when a lightly damped model peak misses the measured one; the best is then refined on the
   // statistically weighted complex residuals.
   bool log_search = true;
+  // Time records: the starts are fitted on FRFs estimated from the records (Welch H1 with coherence, log-ratio
+  // search then weighted refine), and only the best is refined on the records (one simulation-based local fit
+  // instead of `starts`). Off: every start is fitted on the records.
+  bool spectral_search = true;
 
   // Levenberg-Marquardt stopping rules.
   int max_iterations = 200;
@@ -130,7 +134,7 @@ struct FitResult {
 
   int iterations = 0;                // LM iterations of the final refinement
   std::vector<double> cost_history;  // cost per accepted iteration: best start's search, then refinement
-  std::vector<double> start_costs;   // final cost of every start (search stage)
+  std::vector<double> start_costs;   // final cost of every start (search stage; for time records, on their H1)
   int best_start = 0;
   bool converged = false;
   std::string stop_reason;

@@ -3,6 +3,7 @@
 #include "levenberg_marquardt.hpp"
 #include "multistart.hpp"
 #include "output_error.hpp"
+#include "spectral_companion.hpp"
 
 #include "mbgen/identifiability.hpp"
 #include "mbgen/parameterization.hpp"
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 namespace mbgen {
 
@@ -194,17 +196,34 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
       start_points.push_back(theta);
     }
   }
-  const bool log_search = options.log_search && problem.has_frf() && !problem.has_time();
   const ResidualFunction weighted = estimator.function(free, ResidualKind::Weighted);
-  const ResidualFunction log_ratio = estimator.function(free, ResidualKind::LogRatio);
+  // The multi-start search: on the FRF data itself, or on FRFs estimated from time records (spectral_companion.hpp).
+  std::optional<estimation::SpectralCompanion> companion;
+  if (problem.has_time() && options.spectral_search && starts > 1) companion = estimation::spectral_companion(info, data);
+  std::optional<OutputErrorProblem> companion_problem;
+  std::optional<Estimator> companion_estimator;
+  if (companion) {
+    FrfWeighting w = options.frf_weighting;
+    w.averages = std::max(w.averages, companion->averages);
+    companion_problem.emplace(model, companion->data, w);
+    companion_estimator.emplace(model, *companion_problem, prior, transforms);
+  }
+  const Estimator& searcher = companion ? *companion_estimator : estimator;
+  const bool log_search = options.log_search && (companion || (problem.has_frf() && !problem.has_time()));
+  const ResidualFunction search_weighted = searcher.function(free, ResidualKind::Weighted);
+  const ResidualFunction log_ratio = searcher.function(free, ResidualKind::LogRatio);
   const std::vector<LmResult> runs = estimation::run_starts(starts, options.threads, [&](int s) {
     Eigen::VectorXd theta = start_points[static_cast<std::size_t>(s)];
     if (log_search) theta = estimation::levenberg_marquardt(log_ratio, theta, lm, reporter(s, starts, "search")).x;
-    return estimation::levenberg_marquardt(weighted, theta, lm, reporter(s, starts, "refine"));
+    return estimation::levenberg_marquardt(search_weighted, theta, lm, reporter(s, starts, "refine"));
   });
   for (const auto& run : runs) result.start_costs.push_back(run.cost);
   result.best_start = estimation::best_start(runs);
   LmResult best = runs[static_cast<std::size_t>(result.best_start)];
+  if (companion && std::isfinite(best.cost)) {
+    // The best spectral start, refined on the records.
+    best = estimation::levenberg_marquardt(weighted, best.x, lm, reporter(result.best_start, starts, "refine records"));
+  }
   if (!std::isfinite(best.cost)) throw FitError("fit: the model cannot be evaluated at any starting point");
   result.cost_history = best.history;
   Eigen::VectorXd values = estimator.full_values(free, best.x);

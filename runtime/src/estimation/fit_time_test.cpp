@@ -109,3 +109,27 @@ TEST_CASE("records with and without an added mass on mass2 are fitted jointly", 
   const FitResult wrong = fit(model, {DataSet(plain), DataSet(unlabelled)}, quick_options());
   CHECK(wrong.cost > 10 * joint.cost);
 }
+
+TEST_CASE("time records: the multi-start search on their H1 reaches the time-domain optimum from priors within x3",
+          "[fit][time][global]") {
+  const test::Mdof2Values truth;
+  std::mt19937 rng(11);
+  const TimeRecord record = test::mdof2_time_record(truth, 4000, 1.0 / 2000, 0.01, rng);
+  const FitResult reference = fit(test::mdof2_model(truth), {DataSet(record)}, quick_options());
+  std::mt19937 prior_rng(17);
+  std::uniform_real_distribution<double> exponent(-1, 1);
+  for (int run = 0; run < 5; ++run) {
+    test::Mdof2Values prior = truth;
+    for (double* x : {&prior.m1, &prior.m2, &prior.k11, &prior.k22, &prior.k12, &prior.c11, &prior.c22})
+      *x *= std::pow(3.0, exponent(prior_rng));
+    FitOptions o;
+    o.seed = static_cast<unsigned>(run + 1);
+    o.starts = 8;
+    const FitResult r = fit(test::mdof2_model(prior), {DataSet(record)}, o);
+    INFO("run " << run << ": cost " << r.cost << " vs reference " << reference.cost << ", best start " << r.best_start);
+    CHECK(r.method == "time-output-error");
+    CHECK(r.cost == Approx(reference.cost).epsilon(1e-6));
+    for (std::size_t i = 0; i < 7; ++i)
+      CHECK(r.parameters[i].value == Approx(reference.parameters[i].value).epsilon(1e-4));
+  }
+}
