@@ -10,7 +10,8 @@
 //
 // where dP, dB, dCout come from the sparse DerivativeEntry lists, so each entry costs one rank-one update of
 // an outputs x inputs block: the whole Jacobian costs about (inputs + outputs) triangular solves plus
-// O(entries * outputs * inputs) per frequency, instead of one factorisation per parameter.
+// O(entries * outputs * inputs) per frequency, instead of one factorisation per parameter. The factorisation
+// is a partial-pivoting LU written for the small dense P of lumped models, in buffers reused across frequencies.
 #pragma once
 
 #include "mbgen/model.hpp"
@@ -19,6 +20,7 @@
 
 #include <complex>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace mbgen {
@@ -51,6 +53,20 @@ FrfResult frf(const ModelMatrices& m, const std::vector<double>& freqs_hz);
 // parameter_count: number of parameters p (every DerivativeEntry::param must lie in [0, parameter_count)).
 FrfJacobianResult frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
                                const std::vector<double>& freqs_hz);
+
+// Streaming forms, for callers that consume one frequency at a time (the estimator's residuals): nothing is
+// allocated per frequency. `sink` is called for k = 0, 1, ... in order with H (outputs x inputs) and, for the
+// Jacobian, dH (layout of FrfJacobianResult::dH); both live in buffers that the next frequency overwrites.
+// Same results and errors as the forms above.
+using FrfSink = std::function<void(std::size_t k, const Eigen::MatrixXcd& H)>;
+using FrfJacobianSink = std::function<void(std::size_t k, const Eigen::MatrixXcd& H, const Eigen::MatrixXcd& dH)>;
+struct FrfWork {
+  std::size_t lu_factorizations = 0;
+  std::size_t solved_columns = 0;
+};
+FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const FrfSink& sink);
+FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
+                     const std::vector<double>& freqs_hz, const FrfJacobianSink& sink);
 
 // Conveniences: evaluate the model (and its derivatives) at parameters p first.
 FrfResult frf(const Model& model, const Eigen::VectorXd& p, const std::vector<double>& freqs_hz);

@@ -1,9 +1,8 @@
 #include "mbgen/frf.hpp"
 
 #include "model_checks.hpp"
+#include "small_lu.hpp"
 #include "mbgen/dynamics_error.hpp"
-
-#include <Eigen/LU>
 
 #include <cmath>
 #include <limits>
@@ -15,30 +14,49 @@ namespace {
 using cd = std::complex<double>;
 constexpr double two_pi = 6.283185307179586476925286766559;
 
-// P(jw) = K - w^2 M + jw C, factorised; throws if singular to working precision.
-Eigen::PartialPivLU<Eigen::MatrixXcd> factor_dynamic_stiffness(const ModelMatrices& m, double f_hz,
-                                                               const char* where) {
-  const double w = two_pi * f_hz;
-  Eigen::MatrixXcd P(m.M.rows(), m.M.cols());
-  P.real() = m.K - (w * w) * m.M;
-  P.imag() = w * m.C;
-  Eigen::PartialPivLU<Eigen::MatrixXcd> lu(P);
-  if (P.size() > 0) {
-    const Eigen::VectorXd pivots = lu.matrixLU().diagonal().cwiseAbs();
-    const double ratio = pivots.minCoeff() / pivots.maxCoeff();
-    if (!(ratio > static_cast<double>(P.rows()) * std::numeric_limits<double>::epsilon())) {
+// Buffers for one FRF evaluation, reused at every frequency.
+struct Workspace {
+  detail::SmallLu lu;
+  Eigen::MatrixXcd B, Cout, X, Yt, H, J;
+  Eigen::Index n = 0, inputs = 0, outputs = 0;
+
+  explicit Workspace(const ModelMatrices& m)
+      : B(m.B.cast<cd>()), n(m.M.rows()), inputs(m.B.cols()), outputs(m.Cd.rows()) {
+    lu.resize(n);
+    Cout.resize(outputs, n);
+    X.resize(n, inputs);
+    Yt.resize(n, outputs);
+    H.resize(outputs, inputs);
+  }
+
+  // P(jw) = K - w^2 M + jw C, factorised; throws if singular to working precision.
+  void factor(const ModelMatrices& m, double f_hz, const char* where) {
+    const double w = two_pi * f_hz, w2 = w * w;
+    Eigen::MatrixXcd& P = lu.matrix();
+    for (Eigen::Index c = 0; c < n; ++c)
+      for (Eigen::Index r = 0; r < n; ++r) P(r, c) = cd(m.K(r, c) - w2 * m.M(r, c), w * m.C(r, c));
+    const double ratio = lu.factor();
+    if (!(ratio > static_cast<double>(n) * std::numeric_limits<double>::epsilon())) {
       std::ostringstream msg;
       msg << where << ": dynamic stiffness K - w^2 M + jw C is singular at " << f_hz
           << " Hz (an undamped resonance, or a rigid-body mode at 0 Hz)";
       throw DynamicsError(msg.str());
     }
   }
-  return lu;
-}
 
-Eigen::MatrixXcd output_matrix(const ModelMatrices& m, cd s) {
-  return m.Cd.cast<cd>() + s * m.Cv.cast<cd>() + (s * s) * m.Ca.cast<cd>();
-}
+  // Cout = Cd + s Cv + s^2 Ca at s = jw.
+  void output_matrix(const ModelMatrices& m, double w) {
+    for (Eigen::Index c = 0; c < n; ++c)
+      for (Eigen::Index r = 0; r < outputs; ++r) Cout(r, c) = cd(m.Cd(r, c) - w * w * m.Ca(r, c), w * m.Cv(r, c));
+  }
+
+  // X = P^-1 B, H = Cout X.
+  void response() {
+    X = B;
+    lu.solve(X);
+    H.noalias() = Cout * X;
+  }
+};
 
 void check_frequencies(const std::vector<double>& freqs_hz, const char* where) {
   for (std::size_t k = 0; k < freqs_hz.size(); ++k)
@@ -51,49 +69,59 @@ void check_frequencies(const std::vector<double>& freqs_hz, const char* where) {
 
 }  // namespace
 
-FrfResult frf(const ModelMatrices& m, const std::vector<double>& freqs_hz) {
+FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const FrfSink& sink) {
   const char* where = "frf";
   detail::check_matrices(m, where);
   check_frequencies(freqs_hz, where);
-  const Eigen::MatrixXcd B = m.B.cast<cd>();
+  Workspace ws(m);
+  FrfWork work;
+  for (std::size_t k = 0; k < freqs_hz.size(); ++k) {
+    ws.factor(m, freqs_hz[k], where);
+    ws.output_matrix(m, two_pi * freqs_hz[k]);
+    ws.response();
+    work.lu_factorizations += 1;
+    work.solved_columns += static_cast<std::size_t>(ws.inputs);
+    sink(k, ws.H);
+  }
+  return work;
+}
+
+FrfResult frf(const ModelMatrices& m, const std::vector<double>& freqs_hz) {
   FrfResult result;
   result.freqs_hz = freqs_hz;
   result.H.reserve(freqs_hz.size());
-  for (double f : freqs_hz) {
-    const auto lu = factor_dynamic_stiffness(m, f, where);
-    const cd s(0, two_pi * f);
-    result.H.push_back(output_matrix(m, s) * lu.solve(B));
-  }
+  frf(m, freqs_hz, [&](std::size_t, const Eigen::MatrixXcd& H) { result.H.push_back(H); });
   return result;
 }
 
-FrfJacobianResult frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
-                               const std::vector<double>& freqs_hz) {
+FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
+                     const std::vector<double>& freqs_hz, const FrfJacobianSink& sink) {
   const char* where = "frf_jacobian";
   detail::check_matrices(m, where);
   detail::check_derivatives(m, d, parameter_count, where);
   check_frequencies(freqs_hz, where);
-  const Eigen::Index outputs = m.Cd.rows(), inputs = m.B.cols();
-  const Eigen::MatrixXcd B = m.B.cast<cd>();
-
-  FrfJacobianResult result;
-  result.freqs_hz = freqs_hz;
-  result.H.reserve(freqs_hz.size());
-  result.dH.reserve(freqs_hz.size());
-  for (double f : freqs_hz) {
-    const auto lu = factor_dynamic_stiffness(m, f, where);
-    const cd s(0, two_pi * f), s2 = s * s;
-    const Eigen::MatrixXcd Cout = output_matrix(m, s);
-    const Eigen::MatrixXcd X = lu.solve(B);                                     // n x inputs
+  Workspace ws(m);
+  const Eigen::Index outputs = ws.outputs, inputs = ws.inputs;
+  ws.J.resize(outputs * inputs, parameter_count);
+  const Eigen::MatrixXcd& X = ws.X;
+  const Eigen::MatrixXcd& Yt = ws.Yt;
+  Eigen::MatrixXcd& J = ws.J;
+  FrfWork work;
+  for (std::size_t k = 0; k < freqs_hz.size(); ++k) {
+    const double w = two_pi * freqs_hz[k];
+    const cd s(0, w), s2 = s * s;
+    ws.factor(m, freqs_hz[k], where);
+    ws.output_matrix(m, w);
+    ws.response();
     // Adjoint solve P^T Y^T = Cout^T; Yt = Y^T (n x outputs) is used directly: Y(o, r) = Yt(r, o).
-    const Eigen::MatrixXcd Yt = lu.transpose().solve(Cout.transpose());
-    result.lu_factorizations += 1;
-    result.solved_columns += static_cast<std::size_t>(inputs + outputs);
-    result.H.push_back(Cout * X);
+    ws.Yt = ws.Cout.transpose();
+    ws.lu.solve_transposed(ws.Yt);
+    work.lu_factorizations += 1;
+    work.solved_columns += static_cast<std::size_t>(inputs + outputs);
 
     // Column p of J is vec(dH/dp_p); entry (o, i) lives in row o + i * outputs. Every derivative entry is a
     // rank-one (or row/column) update, written as plain loops: no temporaries.
-    Eigen::MatrixXcd J = Eigen::MatrixXcd::Zero(outputs * inputs, parameter_count);
+    J.setZero();
     // -Y dP X: each entry (r, c) of dP contributes -factor * Y(:, r) X(c, :).
     auto stiffness_term = [&](const std::vector<DerivativeEntry>& entries, cd factor) {
       for (const auto& e : entries) {
@@ -120,8 +148,24 @@ FrfJacobianResult frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d
     output_term(d.Cd, 1.0);
     output_term(d.Cv, s);
     output_term(d.Ca, s2);
-    result.dH.push_back(std::move(J));
+    sink(k, ws.H, J);
   }
+  return work;
+}
+
+FrfJacobianResult frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
+                               const std::vector<double>& freqs_hz) {
+  FrfJacobianResult result;
+  result.freqs_hz = freqs_hz;
+  result.H.reserve(freqs_hz.size());
+  result.dH.reserve(freqs_hz.size());
+  const FrfWork work = frf_jacobian(m, d, parameter_count, freqs_hz,
+                                    [&](std::size_t, const Eigen::MatrixXcd& H, const Eigen::MatrixXcd& dH) {
+                                      result.H.push_back(H);
+                                      result.dH.push_back(dH);
+                                    });
+  result.lu_factorizations = work.lu_factorizations;
+  result.solved_columns = work.solved_columns;
   return result;
 }
 

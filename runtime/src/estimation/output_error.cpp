@@ -63,6 +63,15 @@ OutputErrorProblem::OutputErrorProblem(const Model& model, const std::vector<Dat
           sigma[k] = std::sqrt(std::max(var, floor2) / 2);
         }
         p.sigma.push_back(sigma);
+        Eigen::VectorXcd inverse(c.values.size());
+        Eigen::VectorXd log_weight(c.values.size());
+        for (Eigen::Index k = 0; k < sigma.size(); ++k) {
+          const std::complex<double> hd = c.values[k];
+          inverse[k] = hd != 0.0 ? 1.0 / hd : 0.0;
+          log_weight[k] = mag[k] / (std::sqrt(2.0) * sigma[k]);
+        }
+        p.inverse_measured.push_back(inverse);
+        p.log_weight.push_back(log_weight);
         measured_ss_ += (c.values.real().cwiseQuotient(sigma).squaredNorm() +
                          c.values.imag().cwiseQuotient(sigma).squaredNorm());
         p.size += 2 * c.values.size();
@@ -137,50 +146,45 @@ void OutputErrorProblem::evaluate(const Eigen::VectorXd& values, const std::vect
     if (s.frf) {
       const Eigen::Index nf = static_cast<Eigen::Index>(s.f_hz.size());
       const Eigen::Index no = static_cast<Eigen::Index>(s.frf_outputs.size());
-      FrfJacobianResult h;
-      if (J) {
-        h = frf_jacobian(red.m, red.d, static_cast<int>(k), s.f_hz);
-      } else {
-        FrfResult values_only = frf(red.m, s.f_hz);
-        h.H = std::move(values_only.H);
-      }
-      for (std::size_t c = 0; c < s.channel_output.size(); ++c) {
-        const Eigen::Index o = s.channel_output[c], i = s.channel_input[c], entry = o + i * no;
-        const Eigen::VectorXd& sigma = s.sigma[c];
-        for (Eigen::Index f = 0; f < nf; ++f) {
-          const std::size_t fk = static_cast<std::size_t>(f);
-          const std::complex<double> hm = h.H[fk](o, i), hd = s.measured[c][f];
+      // Residuals of every channel at frequency index f, and their Jacobian rows when dH is given.
+      auto residuals_at = [&](std::size_t fk, const Eigen::MatrixXcd& H, const Eigen::MatrixXcd* dH) {
+        const Eigen::Index f = static_cast<Eigen::Index>(fk);
+        Eigen::Index at = row;
+        for (std::size_t c = 0; c < s.channel_output.size(); ++c, at += 2 * nf) {
+          const Eigen::Index o = s.channel_output[c], i = s.channel_input[c], entry = o + i * no;
+          const std::complex<double> hm = H(o, i);
+          std::complex<double> value, gain;  // residual, and the factor taking dH to the residual's derivative
           if (kind == ResidualKind::LogRatio) {
             // log(Hm / Hd): real part log-magnitude ratio, imaginary part phase difference in (-pi, pi].
             // Weighted by |Hd| / sigma (sigma of the complex value): to first order log(Hm/Hd) = (Hm - Hd)/Hd,
             // so near the fit this is the weighted residual, while noise-dominated points (anti-resonances,
             // |Hd| ~ sigma) get little weight; far from the fit a missed peak still costs only a log ratio.
-            const bool defined = hm != 0.0 && hd != 0.0;
-            const double w = std::abs(hd) / (std::sqrt(2.0) * sigma[f]);
-            const std::complex<double> lr = defined ? w * std::log(hm / hd) : 0.0;
-            r[row + f] = lr.real();
-            r[row + nf + f] = lr.imag();
-            if (J && defined)
-              for (Eigen::Index j = 0; j < k; ++j) {
-                const std::complex<double> g = w * h.dH[fk](entry, j) / hm;
-                (*J)(row + f, j) = g.real();
-                (*J)(row + nf + f, j) = g.imag();
-              }
+            const std::complex<double> inverse_hd = s.inverse_measured[c][f];
+            const double w = s.log_weight[c][f];
+            const double hm2 = hm.real() * hm.real() + hm.imag() * hm.imag();
+            const bool defined = hm2 != 0 && inverse_hd != 0.0;
+            value = defined ? w * std::log(hm * inverse_hd) : 0.0;
+            gain = defined ? std::complex<double>(w * hm.real() / hm2, -w * hm.imag() / hm2) : 0.0;  // w / Hm
           } else {
-            const std::complex<double> e = hm - hd;
-            const double w = 1 / sigma[f];
-            r[row + f] = e.real() * w;
-            r[row + nf + f] = e.imag() * w;
-            if (J)
-              for (Eigen::Index j = 0; j < k; ++j) {
-                const std::complex<double> g = h.dH[fk](entry, j);
-                (*J)(row + f, j) = g.real() * w;
-                (*J)(row + nf + f, j) = g.imag() * w;
-              }
+            const double w = 1 / s.sigma[c][f];
+            value = (hm - s.measured[c][f]) * w;
+            gain = w;
           }
+          r[at + f] = value.real();
+          r[at + nf + f] = value.imag();
+          if (dH && gain != 0.0)
+            for (Eigen::Index j = 0; j < k; ++j) {
+              const std::complex<double> g = gain * (*dH)(entry, j);
+              (*J)(at + f, j) = g.real();
+              (*J)(at + nf + f, j) = g.imag();
+            }
         }
-        row += 2 * nf;
-      }
+      };
+      if (J)
+        frf_jacobian(red.m, red.d, static_cast<int>(k), s.f_hz,
+                     [&](std::size_t f, const Eigen::MatrixXcd& H, const Eigen::MatrixXcd& dH) { residuals_at(f, H, &dH); });
+      else
+        frf(red.m, s.f_hz, [&](std::size_t f, const Eigen::MatrixXcd& H) { residuals_at(f, H, nullptr); });
     } else {
       const Eigen::Index N = s.u.rows();
       const InputHold hold = input_hold(s.hold);

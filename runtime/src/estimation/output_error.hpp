@@ -50,6 +50,9 @@ class OutputErrorProblem {
     std::vector<int> channel_output, channel_input;
     std::vector<Eigen::VectorXcd> measured;
     std::vector<Eigen::VectorXd> sigma;  // per real component
+    // For the log-ratio residuals, per channel and frequency: 1 / H_measured and the weight |H_measured| / sigma.
+    std::vector<Eigen::VectorXcd> inverse_measured;
+    std::vector<Eigen::VectorXd> log_weight;
     // time
     Eigen::MatrixXd u;
     double dt = 0;
