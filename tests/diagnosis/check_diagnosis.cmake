@@ -61,6 +61,7 @@ if(verdict STREQUAL "extended" AND NOT EXISTS "${WORK_DIR}/extended.mdl")
 endif()
 # -DEXPECT_VARIANT="a|b": the selected candidate's variant (the element an untie frees) must be one of these.
 if(EXPECT_VARIANT)
+  cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in script mode
   string(REPLACE "|" ";" EXPECT_VARIANT "${EXPECT_VARIANT}")
   string(JSON n_candidates LENGTH "${json}" candidates)
   math(EXPR last "${n_candidates} - 1")
