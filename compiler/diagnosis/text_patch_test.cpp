@@ -30,7 +30,8 @@ TEST_CASE("statements sharing a line are replaced in place", "[diagnosis][text]"
   const std::vector<Extension> xs = enumerate_extensions(m, kCompact, {});
   CHECK_THAT(test::ids_of(xs), Equals(std::vector<std::string>{
                                    "compliant_ground:g", "compliant_ground:g2", "free_parameter:c",
-                                   "free_parameter:k2", "untie_parameter:k", "added_mass:b", "added_mass:b2",
+                                   "free_parameter:k2", "untie_parameter:k", "untie_parameter:k",
+                                   "untie_parameter:k", "added_mass:b", "added_mass:b2",
                                    "connection:g-b2", "connection:g2-b"}));
   for (const Extension& x : xs) test::check_candidate(x);
 
@@ -38,11 +39,13 @@ TEST_CASE("statements sharing a line are replaced in place", "[diagnosis][text]"
   const Extension& g = test::find(xs, "compliant_ground:g");
   CHECK_THAT(g.mdl_text, Contains("\nbody g {\n  mass m_g\n  dof x\n}\n; ground g2\n"));
   CHECK_THAT(g.mdl_text, Contains("# ground `g` now moves"));
-  // k is no longer used: its declaration is gone from the shared line, the copies are declared at the end.
+  // The first variant unties s1: its reference is renamed in place on the shared line, k stays declared.
   const Extension& k = test::find(xs, "untie_parameter:k");
-  CHECK_THAT(k.mdl_text, Contains("\n; param k2 = 5 fixed\n"));
+  CHECK(k.variant == "s1");
+  CHECK_THAT(k.mdl_text, Contains("\nparam k = 1e3 estimate; param k2 = 5 fixed\n"));
   CHECK_THAT(k.mdl_text, Contains("stiffness k_s1; damping c }"));
-  CHECK(k.new_parameters.size() == 3);
+  CHECK_THAT(k.mdl_text, Contains("spring s2 { from g2; to b2; along x; stiffness k }"));
+  CHECK(k.new_parameters.size() == 1);
   // The mass at F (x = 0.5) moves b's centre of mass: where the text meant the old one, it now says so.
   const Extension& b = test::find(xs, "added_mass:b");
   CHECK_THAT(b.mdl_text, Contains("spring s1 { from g; to b at (0, 0, 0); along x;"));
@@ -51,6 +54,15 @@ TEST_CASE("statements sharing a line are replaced in place", "[diagnosis][text]"
   const Extension& c = test::find(xs, "free_parameter:c");
   CHECK_THAT(c.mdl_text, Contains("param c = 0 estimate\nparam k = 1e3"));
   CHECK_THAT(c.mdl_text, Contains("---\n# was fixed\n"));
+}
+
+TEST_CASE("a statement removed from a shared line leaves the rest of the line", "[diagnosis][text]") {
+  TextPatch patch("param a = 1; param b = 2\nparam c = b\n", "t.mdl");
+  patch.replace_statement({1, 7}, "a is no longer used", "");
+  const std::string out = patch.result("test");
+  CHECK_THAT(out, Contains("\n; param b = 2\n") || Catch::Matchers::StartsWith("; param b = 2\n"));
+  CHECK_THAT(out, !Contains("param a = 1;"));
+  CHECK_THAT(out, Contains("# a is no longer used"));
 }
 
 TEST_CASE("a text patch checks what it edits", "[diagnosis][text]") {
