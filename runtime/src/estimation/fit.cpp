@@ -197,6 +197,8 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
     }
   }
   const ResidualFunction weighted = estimator.function(free, ResidualKind::Weighted);
+  LmOptions search_lm = lm;
+  search_lm.cost_tolerance = std::max(lm.cost_tolerance, options.search_cost_tolerance);
   // The multi-start search: on the FRF data itself, or on FRFs estimated from time records (spectral_companion.hpp).
   std::optional<estimation::SpectralCompanion> companion;
   if (problem.has_time() && options.spectral_search && starts > 1) companion = estimation::spectral_companion(info, data);
@@ -214,15 +216,24 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
   const ResidualFunction log_ratio = searcher.function(free, ResidualKind::LogRatio);
   const std::vector<LmResult> runs = estimation::run_starts(starts, options.threads, [&](int s) {
     Eigen::VectorXd theta = start_points[static_cast<std::size_t>(s)];
-    if (log_search) theta = estimation::levenberg_marquardt(log_ratio, theta, lm, reporter(s, starts, "search")).x;
+    if (log_search) theta = estimation::levenberg_marquardt(log_ratio, theta, search_lm, reporter(s, starts, "search")).x;
     return estimation::levenberg_marquardt(search_weighted, theta, lm, reporter(s, starts, "refine"));
   });
   for (const auto& run : runs) result.start_costs.push_back(run.cost);
   result.best_start = estimation::best_start(runs);
   LmResult best = runs[static_cast<std::size_t>(result.best_start)];
-  if (companion && std::isfinite(best.cost)) {
-    // The best spectral start, refined on the records.
-    best = estimation::levenberg_marquardt(weighted, best.x, lm, reporter(result.best_start, starts, "refine records"));
+  if (companion) {
+    // The best spectral start refined on the records; and the prior too, so that an H1 too coarse to lead the
+    // search (a short record) never leaves the result worse than a plain fit from the prior. The lower
+    // time-domain cost wins (the spectral start on a tie).
+    const std::vector<Eigen::VectorXd> refine_from = {best.x, start_points.front()};
+    const std::vector<LmResult> refined = estimation::run_starts(2, options.threads, [&](int s) {
+      return estimation::levenberg_marquardt(weighted, refine_from[static_cast<std::size_t>(s)], lm,
+                                             reporter(s == 0 ? result.best_start : 0, starts, "refine records"));
+    });
+    const int winner = estimation::best_start(refined);
+    best = refined[static_cast<std::size_t>(winner)];
+    if (winner == 1) result.best_start = 0;
   }
   if (!std::isfinite(best.cost)) throw FitError("fit: the model cannot be evaluated at any starting point");
   result.cost_history = best.history;
