@@ -9,7 +9,8 @@
 //      strong"), validation error lower, new parameters plausible (identifiable, well determined, off their
 //      bounds), and the discrepancy explained (the excess of the residual over the noise level at least halves).
 //      Repeat on the extended model (greedy forward selection) while a candidate qualifies. The extended model
-//      must end near the noise level (mean normalized residual at most 3), or nothing is selected.
+//      must end near the noise level (mean normalized residual at most 3) and keep at most half of the nominal
+//      model's findings, or nothing is selected.
 //   5. Verdict: `extended`; `no_extension_justified` when nothing beyond noise remains; `unexplained` when a clear
 //      discrepancy remains that no candidate explains. A confident wrong extension is the worst outcome, so every
 //      rule above errs towards `unexplained`.
@@ -36,6 +37,7 @@ struct DiagnoseOptions {
   double min_validation_gain = 0.01;       // relative decrease of the validation error required
   int max_extensions = 3;
   double max_final_residual = 3.0;         // mean normalized residual the extended model must reach (noise: 1)
+  double max_remaining_findings = 0.5;     // fraction of the nominal model's findings the extended one may keep
   ResidualOptions residual;
   std::function<void(const std::string&)> progress;  // one line per step
 };
