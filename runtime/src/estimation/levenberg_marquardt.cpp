@@ -48,7 +48,6 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
     R = qr.matrixQR().topRows(kk).triangularView<Eigen::Upper>();
     const Eigen::VectorXd qtr = (qr.householderQ().transpose() * r).head(kk);
     bool accepted = false;
-    double growth = 2;  // Nielsen's rule: lambda grows by 2, 4, 8, ... over consecutive failed trials
     while (lambda < 1e16) {
       Eigen::MatrixXd A(kk + k, k);
       A.topRows(kk) = R;
@@ -61,9 +60,6 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
       const double cost_new = ok ? r_new.squaredNorm() : std::numeric_limits<double>::infinity();
       if (ok && cost_new < res.cost) {
         const double decrease = (res.cost - cost_new) / res.cost;
-        // Gain ratio: actual over predicted decrease of the linearised model ||r + J dx||^2.
-        const double predicted = res.cost - ((R * dx + qtr).squaredNorm() + std::max(res.cost - qtr.squaredNorm(), 0.0));
-        const double rho = predicted > 0 ? (res.cost - cost_new) / predicted : 0;
         const double step = (dx.array() * Ds.array()).matrix().norm() / Ds.norm();
         res.x = x_new;
         r.swap(r_new);
@@ -72,7 +68,7 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
         res.history.push_back(cost_new);
         ++res.iterations;
         if (on_iteration) on_iteration(res.iterations, cost_new);
-        lambda = std::max(lambda * std::max(1.0 / 3, 1 - std::pow(2 * std::min(rho, 1.0) - 1, 3)), 1e-15);
+        lambda = std::max(lambda / 3, 1e-15);
         accepted = true;
         if (decrease < options.cost_tolerance) {
           res.converged = true;
@@ -83,8 +79,7 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
         }
         break;
       }
-      lambda *= growth;
-      growth *= 2;
+      lambda *= 10;
     }
     if (!accepted) {
       res.converged = true;  // no descent direction left at machine precision: a (local) minimum
