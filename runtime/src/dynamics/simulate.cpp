@@ -3,6 +3,7 @@
 #include "model_checks.hpp"
 #include "mbgen/dynamics_error.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace mbgen {
@@ -76,31 +77,45 @@ SimulationSensitivity simulate_with_sensitivity(const ModelMatrices& m, const Mo
 
   const Eigen::MatrixXd U = inputs.transpose();
   const bool first_order = hold == InputHold::FirstOrder;
-  Eigen::MatrixXd Y(no, samples), dY(no * np, samples);
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), next(n), forcing(n * np), output_forcing(no * np);
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, np), next_S(n, np);
-  for (Eigen::Index k = 0; k < samples; ++k) {
-    Y.col(k).noalias() = sys.C * x;
-    Y.col(k).noalias() += sys.D * U.col(k);
-    output_forcing.noalias() = dC * x;
-    output_forcing.noalias() += dD * U.col(k);
-    Eigen::Map<Eigen::MatrixXd> dy_k(dY.col(k).data(), no, np);
-    dy_k.noalias() = sys.C * S;
-    dy_k += Eigen::Map<const Eigen::MatrixXd>(output_forcing.data(), no, np);
-    if (k + 1 == samples) break;
 
-    forcing.noalias() = dPhi * x;
-    forcing.noalias() += dGamma0 * U.col(k);
-    if (first_order) forcing.noalias() += dGamma1 * U.col(k + 1);
-    next_S.noalias() = sys.Phi * S;
-    next_S += Eigen::Map<const Eigen::MatrixXd>(forcing.data(), n, np);
-    S.swap(next_S);
-
-    next.noalias() = sys.Phi * x;
-    next.noalias() += sys.Gamma0 * U.col(k);
-    if (first_order) next.noalias() += sys.Gamma1 * U.col(k + 1);
-    x.swap(next);
+  // The states first: x_{k+1} = Phi x_k + Gamma0 u_k (+ Gamma1 u_{k+1}), from rest. The products with the small
+  // system matrices are coefficient-wise (lazyProduct): Eigen's blocked kernels repack their operands on every
+  // call, which costs more than the arithmetic at these sizes.
+  Eigen::MatrixXd X(n, samples);
+  if (samples > 0) X.col(0).setZero();
+  for (Eigen::Index k = 0; k + 1 < samples; ++k) {
+    X.col(k + 1).noalias() = sys.Phi.lazyProduct(X.col(k));
+    X.col(k + 1).noalias() += sys.Gamma0.lazyProduct(U.col(k));
+    if (first_order) X.col(k + 1).noalias() += sys.Gamma1.lazyProduct(U.col(k + 1));
   }
+  // Outputs and the direct part of their sensitivities for all samples at once (large, efficient products):
+  // y_k = C x_k + D u_k,  dy_k = C S_k + dC x_k + dD u_k.
+  Eigen::MatrixXd Y(no, samples), dY(no * np, samples);
+  Y.noalias() = sys.C * X;
+  Y.noalias() += sys.D * U;
+  dY.noalias() = dC * X;
+  dY.noalias() += dD * U;
+
+  // Sensitivities S_k = dx_k/dp (n x np): S_{k+1} = Phi S_k + dPhi x_k + dGamma0 u_k (+ dGamma1 u_{k+1}). The
+  // forcing of a block of samples is one product with the stacked derivative matrices; its column j, reshaped
+  // to (n x np), is the forcing of sample k0 + j.
+  constexpr Eigen::Index block = 256;
+  Eigen::MatrixXd F(n * np, std::min<Eigen::Index>(block, std::max<Eigen::Index>(samples - 1, 1)));
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, np), next_S(n, np);
+  for (Eigen::Index k0 = 0; k0 + 1 < samples; k0 += block) {
+    const Eigen::Index b = std::min(block, samples - 1 - k0);
+    F.leftCols(b).noalias() = dPhi * X.middleCols(k0, b);
+    F.leftCols(b).noalias() += dGamma0 * U.middleCols(k0, b);
+    if (first_order) F.leftCols(b).noalias() += dGamma1 * U.middleCols(k0 + 1, b);
+    for (Eigen::Index j = 0; j < b; ++j) {
+      const Eigen::Index k = k0 + j;
+      Eigen::Map<Eigen::MatrixXd>(dY.col(k).data(), no, np).noalias() += sys.C.lazyProduct(S);
+      next_S.noalias() = sys.Phi.lazyProduct(S);
+      next_S += Eigen::Map<const Eigen::MatrixXd>(F.col(j).data(), n, np);
+      S.swap(next_S);
+    }
+  }
+  if (samples > 0) Eigen::Map<Eigen::MatrixXd>(dY.col(samples - 1).data(), no, np).noalias() += sys.C.lazyProduct(S);
 
   SimulationSensitivity result;
   result.outputs = Y.transpose();
