@@ -26,7 +26,7 @@ std::string write(const std::string& name, const std::string& text) {
   return p.string();
 }
 
-std::string sample(const std::string& name) { return std::string(MBGEN_SHARED_DIR) + "/data/uff/" + name; }
+std::string sample(const std::string& name) { return std::string(MBGEN_TEST_DATA_DIR) + "/uff/" + name; }
 
 }  // namespace
 

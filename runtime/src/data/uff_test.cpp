@@ -1,4 +1,4 @@
-// UFF 58/58b: every sample file of /work/shared/data/uff, small fixtures written here (uneven abscissa,
+// UFF 58/58b: every sample file of tests/data/uff (copied from the shared samples), small fixtures written here (uneven abscissa,
 // big endian, run-together numbers, other datasets), the mapping to model channels, and clear errors.
 #include <catch2/catch.hpp>
 
@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string sample(const std::string& name) { return std::string(MBGEN_SHARED_DIR) + "/data/uff/" + name; }
+std::string sample(const std::string& name) { return std::string(MBGEN_TEST_DATA_DIR) + "/uff/" + name; }
 
 std::vector<Uff58Record> read_text(const std::string& text) {
   std::istringstream in(text);
