@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "diagnosis/expr_build.hpp"
 #include "frontend/model_writer.hpp"
 
 namespace mbgen::diagnosis {
@@ -108,6 +109,32 @@ double smallest_body_mass(const ir::Model& model, const ModelValues& values) {
   double m = INFINITY;
   for (const ir::Body& b : model.bodies) m = std::min(m, values.of(b.mass));
   return m;
+}
+
+std::string add_body_on_axial_spring(Draft& d, const std::string& name, const std::string& mass, const ir::Vec3& point,
+                                     int axis, const std::string& frame, const std::string& suffix,
+                                     const std::string& stiffness, const std::string& damping) {
+  ir::Body body;
+  body.name = d.names().fresh(name);
+  body.mass = sym(mass);
+  body.position = point;
+  body.dofs = {static_cast<ir::Dof>(axis)};
+  d.add_body(body);
+
+  ir::Element spring;
+  spring.kind = ir::ElementKind::Spring;
+  spring.name = d.names().fresh(body.name + suffix);
+  spring.a.frame = frame;
+  spring.a.point = point;
+  spring.a.has_point = true;
+  spring.b.frame = body.name;
+  spring.b.point = point;
+  spring.direction.axis = std::string(1, "xyz"[axis]);
+  for (int j = 0; j < 3; ++j) spring.direction.vector[j] = num(j == axis ? "1" : "0");
+  spring.stiffness = {sym(stiffness)};
+  spring.damping = {sym(damping)};
+  d.add_element(spring);
+  return body.name;
 }
 
 double light_damping(double k, double m) { return 2 * 0.02 * std::sqrt(std::max(k, 0.0) * std::max(m, 0.0)); }

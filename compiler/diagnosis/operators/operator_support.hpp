@@ -73,6 +73,13 @@ double total_moving_mass(const ir::Model& model, const ModelValues& values);
 double largest_translational_stiffness(const ir::Model& model, const ModelValues& values);
 double smallest_body_mass(const ir::Model& model, const ModelValues& values);
 
+// A point body `name` (fresh) of mass `mass` at `point`, with one coordinate along global axis `axis`, held to
+// `frame` at the same point by a spring-damper (`stiffness`, `damping`) along that axis, named `name` + `suffix`:
+// a resonator's mass, a sensor on its mounting. Returns the body's name.
+std::string add_body_on_axial_spring(Draft& d, const std::string& name, const std::string& mass, const ir::Vec3& point,
+                                     int axis, const std::string& frame, const std::string& suffix,
+                                     const std::string& stiffness, const std::string& damping);
+
 // Start value of a damping for stiffness k on mass m: 2 % of critical damping, c = 2*0.02*sqrt(k*m).
 double light_damping(double k, double m);
 constexpr double kTwoPi = 6.283185307179586;

@@ -20,32 +20,13 @@ Extension extend(const OperatorInput& in, const ir::Body& b, const SignalPoint& 
   const std::string kr_b = d.add_parameter("kr_" + b.name, kr, "N/m", 0.0, std::nullopt, "stiffness of the resonator on " + b.name);
   const std::string cr_b = d.add_parameter("cr_" + b.name, light_damping(kr, mr), "N s/m", 0.0, std::nullopt,
                                            "damping of the resonator on " + b.name);
-  ir::Body r;
-  r.name = d.names().fresh("res_" + b.name);
-  r.mass = sym(mr_b);
-  r.position = at.at->point;
-  r.dofs = {static_cast<ir::Dof>(axis)};
-  d.add_body(r);
-
-  ir::Element s;
-  s.kind = ir::ElementKind::Spring;
-  s.name = d.names().fresh(r.name + "_spring");
-  s.a.frame = b.name;
-  s.a.point = at.at->point;
-  s.a.has_point = true;
-  s.b.frame = r.name;
-  s.b.point = r.position;
-  s.direction.axis = std::string(1, "xyz"[axis]);
-  for (int j = 0; j < 3; ++j) s.direction.vector[j] = num(j == axis ? "1" : "0");
-  s.stiffness = {sym(kr_b)};
-  s.damping = {sym(cr_b)};
-  d.add_element(s);
+  add_body_on_axial_spring(d, "res_" + b.name, mr_b, at.at->point, axis, b.name, "_spring", kr_b, cr_b);
 
   char hz[32];
   std::snprintf(hz, sizeof hz, "%.4g", in.ctx.peak_hz.front());
   return d.finish("a local mode near " + std::string(hz) + " Hz: a mass " + mr_b + " on a spring-damper (" + kr_b + ", " +
                   cr_b + ") attached to " + b.name + " at the point of " + at.signal + ", moving along " +
-                  s.direction.axis);
+                  std::string(1, "xyz"[axis]));
 }
 
 }  // namespace

@@ -48,32 +48,14 @@ Extension extend(const OperatorInput& in, const ir::Output& out, const ir::Body&
   d.add_parameter(derived(cs, mul(mul(mul(num("2"), sym(zs)), sym(ms)), omega), "N s/m"),
                   "damping of the sensor's mounting");
 
-  ir::Body sensor;
-  sensor.name = d.names().fresh("sensor_" + out.name);
-  sensor.mass = sym(ms);
-  sensor.position = out.at.point;
-  sensor.dofs = {static_cast<ir::Dof>(axis)};
-  d.add_body(sensor);
-
-  ir::Element mount;
-  mount.kind = ir::ElementKind::Spring;
-  mount.name = d.names().fresh(sensor.name + "_mount");
-  mount.a.frame = b.name;
-  mount.a.point = out.at.point;
-  mount.a.has_point = true;
-  mount.b.frame = sensor.name;
-  mount.b.point = sensor.position;
-  mount.direction.axis = std::string(1, "xyz"[axis]);
-  for (int j = 0; j < 3; ++j) mount.direction.vector[j] = num(j == axis ? "1" : "0");
-  mount.stiffness = {sym(ks)};
-  mount.damping = {sym(cs)};
-  d.add_element(mount);
+  const std::string sensor = add_body_on_axial_spring(d, "sensor_" + out.name, ms, out.at.point, axis, b.name, "_mount",
+                                                      ks, cs);
 
   // The output now reads the sensor (at its centre of mass, the measured point), in place in the text.
   ir::Output& measured = *std::find_if(d.model().outputs.begin(), d.model().outputs.end(),
                                        [&](const ir::Output& o) { return o.name == out.name; });
-  measured.at.frame = sensor.name;
-  measured.at.point = sensor.position;
+  measured.at.frame = sensor;
+  measured.at.point = out.at.point;
   measured.at.has_point = false;
   measured.at.loc = {};
   d.patch().replace_statement(out.loc, out.name + " reads its sensor, not " + b.name + " itself",
@@ -83,7 +65,7 @@ Extension extend(const OperatorInput& in, const ir::Output& out, const ir::Body&
   std::snprintf(hz, sizeof hz, "%.4g", f_hz);
   return d.finish(out.name + " is read through its sensor: a mass " + ms + " on a mounting (resonance " + fs + ", " +
                   "damping ratio " + zs + ", starting at " + hz + " Hz) at the measured point of " + b.name +
-                  ", along " + mount.direction.axis + ": a second-order low-pass on " + out.name);
+                  ", along " + std::string(1, "xyz"[axis]) + ": a second-order low-pass on " + out.name);
 }
 
 }  // namespace
