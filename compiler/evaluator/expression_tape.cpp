@@ -1,19 +1,40 @@
 #include "evaluator/expression_tape.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "emit/cse.hpp"
+#include "emit/cxx_printer.hpp"
 
 namespace mbgen::evaluator {
 
 ExpressionTape::ExpressionTape(const std::vector<GiNaC::symbol>& parameters, const std::vector<GiNaC::ex>& expressions) {
   n_params_ = static_cast<int>(parameters.size());
   n_registers_ = n_params_;
-  for (int i = 0; i < n_params_; ++i) registers_.emplace(parameters[static_cast<std::size_t>(i)], i);
+  for (int i = 0; i < n_params_; ++i) {
+    const GiNaC::symbol& p = parameters[static_cast<std::size_t>(i)];
+    registers_.emplace(p, i);
+    names_.emplace(p, p.get_name());
+  }
   const emit::CseResult cse = emit::eliminate_common_subexpressions(expressions, "tape_t");
-  for (const auto& [sym, body] : cse.temporaries) registers_.emplace(sym, compile(body));
+  for (const auto& [sym, body] : cse.temporaries) {
+    registers_.emplace(sym, compile(body));
+    names_.emplace(sym, sym.get_name());
+  }
   for (const GiNaC::ex& e : cse.outputs) outputs_.push_back(compile(e));
+  // Only needed while compiling; the tape itself holds no GiNaC object.
+  registers_.clear();
+  names_.clear();
+}
+
+std::vector<GiNaC::ex> ExpressionTape::canonical_operands(const GiNaC::ex& e) const {
+  std::vector<std::pair<std::string, GiNaC::ex>> keyed;
+  for (std::size_t i = 0; i < e.nops(); ++i) keyed.emplace_back(emit::cxx_expression(e.op(i), names_), e.op(i));
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<GiNaC::ex> out;
+  for (auto& k : keyed) out.push_back(std::move(k.second));
+  return out;
 }
 
 int ExpressionTape::emit(Op op, int a, int b, double value, int exponent) {
@@ -32,15 +53,17 @@ int ExpressionTape::compile(const GiNaC::ex& e) {
   }
   if (is_a<symbol>(e)) throw std::runtime_error("evaluator: unknown symbol `" + ex_to<symbol>(e).get_name() + "`");
   if (is_a<add>(e)) {
-    int acc = compile(e.op(0));
-    for (std::size_t i = 1; i < e.nops(); ++i) acc = emit(Op::Add, acc, compile(e.op(i)));
+    const std::vector<ex> terms = canonical_operands(e);
+    int acc = compile(terms[0]);
+    for (std::size_t i = 1; i < terms.size(); ++i) acc = emit(Op::Add, acc, compile(terms[i]));
     return acc;
   }
   if (is_a<mul>(e)) {
-    int acc = compile(e.op(0));
-    for (std::size_t i = 1; i < e.nops(); ++i) {
+    const std::vector<ex> factors = canonical_operands(e);
+    int acc = compile(factors[0]);
+    for (std::size_t i = 1; i < factors.size(); ++i) {
       // x^-n factors become divisions: fewer roundings than a reciprocal then a product.
-      const ex& f = e.op(i);
+      const ex& f = factors[i];
       if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_negative())
         acc = emit(Op::Div, acc, compile(pow(f.op(0), -f.op(1))));
       else

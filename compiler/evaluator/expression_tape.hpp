@@ -7,6 +7,8 @@
 
 #include <ginac/ginac.h>
 
+#include <map>
+#include <string>
 #include <vector>
 
 namespace mbgen::evaluator {
@@ -31,13 +33,20 @@ class ExpressionTape {
   };
 
   int compile(const GiNaC::ex& e);
+  // The operands of a sum or product in the order of their C++ text, not GiNaC's internal order: that order
+  // follows hash values which depend on where the program is loaded (address-space randomization), and the
+  // order of a floating-point sum changes its rounding, so that two runs of one fit would differ in the last
+  // digits and then, through a long iteration, in more.
+  std::vector<GiNaC::ex> canonical_operands(const GiNaC::ex& e) const;
   int emit(Op op, int a, int b = -1, double value = 0, int exponent = 0);
 
   int n_params_ = 0;
   int n_registers_ = 0;
   std::vector<Instruction> code_;
   std::vector<int> outputs_;
-  std::map<GiNaC::ex, int, GiNaC::ex_is_less> registers_;  // symbols and temporaries already in a register
+  // While compiling: symbols and temporaries already in a register, and their names (for canonical_operands).
+  std::map<GiNaC::ex, int, GiNaC::ex_is_less> registers_;
+  std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> names_;
 };
 
 }  // namespace mbgen::evaluator

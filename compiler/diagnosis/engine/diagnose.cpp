@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <mutex>
 #include <set>
 
 #include "diagnosis/engine/channel_residuals.hpp"
 #include "diagnosis/engine/data_split.hpp"
+#include "diagnosis/engine/ordered_parallel.hpp"
+#include "diagnosis/engine/same_response.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
 
@@ -88,28 +92,46 @@ class Diagnoser {
   // Fits `model` (parameters started at `start` where named) and judges it.
   ModelState assess(const ir::Model& model, const std::string& text, const std::map<std::string, double>& start,
                     int starts) const {
-    symbolic::DeriveOptions derive;
-    derive.set = options_.set;
-    const auto evaluator = evaluator::make_evaluator(model, derive);
+    return assess(*derive_model(model), model, text, start, starts, options_.fit.threads);
+  }
+
+  // The same with `model` already derived (`evaluator`), the fit on `threads` workers. Uses no GiNaC: safe on a
+  // worker thread.
+  ModelState assess(const mbgen::Model& evaluator, const ir::Model& model, const std::string& text,
+                    const std::map<std::string, double>& start, int starts, int threads) const {
     FitOptions fo = options_.fit;
     // Start values apply to what this model estimates; its known and fixed parameters keep their values (a
     // candidate's estimate of a parameter the current model holds fixed must not leak into it).
-    const ModelInfo& info = evaluator->info();
+    const ModelInfo& info = evaluator.info();
     for (const auto& [name, v] : start) {
       const int i = info.parameter_index(name);
       if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
     }
     fo.starts = starts;
+    fo.threads = threads;
+    // Two fits may run at once (candidates on worker threads): their progress reaches the caller one at a time.
+    if (options_.fit.progress)
+      fo.progress = [this](const FitProgress& p) {
+        std::lock_guard<std::mutex> lock(fit_progress_mutex_);
+        options_.fit.progress(p);
+      };
     ModelState s;
     s.model = model;
     s.text = text;
-    s.info = evaluator->info();
-    s.fit = fit(*evaluator, split_.fit, fo);
-    s.values = values_by_name(*evaluator, s.fit.values);
-    s.validation_nrmse = validation_nrmse(*evaluator, split_, s.fit.values, fo.frf_weighting);
-    s.channels = channel_residuals(*evaluator, data_, s.fit.values, fo.frf_weighting);
+    s.info = info;
+    s.fit = fit(evaluator, split_.fit, fo);
+    s.values = values_by_name(evaluator, s.fit.values);
+    s.validation_nrmse = validation_nrmse(evaluator, split_, s.fit.values, fo.frf_weighting);
+    s.channels = channel_residuals(evaluator, data_, s.fit.values, fo.frf_weighting);
     s.residual = analyse_residuals(s.channels, options_.residual);
     return s;
+  }
+
+  // Derivation and tape compilation use GiNaC, which is not thread-safe: only ever on the calling thread.
+  std::unique_ptr<mbgen::Model> derive_model(const ir::Model& model) const {
+    symbolic::DeriveOptions derive;
+    derive.set = options_.set;
+    return evaluator::make_evaluator(model, derive);
   }
 
   DiagnosisResult run(const ir::Model& model, const std::string& text) {
@@ -138,16 +160,7 @@ class Diagnoser {
       if (extensions.empty()) break;
       std::vector<CandidateOutcome> outcomes;
       std::vector<ModelState> states;
-      for (std::size_t k = 0; k < extensions.size(); ++k) {
-        const Extension& ext = extensions[k];
-        outcomes.push_back(score(ext, current, round, states));
-        const CandidateOutcome& o = outcomes.back();
-        say(format("[%.0f/%.0f] ", static_cast<double>(k + 1), static_cast<double>(extensions.size())) + ext.id +
-            (ext.variant.empty() ? "" : " (" + ext.variant + ")") + ": " +
-            (o.error.empty() ? format("delta BIC %.1f, validation %.4g", o.delta_bic, o.validation_nrmse) +
-                                   (o.qualifies ? "  (qualifies)" : "")
-                             : "failed: " + o.error));
-      }
+      score_all(extensions, current, round, outcomes, states);
       keep_best_variants(outcomes, states);
       result.candidates.insert(result.candidates.end(), outcomes.begin(), outcomes.end());
       const std::size_t first_of_round = result.candidates.size() - outcomes.size();
@@ -284,7 +297,9 @@ class Diagnoser {
     return out;
   }
 
+  // Under the fits' progress lock: a candidate's line may come while another candidate's fit reports progress.
   void say(const std::string& line) const {
+    std::lock_guard<std::mutex> lock(fit_progress_mutex_);
     if (options_.progress) options_.progress(line);
   }
 
@@ -294,9 +309,7 @@ class Diagnoser {
   // model do.
   // Also fills prior_output_peaks_, the same per output.
   std::vector<double> prior_peaks(const ir::Model& model) {
-    symbolic::DeriveOptions derive;
-    derive.set = options_.set;
-    const auto evaluator = evaluator::make_evaluator(model, derive);
+    const auto evaluator = derive_model(model);
     std::vector<std::pair<double, double>> found;  // (magnitude relative to the channel's RMS, f)
     std::map<std::string, std::vector<std::pair<double, double>>> by_output;
     for (const ChannelResidual& c : channel_residuals(*evaluator, data_, evaluator->info().default_values(),
@@ -354,7 +367,94 @@ class Diagnoser {
     return ctx;
   }
 
-  CandidateOutcome score(const Extension& ext, const ModelState& base, int round, std::vector<ModelState>& states) const {
+  // Derives every candidate, fits those that are not the same model as an earlier one (same_response.hpp) on
+  // worker threads, and gives each of the others the fit of its twin. Outcomes and states are in the order of
+  // `extensions`, and so are the progress lines.
+  void score_all(const std::vector<Extension>& extensions, const ModelState& base, int round,
+                 std::vector<CandidateOutcome>& outcomes, std::vector<ModelState>& states) const {
+    const std::size_t n = extensions.size();
+    std::vector<std::unique_ptr<mbgen::Model>> evaluators(n);
+    std::vector<std::string> derive_errors(n);
+    std::vector<int> twin(n, -1);  // an earlier candidate that is the same model
+    std::set<std::string> names_in_use;
+    for (const auto& entry : base.values) names_in_use.insert(entry.first);
+    for (const auto& entry : options_.set) names_in_use.insert(entry.first);
+    for (const DataSet& d : data_)
+      for (const auto& entry : d.set()) names_in_use.insert(entry.first);
+    const std::vector<double> probes = probe_frequencies(data_);
+    for (std::size_t k = 0; k < n; ++k) {
+      try {
+        evaluators[k] = derive_model(extensions[k].model);
+      } catch (const std::exception& e) {
+        derive_errors[k] = e.what();
+        continue;
+      }
+      for (std::size_t j = 0; j < k && twin[k] < 0; ++j)
+        if (evaluators[j] && twin[j] < 0 && same_response(*evaluators[j], *evaluators[k], probes, names_in_use))
+          twin[k] = static_cast<int>(j);
+    }
+    std::vector<std::size_t> fitted;  // the candidates fitted in their own right
+    for (std::size_t k = 0; k < n; ++k)
+      if (evaluators[k] && twin[k] < 0) fitted.push_back(k);
+    // Candidates two at a time (each fit on one thread) keep both cores busy through a fit's serial stretches.
+    const int workers = std::max(1, std::min(options_.fit.threads, static_cast<int>(fitted.size())));
+    const int fit_threads = std::max(1, options_.fit.threads / workers);
+    outcomes.assign(n, CandidateOutcome{});
+    states.assign(n, ModelState{});
+    std::size_t said = 0;
+    const auto say_done_up_to = [&](std::size_t end) {
+      for (; said < end; ++said) {
+        const Extension& ext = extensions[said];
+        const CandidateOutcome& o = outcomes[said];
+        const std::string as = twin[said] < 0 ? "" : "  (the same model as " + label(extensions[twin[said]]) + ")";
+        say(format("[%.0f/%.0f] ", static_cast<double>(said + 1), static_cast<double>(n)) + label(ext) + ": " +
+            (o.error.empty() ? format("delta BIC %.1f, validation %.4g", o.delta_bic, o.validation_nrmse) +
+                                   (o.qualifies ? "  (qualifies)" : "")
+                             : "failed: " + o.error) +
+            as);
+      }
+    };
+    // Finishing candidate fitted[i] settles every candidate before fitted[i + 1]: those derived from it or failed.
+    const auto settle = [&](std::size_t k) {
+      if (!evaluators[k]) {
+        outcomes[k] = failed(extensions[k], round, derive_errors[k]);
+      } else if (twin[k] >= 0) {
+        const std::size_t j = static_cast<std::size_t>(twin[k]);
+        if (!outcomes[j].error.empty()) {
+          outcomes[k] = failed(extensions[k], round, outcomes[j].error);
+        } else {
+          states[k] = renamed(states[j], extensions[k], evaluators[k]->info());
+          outcomes[k] = judge(extensions[k], states[k], base, round);
+        }
+      }
+    };
+    const std::size_t first_fitted = fitted.empty() ? n : fitted.front();
+    for (std::size_t k = 0; k < first_fitted; ++k) settle(k);
+    say_done_up_to(first_fitted);
+    ordered_parallel(
+        fitted.size(), workers,
+        [&](std::size_t i) {
+          const std::size_t k = fitted[i];
+          outcomes[k] = score(extensions[k], *evaluators[k], base, round, fit_threads, states[k]);
+        },
+        [&](std::size_t i) {
+          const std::size_t end = i + 1 < fitted.size() ? fitted[i + 1] : n;
+          for (std::size_t k = fitted[i] + 1; k < end; ++k) settle(k);
+          say_done_up_to(end);
+        });
+  }
+
+  static std::string label(const Extension& ext) {
+    return ext.id + (ext.variant.empty() ? "" : " (" + ext.variant + ")");
+  }
+
+  static CandidateOutcome failed(const Extension& ext, int round, const std::string& error) {
+    CandidateOutcome o = outline(ext, round);
+    o.error = error;
+    return o;
+  }
+
+  static CandidateOutcome outline(const Extension& ext, int round) {
     CandidateOutcome o;
     o.id = ext.id;
     o.description = ext.description;
@@ -362,23 +462,56 @@ class Diagnoser {
     o.round = round;
     o.new_parameters = ext.new_parameters;
     o.freed_parameters = ext.freed_parameters;
-    states.emplace_back();
+    return o;
+  }
+
+  // The state of a twin candidate, carried over to `ext`: its model, and its parameters' names by position.
+  static ModelState renamed(const ModelState& twin, const Extension& ext, const ModelInfo& info) {
+    std::map<std::string, std::string> to;
+    for (std::size_t i = 0; i < info.parameters.size(); ++i) to[twin.info.parameters[i].name] = info.parameters[i].name;
+    const auto rename = [&](std::string& name) {
+      const auto it = to.find(name);
+      if (it != to.end()) name = it->second;
+    };
+    ModelState s = twin;
+    s.model = ext.model;
+    s.text = ext.mdl_text;
+    s.info = info;
+    for (ParameterEstimate& p : s.fit.parameters) {
+      rename(p.name);
+      for (std::string& other : p.confounded_with) rename(other);
+    }
+    for (std::string& name : s.fit.estimated) rename(name);
+    s.values.clear();
+    for (std::size_t i = 0; i < info.parameters.size(); ++i)
+      s.values[info.parameters[i].name] = s.fit.values[static_cast<Eigen::Index>(i)];
+    return s;
+  }
+
+  CandidateOutcome score(const Extension& ext, const mbgen::Model& evaluator, const ModelState& base, int round,
+                         int threads, ModelState& state) const {
     try {
       // Two searches: around the current estimate, and around the priors (where the current estimate has bent
       // parameters to mimic the missing effect, the priors are the better start). The lower cost wins.
-      ModelState s = assess(ext.model, ext.mdl_text, base.values, options_.candidate_starts);
-      ModelState from_priors = assess(ext.model, ext.mdl_text, {}, options_.candidate_starts);
+      ModelState s = assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, threads);
+      ModelState from_priors = assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, threads);
       if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);
-      o.fit = s.fit;
-      o.validation_nrmse = s.validation_nrmse;
-      o.delta_bic = s.fit.bic - base.fit.bic;
-      judge_plausibility(ext, s.info, o);
-      o.qualifies = o.plausible && o.delta_bic < options_.min_delta_bic &&
-                    o.validation_nrmse < (1.0 - options_.min_validation_gain) * base.validation_nrmse;
-      states.back() = std::move(s);
+      state = std::move(s);
+      return judge(ext, state, base, round);
     } catch (const std::exception& e) {
-      o.error = e.what();
+      return failed(ext, round, e.what());
     }
+  }
+
+  // The outcome of a fitted candidate against the current model `base`.
+  CandidateOutcome judge(const Extension& ext, const ModelState& s, const ModelState& base, int round) const {
+    CandidateOutcome o = outline(ext, round);
+    o.fit = s.fit;
+    o.validation_nrmse = s.validation_nrmse;
+    o.delta_bic = s.fit.bic - base.fit.bic;
+    judge_plausibility(ext, s.info, o);
+    o.qualifies = o.plausible && o.delta_bic < options_.min_delta_bic &&
+                  o.validation_nrmse < (1.0 - options_.min_validation_gain) * base.validation_nrmse;
     return o;
   }
 
@@ -410,6 +543,7 @@ class Diagnoser {
   const std::vector<DataSet>& data_;
   const DiagnoseOptions& options_;
   SplitData split_;
+  mutable std::mutex fit_progress_mutex_;
   std::vector<double> prior_peaks_;
   std::map<std::string, std::vector<double>> prior_output_peaks_;
 };
