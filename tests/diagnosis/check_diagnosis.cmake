@@ -1,7 +1,7 @@
 # One hidden-effect test: make data with the independent truth-model generator (scripts/truthgen, numpy; not
 # mbgen's code), run `mbgen diagnose`, and check the verdict and the selected extensions in its JSON.
 #   -DMBGEN=... -DPYTHON=... -DTRUTHGEN=... -DMODEL=... -DWORK_DIR=...
-#   -DDATA="example:case:kind:seed[:NAME=VALUE]|..."   one or more data sets
+#   -DDATA="example:case:kind:seed[:NAME=VALUE][:duration=S]|..."   one or more data sets
 #   -DEXPECT_VERDICT=extended|no_extension_justified|unexplained|not_extended
 #   -DEXPECT_SELECTED=id (first selected extension, when extended)
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -18,8 +18,14 @@ foreach(set IN LISTS sets)
   set(extra "")
   list(LENGTH f n)
   if(n GREATER 4)
-    list(GET f 4 assignment)
-    set(extra --set "${assignment}")
+    list(SUBLIST f 4 -1 options)
+    foreach(option IN LISTS options)
+      if(option MATCHES "^duration=(.*)$")
+        list(APPEND extra --duration "${CMAKE_MATCH_1}")  # a time record's length, s
+      else()
+        list(APPEND extra --set "${option}")
+      endif()
+    endforeach()
   endif()
   set(file "${WORK_DIR}/data${index}.csv")
   execute_process(COMMAND "${PYTHON}" "${TRUTHGEN}" --example ${example} --case ${case} --kind ${kind} --snr-db 40

@@ -87,7 +87,10 @@ std::map<std::string, double> values_by_name(const Model& model, const Eigen::Ve
 class Diagnoser {
  public:
   Diagnoser(const std::vector<DataSet>& data, const DiagnoseOptions& options)
-      : data_(data), options_(options), split_(split_for_validation(data)) {}
+      : data_(data),
+        options_(options),
+        split_(split_for_validation(data)),
+        has_records_(std::any_of(data.begin(), data.end(), [](const DataSet& d) { return !d.is_frf(); })) {}
 
   // Fits `model` (parameters started at `start` where named) and judges it.
   ModelState assess(const ir::Model& model, const std::string& text, const std::map<std::string, double>& start,
@@ -98,8 +101,10 @@ class Diagnoser {
   // The same with `model` already derived (`evaluator`), the fit on `threads` workers. Uses no GiNaC: safe on a
   // worker thread.
   ModelState assess(const mbgen::Model& evaluator, const ir::Model& model, const std::string& text,
-                    const std::map<std::string, double>& start, int starts, int threads) const {
+                    const std::map<std::string, double>& start, int starts, int threads,
+                    const std::map<std::string, double>& also_start_at = {}) const {
     FitOptions fo = options_.fit;
+    fo.also_start_at = also_start_at;
     // Start values apply to what this model estimates; its known and fixed parameters keep their values (a
     // candidate's estimate of a parameter the current model holds fixed must not leak into it).
     const ModelInfo& info = evaluator.info();
@@ -493,6 +498,15 @@ class Diagnoser {
     try {
       // Two searches: around the current estimate, and around the priors (where the current estimate has bent
       // parameters to mimic the missing effect, the priors are the better start). The lower cost wins.
+      // With time records one search starts from both (also_start_at): each search ends in simulation-based
+      // refinements of its best start and of its centre, which cost most of a candidate's time, so the priors get
+      // a start of the search rather than a search of their own.
+      if (has_records_) {
+        std::map<std::string, double> priors;
+        for (const ParameterInfo& p : evaluator.info().parameters) priors[p.name] = p.value;
+        state = assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts + 1, threads, priors);
+        return judge(ext, state, base, round);
+      }
       ModelState s = assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, threads);
       ModelState from_priors = assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, threads);
       if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);
@@ -543,6 +557,7 @@ class Diagnoser {
   const std::vector<DataSet>& data_;
   const DiagnoseOptions& options_;
   SplitData split_;
+  bool has_records_;  // some data set is a time record
   mutable std::mutex fit_progress_mutex_;
   std::vector<double> prior_peaks_;
   std::map<std::string, std::vector<double>> prior_output_peaks_;

@@ -71,10 +71,14 @@ struct FitOptions {
   // Parameter values overriding the model's defaults (the command line's --set); they are also the priors.
   std::map<std::string, double> values;
 
-  // Global search: `starts` local fits (start 0 at the prior, the others drawn log-uniformly within a factor
+  // Global search: `starts` local fits (start 0 at the prior, the others (but see also_start_at) drawn log-uniformly within a factor
   // `spread` of the prior, clipped to the bounds) from a std::mt19937_64 seeded with `seed`; the best final cost
   // wins, ties to the lower start index, so the result does not depend on thread timing.
   int starts = 16;
+  // A second start of one's choosing (values by name; parameters not named start at the prior): start 1, before
+  // the random ones, when `starts` > 1. E.g. a diagnosis candidate searched around the current estimate and
+  // also from the model's defaults, in one search.
+  std::map<std::string, double> also_start_at;
   double spread = 3.0;
   unsigned long long seed = 1;
   int threads = 2;

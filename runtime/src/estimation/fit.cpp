@@ -178,12 +178,22 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
   // Starting points in internal coordinates: the prior, then uniform within +-log(spread) of it.
   const int starts = std::max(1, options.starts);
   std::vector<Eigen::VectorXd> start_points;
+  Eigen::VectorXd chosen_start = prior;
+  for (const auto& [name, value] : options.also_start_at) {
+    const int idx = info.parameter_index(name);
+    if (idx < 0) throw FitError("fit: a start value for " + name + ": the model has no parameter " + name);
+    chosen_start[idx] = value;
+  }
   {
     const Eigen::VectorXd theta0 = estimator.internal(free, prior);
     estimation::StartSampler sampler(options.seed);
     const double half_width = std::log(std::max(options.spread, 1.0));
     for (int s = 0; s < starts; ++s) {
       Eigen::VectorXd theta = theta0;
+      if (s == 1 && !options.also_start_at.empty()) {
+        start_points.push_back(estimator.internal(free, chosen_start));
+        continue;
+      }
       if (s > 0)
         for (std::size_t j = 0; j < free.size(); ++j) {
           const double u = sampler.symmetric_unit();

@@ -93,3 +93,30 @@ TEST_CASE("the multi-start result does not depend on the number of threads", "[f
   CHECK(a.best_start == b.best_start);
   CHECK(a.values == b.values);
 }
+
+TEST_CASE("also_start_at is start 1 of the search", "[fit][frf][global]") {
+  const test::Mdof2Values truth;
+  std::mt19937 rng(8);
+  const FrfData data = test::mdof2_frf_data(truth, frequencies(), 0.01, rng);
+  // No iterations: each start's cost is the cost at the point it starts from.
+  FitOptions o;
+  o.max_iterations = 0;
+  o.starts = 1;
+  const double cost_at_truth = fit(test::mdof2_model(truth), {DataSet(data)}, o).start_costs.at(0);
+  test::Mdof2Values prior = truth;
+  prior.k11 *= 2;
+  prior.m2 *= 0.5;
+  const test::LinearModel model = test::mdof2_model(prior);
+  o.starts = 3;
+  const FitResult random = fit(model, {DataSet(data)}, o);
+  o.also_start_at = {{"m1", truth.m1}, {"m2", truth.m2},   {"k11", truth.k11}, {"k22", truth.k22},
+                     {"k12", truth.k12}, {"c11", truth.c11}, {"c22", truth.c22}};
+  const FitResult r = fit(model, {DataSet(data)}, o);
+  REQUIRE(r.start_costs.size() == 3);
+  CHECK(r.start_costs[0] == random.start_costs[0]);  // the prior, as before
+  CHECK(r.start_costs[1] == Approx(cost_at_truth).epsilon(1e-12));
+  CHECK(random.start_costs[1] != Approx(cost_at_truth).epsilon(1e-3));  // without it, start 1 is a random draw
+  CHECK(r.start_costs[2] == random.start_costs[1]);  // the random starts follow, drawn as before
+  o.also_start_at = {{"no_such_parameter", 1.0}};
+  CHECK_THROWS_AS(fit(model, {DataSet(data)}, o), FitError);
+}
