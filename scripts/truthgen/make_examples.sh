@@ -2,7 +2,7 @@
 # Regenerates the committed example data sets from their truth models (docs/truthgen.md).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-tg() { python3 scripts/truthgen/truthgen.py "$@"; }
+tg() { /usr/bin/python3 scripts/truthgen/truthgen.py "$@"; }
 
 tg --example mdof2 --case nominal --kind frf --snr-db 40 --seed 1 -o examples/mdof2/data/frf_F1.csv
 tg --example mdof2 --case nominal --kind time --snr-db 40 --seed 2 -o examples/mdof2/data/time_F1.csv
