@@ -77,9 +77,8 @@ std::string with_estimates(const std::string& text, const std::map<std::string, 
   return out;
 }
 
-std::map<std::string, double> values_by_name(const Model& model, const Eigen::VectorXd& values) {
+std::map<std::string, double> values_by_name(const ModelInfo& info, const Eigen::VectorXd& values) {
   std::map<std::string, double> out;
-  const ModelInfo& info = model.info();
   for (std::size_t i = 0; i < info.parameters.size(); ++i) out[info.parameters[i].name] = values[static_cast<Eigen::Index>(i)];
   return out;
 }
@@ -125,7 +124,7 @@ class Diagnoser {
     s.text = text;
     s.info = info;
     s.fit = fit(evaluator, split_.fit, fo);
-    s.values = values_by_name(evaluator, s.fit.values);
+    s.values = values_by_name(info, s.fit.values);
     s.validation_nrmse = validation_nrmse(evaluator, split_, s.fit.values, fo.frf_weighting);
     s.channels = channel_residuals(evaluator, data_, s.fit.values, fo.frf_weighting);
     s.residual = analyse_residuals(s.channels, options_.residual);
@@ -185,9 +184,7 @@ class Diagnoser {
         for (std::size_t k = 0; k < outcomes.size(); ++k) {
           CandidateOutcome& o = outcomes[k];
           if (!o.error.empty()) continue;
-          o.delta_bic = o.fit.bic - current.fit.bic;
-          o.qualifies = o.plausible && o.delta_bic < options_.min_delta_bic &&
-                        o.validation_nrmse < (1.0 - options_.min_validation_gain) * current.validation_nrmse;
+          rank_against(current, o);
           result.candidates[first_of_round + k] = o;
         }
         best = best_qualifying(outcomes);
@@ -487,9 +484,7 @@ class Diagnoser {
       for (std::string& other : p.confounded_with) rename(other);
     }
     for (std::string& name : s.fit.estimated) rename(name);
-    s.values.clear();
-    for (std::size_t i = 0; i < info.parameters.size(); ++i)
-      s.values[info.parameters[i].name] = s.fit.values[static_cast<Eigen::Index>(i)];
+    s.values = values_by_name(info, s.fit.values);
     return s;
   }
 
@@ -522,11 +517,16 @@ class Diagnoser {
     CandidateOutcome o = outline(ext, round);
     o.fit = s.fit;
     o.validation_nrmse = s.validation_nrmse;
-    o.delta_bic = s.fit.bic - base.fit.bic;
     judge_plausibility(ext, s.info, o);
+    rank_against(base, o);
+    return o;
+  }
+
+  // ΔBIC against the current model `base`, and whether the evidence is strong: BIC, validation and plausibility.
+  void rank_against(const ModelState& base, CandidateOutcome& o) const {
+    o.delta_bic = o.fit.bic - base.fit.bic;
     o.qualifies = o.plausible && o.delta_bic < options_.min_delta_bic &&
                   o.validation_nrmse < (1.0 - options_.min_validation_gain) * base.validation_nrmse;
-    return o;
   }
 
   // New (and freed) parameters must be determined by the data and physically sensible: identifiable, known to
