@@ -309,28 +309,59 @@ class Diagnoser {
   // strongest first. A fit can hide a missing mode by bending other parameters (a soft mount standing in for a
   // compliant base), so the fitted residual alone may not point at it; the data's own peaks against the prior
   // model do.
-  // Also fills prior_output_peaks_, the same per output.
+  // Also fills prior_output_peaks_: the same per output, down to a lower prominence (3 dB, not 6: a sensor's
+  // mounting resonance is damped, 5 % and more, and near 1 kHz the spindle's xs_front rises less than 5 dB at it),
+  // the output's own peaks first. A peak that no other output shows is what a sensor's own resonance looks like;
+  // a structural mode shows on every output that moves with it. The own peaks go by prominence, not height: a
+  // displacement FRF falls with frequency, so height would favour a low wiggle over a clear peak at 1 kHz.
   std::vector<double> prior_peaks(const ir::Model& model) {
     const auto evaluator = derive_model(model);
     std::vector<std::pair<double, double>> found;  // (magnitude relative to the channel's RMS, f)
-    std::map<std::string, std::vector<std::pair<double, double>>> by_output;
+    struct OutputPeak {
+      double height;         // relative to the channel's RMS
+      double prominence_db;
+      double f;
+    };
+    std::map<std::string, std::vector<OutputPeak>> by_output;
     for (const ChannelResidual& c : channel_residuals(*evaluator, data_, evaluator->info().default_values(),
                                                       options_.fit.frf_weighting)) {
       const std::vector<int> model_peaks = magnitude_peaks(c.model);
       const double rms = std::sqrt(c.measured.cwiseAbs2().mean());
-      for (int i : magnitude_peaks(c.measured, 6.0)) {
-        const double f = c.f_hz[static_cast<std::size_t>(i)];
-        const bool explained = std::any_of(model_peaks.begin(), model_peaks.end(), [&](int m) {
+      const auto unexplained = [&](double f) {
+        return std::none_of(model_peaks.begin(), model_peaks.end(), [&](int m) {
           return std::abs(c.f_hz[static_cast<std::size_t>(m)] - f) <= 0.08 * f;
         });
-        if (!explained) {
-          found.emplace_back(std::abs(c.measured[i]) / rms, f);
-          by_output[output_of(c.channel)].emplace_back(found.back());
-        }
+      };
+      for (int i : magnitude_peaks(c.measured, 6.0)) {
+        const double f = c.f_hz[static_cast<std::size_t>(i)];
+        if (unexplained(f)) found.emplace_back(std::abs(c.measured[i]) / rms, f);
+      }
+      for (int i : magnitude_peaks(c.measured, 3.0)) {
+        const double f = c.f_hz[static_cast<std::size_t>(i)];
+        if (unexplained(f))
+          by_output[output_of(c.channel)].push_back({std::abs(c.measured[i]) / rms, peak_prominence_db(c.measured, i), f});
       }
     }
     prior_output_peaks_.clear();
-    for (auto& [output, list] : by_output) prior_output_peaks_[output] = strongest_first(list);
+    for (const auto& [output, list] : by_output) {
+      std::vector<std::pair<double, double>> own, shared;  // (prominence, f) and (height, f)
+      for (const OutputPeak& peak : list) {
+        const bool elsewhere = std::any_of(by_output.begin(), by_output.end(), [&](const auto& other) {
+          return other.first != output && std::any_of(other.second.begin(), other.second.end(), [&](const OutputPeak& q) {
+                   return std::abs(q.f - peak.f) <= 0.02 * peak.f;
+                 });
+        });
+        if (elsewhere)
+          shared.emplace_back(peak.height, peak.f);
+        else
+          own.emplace_back(peak.prominence_db, peak.f);
+      }
+      std::vector<double> peaks = strongest_first(own);
+      for (double f : strongest_first(shared))
+        if (std::none_of(peaks.begin(), peaks.end(), [&](double g) { return std::abs(f - g) <= 0.02 * f; }))
+          peaks.push_back(f);
+      prior_output_peaks_[output] = peaks;
+    }
     return strongest_first(found);
   }
 

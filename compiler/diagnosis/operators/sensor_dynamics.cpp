@@ -7,7 +7,8 @@
 // The sensor's mass only sets the scale of k and c (T depends on k/m and c/m); its loading of the structure is
 // far below what the data can resolve, so the mass is a known parameter (0.1 % of the body's mass) and the
 // candidate estimates the mounting resonance fs_O (Hz) and its damping ratio zs_O, which the data do determine.
-// Only offered when O's channels show an unexplained peak: the mounting resonance starts there.
+// Only offered when O's channels show an unexplained peak: the mounting resonance starts at the first, which is
+// one that only O shows where there is one (the engine orders them so).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -53,4 +53,8 @@ ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, 
 // Local maxima of |h| that stand out of their neighbourhood by `prominence_db`, as indices (for peak finding).
 std::vector<int> magnitude_peaks(const Eigen::VectorXcd& h, double prominence_db = 3.0);
 
+// How far |h[i]| rises above the higher of the lowest points on either side before a higher point (or the end),
+// in dB; minus infinity when i is no local maximum. Independent of the FRF's scale, unlike the height itself.
+double peak_prominence_db(const Eigen::VectorXcd& h, int i);
+
 }  // namespace mbgen

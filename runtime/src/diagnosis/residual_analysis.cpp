@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <limits>
 
 namespace mbgen {
 
@@ -199,18 +200,22 @@ std::vector<Discrepancy> merge_across_channels(std::vector<Discrepancy> all) {
 
 }  // namespace
 
-std::vector<int> magnitude_peaks(const Eigen::VectorXcd& h, double prominence_db) {
+double peak_prominence_db(const Eigen::VectorXcd& h, int i) {
   const int n = static_cast<int>(h.size());
+  const double none = -std::numeric_limits<double>::infinity();
+  if (i <= 0 || i + 1 >= n) return none;
+  const double m = std::abs(h[i]);
+  if (!(m > std::abs(h[i - 1]) && m >= std::abs(h[i + 1]))) return none;
+  double left = m, right = m;
+  for (int j = i - 1; j >= 0 && std::abs(h[j]) <= m; --j) left = std::min(left, std::abs(h[j]));
+  for (int j = i + 1; j < n && std::abs(h[j]) <= m; ++j) right = std::min(right, std::abs(h[j]));
+  return db(m / std::max(left, right));
+}
+
+std::vector<int> magnitude_peaks(const Eigen::VectorXcd& h, double prominence_db) {
   std::vector<int> peaks;
-  for (int i = 1; i + 1 < n; ++i) {
-    const double m = std::abs(h[i]);
-    if (!(m > std::abs(h[i - 1]) && m >= std::abs(h[i + 1]))) continue;
-    // Prominence: the peak must rise above the lower of the minima on each side up to a higher point.
-    double left = m, right = m;
-    for (int j = i - 1; j >= 0 && std::abs(h[j]) <= m; --j) left = std::min(left, std::abs(h[j]));
-    for (int j = i + 1; j < n && std::abs(h[j]) <= m; ++j) right = std::min(right, std::abs(h[j]));
-    if (db(m / std::max(left, right)) >= prominence_db) peaks.push_back(i);
-  }
+  for (int i = 1; i + 1 < static_cast<int>(h.size()); ++i)
+    if (peak_prominence_db(h, i) >= prominence_db) peaks.push_back(i);
   return peaks;
 }
 

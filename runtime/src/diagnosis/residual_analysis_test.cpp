@@ -3,7 +3,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <complex>
+#include <limits>
 #include <random>
 
 using namespace mbgen;
@@ -91,4 +93,19 @@ TEST_CASE("magnitude peaks need prominence", "[residual]") {
   Eigen::VectorXcd h(7);
   h << 1, 2, 1, 1.05, 1, 4, 1;
   CHECK(magnitude_peaks(h, 3.0) == std::vector<int>{1, 5});
+}
+
+TEST_CASE("a peak's prominence is its rise over the higher of the valleys either side, in dB", "[residual]") {
+  Eigen::VectorXcd h(7);
+  h << 1, 2, 1, 1.05, 0.5, 4, 1;
+  // At 1: the valleys are 1 (left, to the end) and 0.5 (right, before the higher 4): 2 over 1.
+  CHECK(peak_prominence_db(h, 1) == Approx(20 * std::log10(2.0)));
+  // At 3: 1.05 over the higher of 1 (left, up to the higher 2) and 0.5 (right, up to the higher 4).
+  CHECK(peak_prominence_db(h, 3) == Approx(20 * std::log10(1.05)));
+  // At 5: 4 over the higher of 0.5 (left, the lowest point before the end) and 1 (right).
+  CHECK(peak_prominence_db(h, 5) == Approx(20 * std::log10(4.0)));
+  // Not local maxima, or at the ends: minus infinity, below every threshold.
+  CHECK(peak_prominence_db(h, 2) == -std::numeric_limits<double>::infinity());
+  CHECK(peak_prominence_db(h, 0) == -std::numeric_limits<double>::infinity());
+  CHECK(peak_prominence_db(h, 6) == -std::numeric_limits<double>::infinity());
 }
