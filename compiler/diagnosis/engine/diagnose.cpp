@@ -332,14 +332,14 @@ class Diagnoser {
           return std::abs(c.f_hz[static_cast<std::size_t>(m)] - f) <= 0.08 * f;
         });
       };
-      for (int i : magnitude_peaks(c.measured, 6.0)) {
+      // One scan for both lists: the 6 dB peaks are among the 3 dB ones.
+      for (int i = 1; i + 1 < static_cast<int>(c.measured.size()); ++i) {
+        const double prominence = peak_prominence_db(c.measured, i);
         const double f = c.f_hz[static_cast<std::size_t>(i)];
-        if (unexplained(f)) found.emplace_back(std::abs(c.measured[i]) / rms, f);
-      }
-      for (int i : magnitude_peaks(c.measured, 3.0)) {
-        const double f = c.f_hz[static_cast<std::size_t>(i)];
-        if (unexplained(f))
-          by_output[output_of(c.channel)].push_back({std::abs(c.measured[i]) / rms, peak_prominence_db(c.measured, i), f});
+        if (prominence < 3.0 || !unexplained(f)) continue;
+        const double height = std::abs(c.measured[i]) / rms;
+        if (prominence >= 6.0) found.emplace_back(height, f);
+        by_output[output_of(c.channel)].push_back({height, prominence, f});
       }
     }
     prior_output_peaks_.clear();
@@ -357,9 +357,7 @@ class Diagnoser {
           own.emplace_back(peak.prominence_db, peak.f);
       }
       std::vector<double> peaks = strongest_first(own);
-      for (double f : strongest_first(shared))
-        if (std::none_of(peaks.begin(), peaks.end(), [&](double g) { return std::abs(f - g) <= 0.02 * f; }))
-          peaks.push_back(f);
+      for (double f : strongest_first(shared)) add_distinct(peaks, f);
       prior_output_peaks_[output] = peaks;
     }
     return strongest_first(found);
@@ -367,13 +365,17 @@ class Diagnoser {
 
   static std::string output_of(const std::string& channel) { return channel.substr(0, channel.find('/')); }
 
+  // Appends f to `peaks` unless one already there is within 2 % of it (the same peak, seen again).
+  static void add_distinct(std::vector<double>& peaks, double f) {
+    if (std::none_of(peaks.begin(), peaks.end(), [&](double g) { return std::abs(f - g) <= 0.02 * f; }))
+      peaks.push_back(f);
+  }
+
   // Frequencies of (strength, f) pairs, strongest first, those within 2 % of a stronger one left out.
   static std::vector<double> strongest_first(std::vector<std::pair<double, double>> found) {
     std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     std::vector<double> peaks;
-    for (const auto& [strength, f] : found)
-      if (std::none_of(peaks.begin(), peaks.end(), [&](double g) { return std::abs(f - g) <= 0.02 * f; }))
-        peaks.push_back(f);
+    for (const auto& [strength, f] : found) add_distinct(peaks, f);
     return peaks;
   }
 
@@ -381,19 +383,12 @@ class Diagnoser {
   // (strongest first: the most direct evidence of a missing mode), then the fitted model's unexplained resonances.
   ExtensionContext context(const ModelState& s) const {
     ExtensionContext ctx;
-    const auto add = [&](double f) {
-      if (std::none_of(ctx.peak_hz.begin(), ctx.peak_hz.end(), [&](double g) { return std::abs(f - g) <= 0.02 * f; }))
-        ctx.peak_hz.push_back(f);
-    };
-    for (double f : prior_peaks_) add(f);
-    for (const Discrepancy& d : s.residual.discrepancies)  // already strongest first
-      if (d.kind == "unexplained_resonance") add(d.f_hz);
+    for (double f : prior_peaks_) add_distinct(ctx.peak_hz, f);
     ctx.output_peak_hz = prior_output_peaks_;
-    for (const Discrepancy& d : s.residual.discrepancies)
+    for (const Discrepancy& d : s.residual.discrepancies)  // already strongest first
       if (d.kind == "unexplained_resonance") {
-        std::vector<double>& list = ctx.output_peak_hz[output_of(d.channel)];
-        if (std::none_of(list.begin(), list.end(), [&](double g) { return std::abs(d.f_hz - g) <= 0.02 * d.f_hz; }))
-          list.push_back(d.f_hz);
+        add_distinct(ctx.peak_hz, d.f_hz);
+        add_distinct(ctx.output_peak_hz[output_of(d.channel)], d.f_hz);
       }
     ctx.varying_parameters = varying_parameters(data_);
     ctx.values = s.values;
