@@ -3,8 +3,12 @@
 #include "model_checks.hpp"
 #include "mbgen/dynamics_error.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <sstream>
+#include <vector>
 
 namespace mbgen {
 namespace {
@@ -17,6 +21,68 @@ void check_inputs(const Eigen::MatrixXd& inputs, Eigen::Index expected, const ch
     throw DynamicsError(msg.str());
   }
   if (!inputs.allFinite()) throw DynamicsError(std::string(where) + ": the input record has non-finite values");
+}
+
+// Phi = W B W^-1 with B block-diagonal: 1 x 1 blocks (real eigenvalues) and 2 x 2 blocks [[a, b], [-b, a]] (a pair
+// a +- ib, W's columns the real and imaginary parts of the eigenvector of a + ib). In these coordinates a step of
+// the recurrence costs O(n) per column instead of O(n^2).
+struct RealModalForm {
+  Eigen::MatrixXd W, W_inverse;
+  std::vector<Eigen::Index> block_start;  // first row of each block
+  std::vector<double> a, b;               // a block's [[a, b], [-b, a]]; b = 0 and one row for a real eigenvalue
+  std::vector<bool> pair;
+};
+
+// False where Phi is defective or nearly so (W ill-conditioned: the sensitivities would lose digits), or its
+// eigen-decomposition does not reproduce it; the caller then propagates in the original coordinates.
+bool real_modal_form(const Eigen::MatrixXd& Phi, RealModalForm& out) {
+  const Eigen::Index n = Phi.rows();
+  if (n == 0) return false;
+  Eigen::EigenSolver<Eigen::MatrixXd> es(Phi, true);
+  if (es.info() != Eigen::Success) return false;
+  const Eigen::VectorXcd lambda = es.eigenvalues();
+  const Eigen::MatrixXcd V = es.eigenvectors();
+  out.W.resize(n, n);
+  out.block_start.clear();
+  out.a.clear();
+  out.b.clear();
+  out.pair.clear();
+  for (Eigen::Index i = 0; i < n;) {
+    const double im = lambda[i].imag();
+    out.block_start.push_back(i);
+    out.a.push_back(lambda[i].real());
+    if (im != 0.0) {
+      // EigenSolver lists the two of a conjugate pair next to each other (the check below catches any other order).
+      if (i + 1 >= n || lambda[i + 1] != std::conj(lambda[i])) return false;
+      out.W.col(i) = V.col(i).real();
+      out.W.col(i + 1) = V.col(i).imag();
+      out.b.push_back(im);
+      out.pair.push_back(true);
+      i += 2;
+    } else {
+      out.W.col(i) = V.col(i).real();
+      out.b.push_back(0.0);
+      out.pair.push_back(false);
+      i += 1;
+    }
+  }
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(out.W);
+  out.W_inverse = lu.inverse();
+  if (!out.W_inverse.allFinite()) return false;
+  const double condition = out.W.lpNorm<Eigen::Infinity>() * out.W_inverse.lpNorm<Eigen::Infinity>();
+  if (!(condition < 1e6)) return false;
+  // Check the decomposition: W^-1 Phi W must be the block-diagonal B.
+  Eigen::MatrixXd B = out.W_inverse * Phi * out.W;
+  for (std::size_t k = 0; k < out.block_start.size(); ++k) {
+    const Eigen::Index r = out.block_start[k];
+    B(r, r) -= out.a[k];
+    if (out.pair[k]) {
+      B(r, r + 1) -= out.b[k];
+      B(r + 1, r) += out.b[k];
+      B(r + 1, r + 1) -= out.a[k];
+    }
+  }
+  return B.lpNorm<Eigen::Infinity>() <= 1e-12 * std::max(1.0, Phi.lpNorm<Eigen::Infinity>());
 }
 
 }  // namespace
@@ -100,6 +166,51 @@ SimulationSensitivity simulate_with_sensitivity(const ModelMatrices& m, const Mo
   // forcing of a block of samples is one product with the stacked derivative matrices; its column j, reshaped
   // to (n x np), is the forcing of sample k0 + j.
   constexpr Eigen::Index block = 256;
+  RealModalForm modal;
+  if (samples > 1 && real_modal_form(sys.Phi, modal)) {
+    // In modal coordinates (S = W Z): Z_{k+1} = B Z_k + W^-1 F_k, and C S_k = (C W) Z_k. The forcing's
+    // transformation is folded into the stacked derivative matrices once.
+    Eigen::MatrixXd mPhi(n * np, n), mGamma0(n * np, ni), mGamma1(n * np, ni);
+    for (Eigen::Index i = 0; i < np; ++i) {
+      mPhi.middleRows(i * n, n).noalias() = modal.W_inverse * dPhi.middleRows(i * n, n);
+      mGamma0.middleRows(i * n, n).noalias() = modal.W_inverse * dGamma0.middleRows(i * n, n);
+      if (first_order) mGamma1.middleRows(i * n, n).noalias() = modal.W_inverse * dGamma1.middleRows(i * n, n);
+    }
+    const Eigen::MatrixXd CW = sys.C * modal.W;
+    Eigen::MatrixXd F(n * np, std::min<Eigen::Index>(block, samples - 1));
+    Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(n, np);
+    for (Eigen::Index k0 = 0; k0 + 1 < samples; k0 += block) {
+      const Eigen::Index b = std::min(block, samples - 1 - k0);
+      F.leftCols(b).noalias() = mPhi * X.middleCols(k0, b);
+      F.leftCols(b).noalias() += mGamma0 * U.middleCols(k0, b);
+      if (first_order) F.leftCols(b).noalias() += mGamma1 * U.middleCols(k0 + 1, b);
+      for (Eigen::Index j = 0; j < b; ++j) {
+        const Eigen::Index k = k0 + j;
+        Eigen::Map<Eigen::MatrixXd>(dY.col(k).data(), no, np).noalias() += CW.lazyProduct(Z);
+        for (std::size_t m = 0; m < modal.block_start.size(); ++m) {
+          const Eigen::Index r = modal.block_start[m];
+          const double a = modal.a[m];
+          if (modal.pair[m]) {
+            const double c = modal.b[m];
+            for (Eigen::Index col = 0; col < np; ++col) {
+              const double z0 = Z(r, col), z1 = Z(r + 1, col);
+              Z(r, col) = a * z0 + c * z1;
+              Z(r + 1, col) = -c * z0 + a * z1;
+            }
+          } else {
+            Z.row(r) *= a;
+          }
+        }
+        Z += Eigen::Map<const Eigen::MatrixXd>(F.col(j).data(), n, np);
+      }
+    }
+    Eigen::Map<Eigen::MatrixXd>(dY.col(samples - 1).data(), no, np).noalias() += CW.lazyProduct(Z);
+    SimulationSensitivity result;
+    result.outputs = Y.transpose();
+    result.doutputs.reserve(static_cast<std::size_t>(np));
+    for (Eigen::Index i = 0; i < np; ++i) result.doutputs.push_back(dY.middleRows(i * no, no).transpose());
+    return result;
+  }
   Eigen::MatrixXd F(n * np, std::min<Eigen::Index>(block, std::max<Eigen::Index>(samples - 1, 1)));
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, np), next_S(n, np);
   for (Eigen::Index k0 = 0; k0 + 1 < samples; k0 += block) {

@@ -58,8 +58,9 @@ TEST_CASE("mdof2 simulation of displacement, velocity and acceleration outputs m
 
 namespace {
 
-void check_sensitivities(const mbgen::Model& model, const Eigen::MatrixXd& u, double dt, mbgen::InputHold hold) {
-  const Eigen::VectorXd p = model.info().default_values();
+void check_sensitivities(const mbgen::Model& model, const Eigen::MatrixXd& u, double dt, mbgen::InputHold hold,
+                         const Eigen::VectorXd& values = {}) {
+  const Eigen::VectorXd p = values.size() > 0 ? values : model.info().default_values();
   const auto result = mbgen::simulate_with_sensitivity(model, p, u, dt, hold);
   const Eigen::MatrixXd plain = mbgen::simulate(model, p, u, dt, hold);
   CHECK((result.outputs - plain).norm() <= 1e-13 * plain.norm());
@@ -97,6 +98,19 @@ TEST_CASE("mdof2 output sensitivities match central finite differences") {
   const Eigen::MatrixXd u = random_force(300, 1, 9);
   check_sensitivities(model, u, 5e-4, mbgen::InputHold::ZeroOrder);
   check_sensitivities(model, u, 5e-4, mbgen::InputHold::FirstOrder);
+}
+
+// Without springs and dampers the transition matrix is [[I, dt I], [0, I]]: defective, with no modal form, so the
+// sensitivities are propagated in the original coordinates (the other cases here take the modal route).
+TEST_CASE("sensitivities of free, undamped masses, whose transition matrix is defective") {
+  const mbgen::test::Mdof2Model model(true);
+  Eigen::VectorXd p = model.info().default_values();
+  for (int i : {mbgen::test::Mdof2Model::k11, mbgen::test::Mdof2Model::k22, mbgen::test::Mdof2Model::k12,
+                mbgen::test::Mdof2Model::c11, mbgen::test::Mdof2Model::c22})
+    p[i] = 0;
+  const Eigen::MatrixXd u = random_force(300, 1, 10);
+  check_sensitivities(model, u, 5e-4, mbgen::InputHold::ZeroOrder, p);
+  check_sensitivities(model, u, 5e-4, mbgen::InputHold::FirstOrder, p);
 }
 
 TEST_CASE("sensitivities of a random model with every matrix parameter-dependent") {
