@@ -177,7 +177,9 @@ SimulationSensitivity simulate_with_sensitivity(const ModelMatrices& m, const Mo
       if (first_order) mGamma1.middleRows(i * n, n).noalias() = modal.W_inverse * dGamma1.middleRows(i * n, n);
     }
     const Eigen::MatrixXd CW = sys.C * modal.W;
-    Eigen::MatrixXd F(n * np, std::min<Eigen::Index>(block, samples - 1));
+    // Zs keeps the block's Z_k side by side (column-major, so it is an n x (np b) matrix, as dY's block is an
+    // no x (np b) one): the outputs' part C S_k of the whole block is then one large product.
+    Eigen::MatrixXd F(n * np, std::min<Eigen::Index>(block, samples - 1)), Zs(n * np, F.cols());
     Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(n, np);
     for (Eigen::Index k0 = 0; k0 + 1 < samples; k0 += block) {
       const Eigen::Index b = std::min(block, samples - 1 - k0);
@@ -185,8 +187,7 @@ SimulationSensitivity simulate_with_sensitivity(const ModelMatrices& m, const Mo
       F.leftCols(b).noalias() += mGamma0 * U.middleCols(k0, b);
       if (first_order) F.leftCols(b).noalias() += mGamma1 * U.middleCols(k0 + 1, b);
       for (Eigen::Index j = 0; j < b; ++j) {
-        const Eigen::Index k = k0 + j;
-        Eigen::Map<Eigen::MatrixXd>(dY.col(k).data(), no, np).noalias() += CW.lazyProduct(Z);
+        Eigen::Map<Eigen::MatrixXd>(Zs.col(j).data(), n, np) = Z;
         for (std::size_t m = 0; m < modal.block_start.size(); ++m) {
           const Eigen::Index r = modal.block_start[m];
           const double a = modal.a[m];
@@ -203,6 +204,8 @@ SimulationSensitivity simulate_with_sensitivity(const ModelMatrices& m, const Mo
         }
         Z += Eigen::Map<const Eigen::MatrixXd>(F.col(j).data(), n, np);
       }
+      Eigen::Map<Eigen::MatrixXd>(dY.col(k0).data(), no, np * b).noalias() +=
+          CW * Eigen::Map<const Eigen::MatrixXd>(Zs.data(), n, np * b);
     }
     Eigen::Map<Eigen::MatrixXd>(dY.col(samples - 1).data(), no, np).noalias() += CW.lazyProduct(Z);
     SimulationSensitivity result;
