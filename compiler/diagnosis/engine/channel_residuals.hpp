@@ -1,8 +1,9 @@
 // Measured vs model FRFs per channel, with the measurement's standard deviation: the input of the residual
-// analysis (mbgen/residual_analysis.hpp). FRF data is used as measured; a time record is first turned into FRFs by
-// Welch H1 (its coherence gives the noise level), so both kinds of data are judged the same way; the model's side of
-// a record is its simulated response through the same H1, so that the estimator's own bias (a peak lowered and
-// widened by the finite resolution) is on both sides and not taken for a model error.
+// analysis (mbgen/residual_analysis.hpp). FRF data is used as measured, its noise level from its coherence; a time
+// record is first turned into FRFs by Welch H1, so both kinds of data are judged the same way. The model's side of a
+// record is its simulated response through the same H1, so that the estimator's own bias (a peak lowered and widened
+// by the finite resolution) is on both sides and not taken for a model error; the noise level is that of the H1 of
+// the time-domain residual, from the residual power the inputs do not explain.
 #pragma once
 
 #include <mbgen/fit.hpp>

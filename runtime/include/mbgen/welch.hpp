@@ -28,6 +28,13 @@ struct WelchEstimate {
   // where the inputs' auto-spectral matrix is singular (see `dropped_bins`). Each channel's coherence is the
   // multiple coherence of its output with all inputs (the ordinary coherence for one input).
   FrfData frf;
+  // Per channel of `frf` (same order) and frequency: the variance of H1 from the output power the inputs do not
+  // explain, (1 - coh^2) Gyy [Gxx^-1]_ii / (segments - inputs) (Bendat & Piersol, Random Data, 9.90, with the
+  // degrees of freedom of the residual power; the overlapping Hann segments give about segments / 1.06 independent
+  // averages, so it is still low by ~6 %). Unlike the textbook form
+  // (1 - coh^2) / (coh^2 n) |H|^2 it needs no estimated |H| and no division by a small coherence, so it stays a
+  // noise level where H is small: e.g. for the residual of a nearly right model.
+  std::vector<Eigen::VectorXd> variance;
   Eigen::Index segments = 0;           // number of averaged segments
   double dt = 0;                       // sample interval of the record
   std::vector<Eigen::Index> dropped_bins;

@@ -130,6 +130,7 @@ WelchEstimate welch_h1(const TimeRecord& record, const std::vector<std::string>&
   std::vector<double> f;
   std::vector<Eigen::MatrixXcd> H;
   std::vector<Eigen::VectorXd> coherence;
+  std::vector<Eigen::MatrixXd> variance;  // per bin: outputs x inputs
   for (Eigen::Index k = 0; k < bins; ++k) {
     const Eigen::MatrixXcd& Sk = S[static_cast<std::size_t>(k)];
     const Eigen::MatrixXcd Gxx = Sk.topLeftCorner(ni, ni);
@@ -142,17 +143,28 @@ WelchEstimate welch_h1(const TimeRecord& record, const std::vector<std::string>&
       continue;
     }
     // H Gxx = Gyx with Gxx Hermitian: H^H = Gxx^{-1} Gyx^H.
-    const Eigen::MatrixXcd Hk = Gxx.ldlt().solve(Gyx.adjoint()).adjoint();
+    const auto Gxx_ldlt = Gxx.ldlt();
+    const Eigen::MatrixXcd Hk = Gxx_ldlt.solve(Gyx.adjoint()).adjoint();
+    const Eigen::VectorXd Gxx_inverse_diagonal =
+        Gxx_ldlt.solve(Eigen::MatrixXcd::Identity(ni, ni)).diagonal().real();
     Eigen::VectorXd gamma(no);
+    Eigen::MatrixXd var(no, ni);
     for (Eigen::Index o = 0; o < no; ++o) {
       const double gyy = Sk(ni + o, ni + o).real();
       // Multiple coherence: the part of the output power explained linearly by the inputs.
       const double explained = (Hk.row(o) * Gyx.row(o).adjoint())(0, 0).real();
       gamma[o] = gyy > 0 ? std::clamp(explained / gyy, 0.0, 1.0) : 0.0;
+      // S sums the segments' spectra; the product below is the same for sums and averages, and is the variance of
+      // one segment's H. Averaging divides it by the number of segments less the inputs: the unexplained power is
+      // the residual of a least-squares fit of ni regressors to `segments` values, low by that ratio on average.
+      const double unexplained = std::max(gyy - explained, 0.0);
+      const double degrees_of_freedom = static_cast<double>(std::max<Eigen::Index>(segments - ni, 1));
+      var.row(o) = unexplained * Gxx_inverse_diagonal.transpose() / degrees_of_freedom;
     }
     f.push_back(static_cast<double>(k) / (static_cast<double>(L) * est.dt));
     H.push_back(Hk);
     coherence.push_back(gamma);
+    variance.push_back(var);
   }
   const Eigen::Index nf = static_cast<Eigen::Index>(f.size());
   est.frf.f_hz = Eigen::Map<const Eigen::VectorXd>(f.data(), nf);
@@ -160,13 +172,20 @@ WelchEstimate welch_h1(const TimeRecord& record, const std::vector<std::string>&
     for (Eigen::Index i = 0; i < ni; ++i) {
       FrfChannel ch{outputs[static_cast<std::size_t>(o)], inputs[static_cast<std::size_t>(i)], Eigen::VectorXcd(nf),
                     Eigen::VectorXd(nf)};
+      Eigen::VectorXd v(nf);
       for (Eigen::Index k = 0; k < nf; ++k) {
         ch.values[k] = H[static_cast<std::size_t>(k)](o, i);
         (*ch.coherence)[k] = coherence[static_cast<std::size_t>(k)][o];
+        v[k] = variance[static_cast<std::size_t>(k)](o, i);
       }
       est.frf.channels.push_back(std::move(ch));
+      est.variance.push_back(std::move(v));
     }
-  if (options.compensate_hold && record.hold == HoldMode::ZeroOrder) remove_zero_order_hold(est.frf, est.dt);
+  if (options.compensate_hold && record.hold == HoldMode::ZeroOrder) {
+    remove_zero_order_hold(est.frf, est.dt);
+    for (Eigen::VectorXd& v : est.variance)
+      for (Eigen::Index k = 0; k < nf; ++k) v[k] /= std::norm(zero_order_hold_response(est.frf.f_hz[k], est.dt));
+  }
   return est;
 }
 

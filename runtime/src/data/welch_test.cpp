@@ -156,6 +156,42 @@ TEST_CASE("Welch H1, output noise: errors and coherence as statistics predicts")
   // The coherence estimate is biased upwards by about (1 - g2)^2 / n_d < 0.004: the mean stays close.
   CHECK(std::abs(coherence_bias) < 0.01);
   for (Eigen::Index k = 0; k < est.frf.f_hz.size(); ++k) CHECK((*h.coherence)[k] < 1.0);
+  // The variance the estimate reports for itself: the same statistics without knowing the exact response (its
+  // n = segments, not the ~segments / 1.06 independent averages, so the ratio's mean is ~1.06).
+  REQUIRE(est.variance.size() == 1);
+  double reported = 0;
+  for (Eigen::Index k = 1; k + 1 < est.frf.f_hz.size(); ++k)
+    reported += std::norm(h.values[k] - sys.response(est.frf.f_hz[k], kDt)) / est.variance[0][k];
+  reported /= bins;
+  INFO("mean squared error over reported variance " << reported);
+  CHECK(reported > 0.85);
+  CHECK(reported < 1.35);
+}
+
+TEST_CASE("Welch H1, two correlated inputs and output noise: the reported variance of each path") {
+  // With correlated inputs a path's variance grows by [Gxx^-1]_ii Gxx_ii = 1 / (1 - rho^2), here about 1.5: a
+  // single-input formula would be too small by that factor.
+  const SecondOrder s1 = resonator(0.9, 2 * M_PI * 0.08, 1.0, 0.0, 0.0);
+  const SecondOrder s2 = resonator(0.9, 2 * M_PI * 0.2, 0.5, -0.3, 0.0);
+  const Eigen::VectorXd u1 = white_noise(kSamples, 6);
+  const Eigen::VectorXd u2 = white_noise(kSamples, 7) + 0.7 * u1;
+  const Eigen::VectorXd y = s1.filter(u1) + s2.filter(u2) + white_noise(kSamples, 8, 2.0);
+  const TimeRecord rec = make_record(kDt, {{"u1", u1}, {"u2", u2}, {"y", y}});
+  WelchOptions opt;
+  opt.segment_length = kSegment;
+  const WelchEstimate est = welch_h1(rec, {"u1", "u2"}, {"y"}, opt);
+  REQUIRE(est.variance.size() == 2);
+  const SecondOrder* exact[2] = {&s1, &s2};
+  for (int i = 0; i < 2; ++i) {
+    double ratio = 0;
+    int bins = 0;
+    for (Eigen::Index k = 1; k + 1 < est.frf.f_hz.size(); ++k, ++bins)
+      ratio += std::norm(est.frf.channels[i].values[k] - exact[i]->response(est.frf.f_hz[k], kDt)) / est.variance[i][k];
+    ratio /= bins;
+    INFO("path " << i << ": mean squared error over reported variance " << ratio);
+    CHECK(ratio > 0.85);
+    CHECK(ratio < 1.35);
+  }
 }
 
 TEST_CASE("Welch H1, two correlated inputs: MIMO H1 and multiple coherence") {

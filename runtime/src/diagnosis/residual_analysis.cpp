@@ -84,11 +84,24 @@ Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vect
   d.f_hi = f[static_cast<std::size_t>(band.hi)];
   d.significance = band.mean_z;
 
-  // A data peak inside the band?
+  // A data peak inside the band? The one nearest the worst line: a band can span many modes (a grossly wrong
+  // model's runs over a whole channel), and its highest peak may be one the model matches.
+  int worst = band.lo;
+  double worst_z = -1;
+  for (int i = band.lo; i <= band.hi; ++i) {
+    const double zi = std::norm(c.measured[i] - c.model[i]) / (c.sigma[i] * c.sigma[i]);
+    if (zi > worst_z) worst_z = zi, worst = i;
+  }
   int data_peak = -1;
-  for (int p : data_peaks)
-    if (p >= band.lo && p <= band.hi && (data_peak < 0 || std::abs(c.measured[p]) > std::abs(c.measured[data_peak])))
+  for (int p : data_peaks) {
+    if (p < band.lo || p > band.hi) continue;
+    const auto at_hz = [&](int i) { return f[static_cast<std::size_t>(i)]; };
+    const double distance = std::abs(at_hz(p) - at_hz(worst));
+    const double best = data_peak < 0 ? 0.0 : std::abs(at_hz(data_peak) - at_hz(worst));
+    if (data_peak < 0 || distance < best ||
+        (distance == best && std::abs(c.measured[p]) > std::abs(c.measured[data_peak])))
       data_peak = p;
+  }
   const int at = data_peak >= 0 ? data_peak : argmax_abs(c.measured - c.model, band.lo, band.hi);
   d.f_hz = f[static_cast<std::size_t>(at)];
   d.size_db = db(std::abs(c.measured[at]) / std::max(std::abs(c.model[at]), 1e-300));
@@ -97,7 +110,17 @@ Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vect
   if (data_peak >= 0) {
     const int model_peak = nearest_peak(model_peaks, f, d.f_hz);
     const double rel = model_peak >= 0 ? std::abs(f[static_cast<std::size_t>(model_peak)] - d.f_hz) / d.f_hz : 1e300;
-    if (rel <= o.peak_tolerance) {
+    if (rel <= o.peak_tolerance && std::abs(d.size_db) < 1.0) {
+      // The peak has the model's height but the residual is large: the difference is in phase, which at a
+      // resonance turns by 90 degrees over the half-power band. A frequency off by less than the line spacing
+      // shows so (a damping mismatch changes the height).
+      d.kind = "frequency_shift";
+      d.model_f_hz = f[static_cast<std::size_t>(model_peak)];
+      const double phase_deg = std::abs(std::arg(c.measured[at] / c.model[at])) * 180.0 / M_PI;
+      d.text = format("the resonance near %.1f Hz on %s has the model's height (%+.1f dB) but is %.0f degrees out of "
+                      "phase with it: its frequency differs by less than a line",
+                      d.f_hz, where.c_str(), d.size_db, phase_deg);
+    } else if (rel <= o.peak_tolerance) {
       d.kind = "damping_mismatch";
       d.model_f_hz = f[static_cast<std::size_t>(model_peak)];
       d.text = format("the resonance near %.1f Hz on %s is %.1f dB %s than the model: its damping does not match",

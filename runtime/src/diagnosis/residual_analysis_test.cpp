@@ -77,6 +77,20 @@ TEST_CASE("a shifted resonance is reported as a frequency shift", "[residual]") 
   CHECK(s.discrepancies.front().model_f_hz == Approx(126.0).margin(1.0));
 }
 
+TEST_CASE("a resonance shifted by less than a line is a frequency shift seen in phase, not a damping mismatch",
+          "[residual]") {
+  // 0.2 Hz at 0.5 Hz lines: the peak stays on the same line at the same height, its phase turns by ~10 degrees.
+  ChannelResidual c = make_channel(false, 6, 0.01);
+  for (std::size_t i = 0; i < c.f_hz.size(); ++i) c.model[static_cast<Eigen::Index>(i)] = mode(c.f_hz[i], 120.2, 0.01, 1e6);
+  const ResidualSummary s = analyse_residuals({c});
+  REQUIRE_FALSE(s.discrepancies.empty());
+  const Discrepancy& d = s.discrepancies.front();
+  CHECK(d.kind == "frequency_shift");
+  CHECK(d.f_hz == Approx(120.0).margin(0.5));
+  CHECK(std::abs(d.size_db) < 1.0);
+  CHECK(d.text.find("out of phase") != std::string::npos);
+}
+
 TEST_CASE("a pure delay shows as a phase trend", "[residual]") {
   ChannelResidual c = make_channel(false, 5, 0.01);
   for (std::size_t i = 0; i < c.f_hz.size(); ++i) {
