@@ -254,18 +254,15 @@ class Diagnoser {
     // it does not explain (on the spindle, a Maxwell element in a bearing was "explained" by one soft mount in z,
     // which left 6 of 9 findings; the correct extensions of the test cases leave at most 1 of 3 to 9).
     const std::size_t before_findings = result.nominal.residual.discrepancies.size();
-    const std::size_t after_findings = static_cast<std::size_t>(
-        std::count_if(result.nominal.residual.discrepancies.begin(), result.nominal.residual.discrepancies.end(),
-                      [&](const Discrepancy& d) {
-                        return still_shows(result.nominal.channels, current.channels, d, options_.residual.threshold);
-                      }));
-    if (!result.selected.empty() &&
-        static_cast<double>(after_findings) > options_.max_remaining_findings * static_cast<double>(before_findings)) {
-      say(format("the extended model still shows %.0f of the nominal model's %.0f findings: it does not explain them; "
-                 "not extending", static_cast<double>(after_findings), static_cast<double>(before_findings)));
+    std::vector<const Discrepancy*> kept;
+    if (!result.selected.empty())
       for (const Discrepancy& d : result.nominal.residual.discrepancies)
-        if (still_shows(result.nominal.channels, current.channels, d, options_.residual.threshold))
-          say("  still: " + d.text);
+        if (still_shows(result.nominal.channels, current.channels, d, options_.residual.threshold)) kept.push_back(&d);
+    if (!result.selected.empty() &&
+        static_cast<double>(kept.size()) > options_.max_remaining_findings * static_cast<double>(before_findings)) {
+      say(format("the extended model still shows %.0f of the nominal model's %.0f findings: it does not explain them; "
+                 "not extending", static_cast<double>(kept.size()), static_cast<double>(before_findings)));
+      for (const Discrepancy* d : kept) say("  still: " + d->text);
       result.selected.clear();
       current = result.nominal;
     }

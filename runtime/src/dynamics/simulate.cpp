@@ -85,6 +85,24 @@ bool real_modal_form(const Eigen::MatrixXd& Phi, RealModalForm& out) {
   return B.lpNorm<Eigen::Infinity>() <= 1e-12 * std::max(1.0, Phi.lpNorm<Eigen::Infinity>());
 }
 
+// Z <- B Z, B the block-diagonal of `modal` (one step of the recurrence in modal coordinates).
+void step_modal(const RealModalForm& modal, Eigen::MatrixXd& Z) {
+  for (std::size_t m = 0; m < modal.block_start.size(); ++m) {
+    const Eigen::Index r = modal.block_start[m];
+    const double a = modal.a[m];
+    if (modal.pair[m]) {
+      const double c = modal.b[m];
+      for (Eigen::Index col = 0; col < Z.cols(); ++col) {
+        const double z0 = Z(r, col), z1 = Z(r + 1, col);
+        Z(r, col) = a * z0 + c * z1;
+        Z(r + 1, col) = -c * z0 + a * z1;
+      }
+    } else {
+      Z.row(r) *= a;
+    }
+  }
+}
+
 }  // namespace
 
 Eigen::MatrixXd simulate(const DiscreteStateSpace& system, const Eigen::MatrixXd& inputs) {
@@ -166,55 +184,24 @@ SimulationSensitivity simulate_with_sensitivity(const ModelMatrices& m, const Mo
   // forcing of a block of samples is one product with the stacked derivative matrices; its column j, reshaped
   // to (n x np), is the forcing of sample k0 + j.
   constexpr Eigen::Index block = 256;
+  // In real modal coordinates (S = W Z, where Phi allows): Z_{k+1} = B Z_k + W^-1 F_k and C S_k = (C W) Z_k. The
+  // forcing's transformation is folded into the stacked derivative matrices once; the recurrence below then steps
+  // Z with B's small blocks instead of S with the dense Phi. Below, S holds Z in that case.
   RealModalForm modal;
-  if (samples > 1 && real_modal_form(sys.Phi, modal)) {
-    // In modal coordinates (S = W Z): Z_{k+1} = B Z_k + W^-1 F_k, and C S_k = (C W) Z_k. The forcing's
-    // transformation is folded into the stacked derivative matrices once.
-    Eigen::MatrixXd mPhi(n * np, n), mGamma0(n * np, ni), mGamma1(n * np, ni);
+  const bool in_modal_coordinates = samples > 1 && real_modal_form(sys.Phi, modal);
+  Eigen::MatrixXd output_map = sys.C;
+  if (in_modal_coordinates) {
     for (Eigen::Index i = 0; i < np; ++i) {
-      mPhi.middleRows(i * n, n).noalias() = modal.W_inverse * dPhi.middleRows(i * n, n);
-      mGamma0.middleRows(i * n, n).noalias() = modal.W_inverse * dGamma0.middleRows(i * n, n);
-      if (first_order) mGamma1.middleRows(i * n, n).noalias() = modal.W_inverse * dGamma1.middleRows(i * n, n);
+      dPhi.middleRows(i * n, n) = (modal.W_inverse * dPhi.middleRows(i * n, n)).eval();
+      dGamma0.middleRows(i * n, n) = (modal.W_inverse * dGamma0.middleRows(i * n, n)).eval();
+      if (first_order) dGamma1.middleRows(i * n, n) = (modal.W_inverse * dGamma1.middleRows(i * n, n)).eval();
     }
-    const Eigen::MatrixXd CW = sys.C * modal.W;
-    // Zs keeps the block's Z_k side by side (column-major, so it is an n x (np b) matrix, as dY's block is an
-    // no x (np b) one): the outputs' part C S_k of the whole block is then one large product.
-    Eigen::MatrixXd F(n * np, std::min<Eigen::Index>(block, samples - 1)), Zs(n * np, F.cols());
-    Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(n, np);
-    for (Eigen::Index k0 = 0; k0 + 1 < samples; k0 += block) {
-      const Eigen::Index b = std::min(block, samples - 1 - k0);
-      F.leftCols(b).noalias() = mPhi * X.middleCols(k0, b);
-      F.leftCols(b).noalias() += mGamma0 * U.middleCols(k0, b);
-      if (first_order) F.leftCols(b).noalias() += mGamma1 * U.middleCols(k0 + 1, b);
-      for (Eigen::Index j = 0; j < b; ++j) {
-        Eigen::Map<Eigen::MatrixXd>(Zs.col(j).data(), n, np) = Z;
-        for (std::size_t m = 0; m < modal.block_start.size(); ++m) {
-          const Eigen::Index r = modal.block_start[m];
-          const double a = modal.a[m];
-          if (modal.pair[m]) {
-            const double c = modal.b[m];
-            for (Eigen::Index col = 0; col < np; ++col) {
-              const double z0 = Z(r, col), z1 = Z(r + 1, col);
-              Z(r, col) = a * z0 + c * z1;
-              Z(r + 1, col) = -c * z0 + a * z1;
-            }
-          } else {
-            Z.row(r) *= a;
-          }
-        }
-        Z += Eigen::Map<const Eigen::MatrixXd>(F.col(j).data(), n, np);
-      }
-      Eigen::Map<Eigen::MatrixXd>(dY.col(k0).data(), no, np * b).noalias() +=
-          CW * Eigen::Map<const Eigen::MatrixXd>(Zs.data(), n, np * b);
-    }
-    Eigen::Map<Eigen::MatrixXd>(dY.col(samples - 1).data(), no, np).noalias() += CW.lazyProduct(Z);
-    SimulationSensitivity result;
-    result.outputs = Y.transpose();
-    result.doutputs.reserve(static_cast<std::size_t>(np));
-    for (Eigen::Index i = 0; i < np; ++i) result.doutputs.push_back(dY.middleRows(i * no, no).transpose());
-    return result;
+    output_map = sys.C * modal.W;
   }
-  Eigen::MatrixXd F(n * np, std::min<Eigen::Index>(block, std::max<Eigen::Index>(samples - 1, 1)));
+  // Ss keeps the block's S_k side by side (column-major, so it is an n x (np b) matrix, as dY's block is an
+  // no x (np b) one): the outputs' part of the whole block is then one large product.
+  const Eigen::Index block_columns = std::min<Eigen::Index>(block, std::max<Eigen::Index>(samples - 1, 1));
+  Eigen::MatrixXd F(n * np, block_columns), Ss(n * np, block_columns);
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, np), next_S(n, np);
   for (Eigen::Index k0 = 0; k0 + 1 < samples; k0 += block) {
     const Eigen::Index b = std::min(block, samples - 1 - k0);
@@ -222,14 +209,19 @@ SimulationSensitivity simulate_with_sensitivity(const ModelMatrices& m, const Mo
     F.leftCols(b).noalias() += dGamma0 * U.middleCols(k0, b);
     if (first_order) F.leftCols(b).noalias() += dGamma1 * U.middleCols(k0 + 1, b);
     for (Eigen::Index j = 0; j < b; ++j) {
-      const Eigen::Index k = k0 + j;
-      Eigen::Map<Eigen::MatrixXd>(dY.col(k).data(), no, np).noalias() += sys.C.lazyProduct(S);
-      next_S.noalias() = sys.Phi.lazyProduct(S);
-      next_S += Eigen::Map<const Eigen::MatrixXd>(F.col(j).data(), n, np);
-      S.swap(next_S);
+      Eigen::Map<Eigen::MatrixXd>(Ss.col(j).data(), n, np) = S;
+      if (in_modal_coordinates) {
+        step_modal(modal, S);
+      } else {
+        next_S.noalias() = sys.Phi.lazyProduct(S);
+        S.swap(next_S);
+      }
+      S += Eigen::Map<const Eigen::MatrixXd>(F.col(j).data(), n, np);
     }
+    Eigen::Map<Eigen::MatrixXd>(dY.col(k0).data(), no, np * b).noalias() +=
+        output_map * Eigen::Map<const Eigen::MatrixXd>(Ss.data(), n, np * b);
   }
-  if (samples > 0) Eigen::Map<Eigen::MatrixXd>(dY.col(samples - 1).data(), no, np).noalias() += sys.C.lazyProduct(S);
+  if (samples > 0) Eigen::Map<Eigen::MatrixXd>(dY.col(samples - 1).data(), no, np).noalias() += output_map.lazyProduct(S);
 
   SimulationSensitivity result;
   result.outputs = Y.transpose();
