@@ -378,9 +378,10 @@ class Diagnoser {
       }
     }
     prior_output_peaks_.clear();
-    for (const auto& [output, list] : by_output) {
+    for (const auto& entry : by_output) {
+      const std::string& output = entry.first;  // a named variable, not a structured binding: lambdas capture it
       std::vector<std::pair<double, double>> own, shared;  // (prominence, f) and (height, f)
-      for (const OutputPeak& peak : list) {
+      for (const OutputPeak& peak : entry.second) {
         const bool elsewhere = std::any_of(by_output.begin(), by_output.end(), [&](const auto& other) {
           return other.first != output && std::any_of(other.second.begin(), other.second.end(), [&](const OutputPeak& q) {
                    return std::abs(q.f - peak.f) <= 0.02 * peak.f;

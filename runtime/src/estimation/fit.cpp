@@ -46,9 +46,8 @@ std::vector<int> candidate_parameters(const ModelInfo& info, const FitOptions& o
 // The fit over one set of free parameters, in internal coordinates.
 class Estimator {
  public:
-  Estimator(const Model& model, const OutputErrorProblem& problem, const Eigen::VectorXd& prior,
-            std::vector<ParameterTransform> transforms)
-      : model_(model), problem_(problem), prior_(prior), transforms_(std::move(transforms)) {}
+  Estimator(const OutputErrorProblem& problem, const Eigen::VectorXd& prior, std::vector<ParameterTransform> transforms)
+      : problem_(problem), prior_(prior), transforms_(std::move(transforms)) {}
 
   Eigen::VectorXd full_values(const std::vector<int>& free, const Eigen::VectorXd& theta) const {
     Eigen::VectorXd full = prior_;
@@ -96,7 +95,6 @@ class Estimator {
   }
 
  private:
-  const Model& model_;
   const OutputErrorProblem& problem_;
   Eigen::VectorXd prior_;
   std::vector<ParameterTransform> transforms_;
@@ -129,7 +127,7 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
     }
   }
   const OutputErrorProblem problem(model, data, options.frf_weighting);
-  const Estimator estimator(model, problem, prior, transforms);
+  const Estimator estimator(problem, prior, transforms);
   IdentifiabilityOptions id_options;
   id_options.zero_tolerance = options.zero_tolerance;
   id_options.rank_tolerance = options.rank_tolerance;
@@ -218,7 +216,7 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
     FrfWeighting w = options.frf_weighting;
     w.averages = std::max(w.averages, companion->averages);
     companion_problem.emplace(model, companion->data, w);
-    companion_estimator.emplace(model, *companion_problem, prior, transforms);
+    companion_estimator.emplace(*companion_problem, prior, transforms);
   }
   const Estimator& searcher = companion ? *companion_estimator : estimator;
   const bool log_search = options.log_search && (companion || (problem.has_frf() && !problem.has_time()));
