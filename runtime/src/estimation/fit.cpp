@@ -163,9 +163,6 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
   lm.cost_tolerance = options.cost_tolerance;
   lm.step_tolerance = options.step_tolerance;
   lm.gradient_tolerance = options.gradient_tolerance;
-  // A time record's Jacobian (every parameter's sensitivity simulated) costs many times its residuals: evaluated
-  // only at accepted points. An FRF's costs little more than its residuals: evaluated with each trial, in one call.
-  lm.jacobian_at_trial = !problem.has_time();
 
   std::mutex progress_mutex;
   auto reporter = [&](int start, int starts, const char* stage) {
@@ -222,16 +219,13 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
     companion_estimator.emplace(*companion_problem, prior, transforms);
   }
   const Estimator& searcher = companion ? *companion_estimator : estimator;
-  LmOptions searcher_lm = lm, searcher_search_lm = search_lm;
-  searcher_lm.jacobian_at_trial = searcher_search_lm.jacobian_at_trial = companion || !problem.has_time();
   const bool log_search = options.log_search && (companion || (problem.has_frf() && !problem.has_time()));
   const ResidualFunction search_weighted = searcher.function(free, ResidualKind::Weighted);
   const ResidualFunction log_ratio = searcher.function(free, ResidualKind::LogRatio);
   const std::vector<LmResult> runs = estimation::run_starts(starts, options.threads, [&](int s) {
     Eigen::VectorXd theta = start_points[static_cast<std::size_t>(s)];
-    if (log_search)
-      theta = estimation::levenberg_marquardt(log_ratio, theta, searcher_search_lm, reporter(s, starts, "search")).x;
-    return estimation::levenberg_marquardt(search_weighted, theta, searcher_lm, reporter(s, starts, "refine"));
+    if (log_search) theta = estimation::levenberg_marquardt(log_ratio, theta, search_lm, reporter(s, starts, "search")).x;
+    return estimation::levenberg_marquardt(search_weighted, theta, lm, reporter(s, starts, "refine"));
   });
   for (const auto& run : runs) result.start_costs.push_back(run.cost);
   result.best_start = estimation::best_start(runs);

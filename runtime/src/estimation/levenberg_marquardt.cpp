@@ -56,14 +56,10 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
       b.head(kk) = -qtr;
       const Eigen::VectorXd dx = A.householderQr().solve(b);
       const Eigen::VectorXd x_new = res.x + dx;
-      // Without jacobian_at_trial the trial needs only r; the Jacobian (for a time record, a simulation of every
-      // parameter's sensitivity) is evaluated once the step is accepted, so a rejected trial costs one plain
-      // evaluation.
-      const bool ok =
-          dx.allFinite() &&
-          (options.jacobian_at_trial ||
-           (f(x_new, r_new, nullptr) && r_new.allFinite() && r_new.squaredNorm() < res.cost)) &&
-          f(x_new, r_new, &J_new) && r_new.allFinite() && J_new.allFinite();
+      // The trial needs only r; the Jacobian (for a time record, a simulation of every parameter's sensitivity)
+      // is evaluated once the step is accepted, so a rejected trial costs one plain evaluation.
+      const bool ok = dx.allFinite() && f(x_new, r_new, nullptr) && r_new.allFinite() && r_new.squaredNorm() < res.cost &&
+                      f(x_new, r_new, &J_new) && r_new.allFinite() && J_new.allFinite();
       const double cost_new = ok ? r_new.squaredNorm() : std::numeric_limits<double>::infinity();
       if (ok && cost_new < res.cost) {
         const double decrease = (res.cost - cost_new) / res.cost;

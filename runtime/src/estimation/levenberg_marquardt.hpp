@@ -2,9 +2,9 @@
 //
 // Minimises ||r(x)||^2. Each iteration factors J = Q R once; a trial step for damping lambda solves
 // [R; sqrt(lambda) D] dx = [-Q^T r; 0] (D = Marquardt's column scaling, the column norms of J, kept monotone),
-// and, unless jacobian_at_trial, a trial step evaluates r alone and the Jacobian follows at an accepted point, so
-// a rejected trial costs one plain evaluation (for a time record, one simulation instead of one per parameter).
-// lambda shrinks by 3 on success and grows by 10 on failure. (Nielsen's update, tried once, sent a diagnosis candidate of mdof2
+// and a trial step evaluates r alone: the Jacobian is evaluated only at an accepted point, so a rejected trial
+// costs one plain evaluation (for a time record, one simulation instead of one per parameter). lambda shrinks
+// by 3 on success and grows by 10 on failure. (Nielsen's update, tried once, sent a diagnosis candidate of mdof2
 // to a worse optimum; see docs/estimation.md.)
 #pragma once
 
@@ -25,9 +25,6 @@ struct LmOptions {
   double cost_tolerance = 1e-10;
   double step_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
-  // Evaluate the Jacobian with every trial, in the same call as r: best where it costs little more than r (FRFs;
-  // an accepted step then needs no second call). False: only at accepted points (time records).
-  bool jacobian_at_trial = true;
 };
 
 struct LmResult {
