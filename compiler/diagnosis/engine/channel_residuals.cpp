@@ -102,7 +102,6 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
   const ModelInfo& info = model.info();
   for (const DataSet& d : data) {
     FrfData frf;
-    const FrfWeighting& w = weighting;
     std::optional<FrfData> model_frf;  // for a record: the model's FRFs as the same estimator sees them
     WelchEstimate residual_est;        // for a record: the H1 of measured minus simulated outputs
     if (const FrfData* measured = std::get_if<FrfData>(&d.content)) {
@@ -167,10 +166,10 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
         for (std::size_t k = 0; k < f.size(); ++k) r.model[static_cast<Eigen::Index>(k)] = h.H[k](o, i);
       }
       if (model_frf) {
-        r.sigma = record_sigma(residual_est.variance[channel], c.values, w.floor);
+        r.sigma = record_sigma(residual_est.variance[channel], c.values, weighting.floor);
         keep_lines_above_noise(r, static_cast<double>(residual_est.segments));
       } else {
-        r.sigma = judging_sigma(c, w);
+        r.sigma = judging_sigma(c, weighting);
       }
       out.push_back(std::move(r));
     }

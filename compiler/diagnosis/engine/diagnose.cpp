@@ -87,7 +87,7 @@ double band_mean_z(const std::vector<ChannelResidual>& channels, const Discrepan
     for (std::size_t k = 0; k < c.f_hz.size(); ++k) {
       if (c.f_hz[k] < d.f_lo || c.f_hz[k] > d.f_hi) continue;
       const auto i = static_cast<Eigen::Index>(k);
-      sum += std::norm(c.measured[i] - c.model[i]) / (c.sigma[i] * c.sigma[i]);
+      sum += normalized_residual(c.measured[i], c.model[i], c.sigma[i]);
       ++lines;
     }
     return lines > 0 ? sum / lines : -1.0;

@@ -9,6 +9,9 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <complex>
+
 #include <string>
 #include <vector>
 
@@ -49,6 +52,11 @@ struct ResidualSummary {
 };
 
 ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, const ResidualOptions& options = {});
+
+// The normalized residual z of one line: |measured - model|^2 / sigma^2 (1 where only noise remains).
+inline double normalized_residual(const std::complex<double>& measured, const std::complex<double>& model, double sigma) {
+  return std::norm(measured - model) / std::max(sigma * sigma, 1e-300);
+}
 
 // Local maxima of |h| that stand out of their neighbourhood by `prominence_db`, as indices (for peak finding).
 std::vector<int> magnitude_peaks(const Eigen::VectorXcd& h, double prominence_db = 3.0);

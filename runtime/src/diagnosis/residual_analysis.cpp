@@ -89,7 +89,7 @@ Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vect
   int worst = band.lo;
   double worst_z = -1;
   for (int i = band.lo; i <= band.hi; ++i) {
-    const double zi = std::norm(c.measured[i] - c.model[i]) / (c.sigma[i] * c.sigma[i]);
+    const double zi = normalized_residual(c.measured[i], c.model[i], c.sigma[i]);
     if (zi > worst_z) worst_z = zi, worst = i;
   }
   int data_peak = -1;
@@ -253,7 +253,7 @@ ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, 
     auto normalized = [&](const Eigen::VectorXcd& measured) {
       Eigen::VectorXd z(n);
       for (Eigen::Index i = 0; i < n; ++i)
-        z[i] = std::norm(measured[i] - original.model[i]) / std::max(original.sigma[i] * original.sigma[i], 1e-300);
+        z[i] = normalized_residual(measured[i], original.model[i], original.sigma[i]);
       return z;
     };
     Eigen::VectorXd z = normalized(original.measured);
