@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <map>
 
-#include "emit/infix_printer.hpp"
+#include "emit/sign_free_key.hpp"
 
 namespace mbgen::emit {
 namespace {
 
-using NodeCount = std::map<GiNaC::ex, int, GiNaC::ex_is_less>;
+using NodeCount = std::map<std::string, int>;
 
 bool is_leaf(const GiNaC::ex& e) {
   return GiNaC::is_a<GiNaC::symbol>(e) || GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::constant>(e);
@@ -34,66 +34,62 @@ int product_power_uses(const GiNaC::ex& e) {
   return (k >= 2 && k <= 4) ? k : 1;
 }
 
-// Counts references from distinct parent occurrences in the DAG: a node's children are walked once only.
-void count(const GiNaC::ex& e, NodeCount& uses, int weight) {
-  auto [it, inserted] = uses.emplace(e, 0);
+// Counts references from distinct parent occurrences in the DAG: a node's children are walked once only. Nodes
+// are counted by their sign-free key, so that e and -e are one node: GiNaC writes a subexpression with one sign
+// in one place and the other elsewhere, and which sign where changes from run to run (see sign_free_key.hpp).
+void count(const GiNaC::ex& node, NodeCount& uses, SignFreeKeys& keys, int weight) {
+  const GiNaC::ex e = strip_unit_factor(node).first;
+  auto [it, inserted] = uses.emplace(keys.key(e), 0);
   it->second += weight;
   if (!inserted) return;
   int child_weight = product_power_uses(e);
-  for (std::size_t i = 0; i < e.nops(); ++i) count(e.op(i), uses, i == 0 ? child_weight : 1);
+  for (std::size_t i = 0; i < e.nops(); ++i) count(e.op(i), uses, keys, i == 0 ? child_weight : 1);
 }
 
 struct Hoister {
   const NodeCount& uses;
+  SignFreeKeys& keys;
   const std::string& prefix;
-  std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less> replaced;  // hoisted node -> its symbol
+  // Hoisted nodes by key -> (temporary, s): the node n with that key is sign(n)*s*temporary.
+  std::map<std::string, std::pair<GiNaC::symbol, int>> replaced;
   std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less> rewritten;  // memo: node -> node over temporaries
-  std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> texts;     // memo: node -> canonical infix text
   CseResult& result;
 
-  GiNaC::ex rewrite(const GiNaC::ex& e) {
+  GiNaC::ex rewrite(const GiNaC::ex& node) {
+    const auto [e, unit] = strip_unit_factor(node);
+    if (unit != 1) return -rewrite(e);
     if (is_leaf(e)) return e;
-    if (auto it = replaced.find(e); it != replaced.end()) return it->second;
+    const std::string& key = keys.key(e);
+    if (auto it = replaced.find(key); it != replaced.end()) return keys.sign(e) * it->second.second * it->second.first;
     GiNaC::ex body;
     if (auto it = rewritten.find(e); it != rewritten.end()) {
       body = it->second;
     } else {
       // Rebuild over rewritten children (evaluation cannot merge distinct temporaries).
-      // Children are visited in the order of their text, not GiNaC's operand order (which follows the
-      // addresses of type names and so changes from run to run): temporaries are numbered the same every run.
+      // Children are visited in the order of their keys, not GiNaC's operand order (which follows hash values and
+      // so changes from run to run): temporaries are numbered the same every run.
       GiNaC::exvector children(e.nops());
       bool changed = false;
-      for (std::size_t i : canonical_order(e)) {
+      const bool sum_or_product = GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e);
+      std::vector<std::size_t> order = keys.operand_order(e);
+      if (!sum_or_product) std::sort(order.begin(), order.end());
+      for (std::size_t i : order) {
         children[i] = rewrite(e.op(i));
         changed = changed || !children[i].is_equal(e.op(i));
       }
       body = changed ? rebuild(e, children) : e;
       rewritten.emplace(e, body);
     }
-    auto u = uses.find(e);
+    auto u = uses.find(key);
     if (u != uses.end() && u->second >= 2 && !is_trivial(e)) {
+      // The temporary holds the body's magnitude, the same expression in every run; e is ±that.
       GiNaC::symbol t(prefix + std::to_string(result.temporaries.size()));
-      result.temporaries.emplace_back(t, body);
-      replaced.emplace(e, t);
-      return t;
+      const int body_sign = keys.sign(body);
+      result.temporaries.emplace_back(t, body_sign * body);
+      replaced.emplace(key, std::make_pair(t, keys.sign(e) * body_sign));
+      return body_sign * t;
     }
     return body;
-  }
-
-  std::vector<std::size_t> canonical_order(const GiNaC::ex& e) {
-    std::vector<std::size_t> order(e.nops());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    if (!GiNaC::is_a<GiNaC::add>(e) && !GiNaC::is_a<GiNaC::mul>(e)) return order;
-    std::vector<const std::string*> keys(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i) keys[i] = &text_of(e.op(i));
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return *keys[a] < *keys[b]; });
-    return order;
-  }
-
-  const std::string& text_of(const GiNaC::ex& e) {
-    auto it = texts.find(e);
-    if (it == texts.end()) it = texts.emplace(e, infix_text(e)).first;
-    return it->second;
   }
 
   static GiNaC::ex rebuild(const GiNaC::ex& e, const GiNaC::exvector& c) {
@@ -119,9 +115,10 @@ struct Hoister {
 
 CseResult eliminate_common_subexpressions(const std::vector<GiNaC::ex>& expressions, const std::string& prefix) {
   NodeCount uses;
-  for (const auto& e : expressions) count(e, uses, 1);
+  SignFreeKeys keys;
+  for (const auto& e : expressions) count(e, uses, keys, 1);
   CseResult result;
-  Hoister h{uses, prefix, {}, {}, {}, result};
+  Hoister h{uses, keys, prefix, {}, {}, result};
   result.outputs.reserve(expressions.size());
   for (const auto& e : expressions) {
     // A whole output used twice is hoisted too; that is fine (it is then printed once).

@@ -1,9 +1,11 @@
 // Common-subexpression elimination over GiNaC expression trees, for the C++ emitter.
 //
-// Expressions are hash-consed (std::map with GiNaC::ex_is_less, so structurally equal subtrees are one node),
-// uses are counted over the DAG, and every non-trivial node used more than once is hoisted into a temporary
-// symbol. Temporaries come in dependency order (post-order of a depth-first walk of the outputs in their
-// given order), so the result is deterministic for a given input.
+// Nodes are identified by their sign-free key (sign_free_key.hpp), so that e and -e are one node; uses are
+// counted over the DAG, and every non-trivial node used more than once is hoisted into a temporary symbol that
+// holds its magnitude (each use is then ±the temporary). Temporaries come in dependency order (post-order of a
+// depth-first walk of the outputs in their given order, operands in key order). GiNaC's own operand order and the
+// signs it gives sums in products follow hash values, which change from run to run; keys do not, so the
+// temporaries and their numbering are the same in every run.
 #pragma once
 
 #include <ginac/ginac.h>

@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "emit/cse.hpp"
-
 #include "emit/ginac_text.hpp"
+#include "emit/sign_free_key.hpp"
 
 namespace mbgen::emit {
 namespace {
@@ -79,21 +79,31 @@ class Printer {
     }
     if (GiNaC::is_a<GiNaC::add>(e)) return print_add(e);
     if (GiNaC::is_a<GiNaC::mul>(e)) return print_mul(e);
-    if (GiNaC::is_a<GiNaC::power>(e)) return print_power(e);
+    if (GiNaC::is_a<GiNaC::power>(e)) {
+      const auto [magnitude, negative] = signed_factor(e);
+      return negative ? Printed{"-" + magnitude.text, 1} : magnitude;
+    }
     if (GiNaC::is_a<GiNaC::function>(e)) return print_function(e);
     throw std::logic_error("cxx_printer: unsupported expression " + ginac_text(e));
   }
 
  private:
   const SymbolNames& names_;
+  mutable SignFreeKeys keys_;
 
-  // Operands are printed in the order of their text, not GiNaC's internal order (which follows symbol
-  // creation order, and so differs for the fresh temporaries of each CSE run): output is deterministic.
-  Printed print_add(const GiNaC::ex& e) const {
+  static std::string negated(const std::string& term) {
+    return starts_negative(term) ? term.substr(1) : "-" + term;
+  }
+
+  // Operands are printed in the order of their text, not GiNaC's internal order (which follows hash values, and so
+  // differs from run to run): output is deterministic. With `negate`, every term's sign is flipped: -(a - b) is
+  // written b - a.
+  Printed print_add(const GiNaC::ex& e, bool negate = false) const {
     std::vector<std::string> terms;
     for (std::size_t i = 0; i < e.nops(); ++i) {
       Printed t = print(e.op(i));
-      terms.push_back(t.prec < 1 ? "(" + t.text + ")" : t.text);
+      std::string text = t.prec < 1 ? "(" + t.text + ")" : t.text;
+      terms.push_back(negate ? negated(text) : text);
     }
     std::sort(terms.begin(), terms.end(), [](const std::string& x, const std::string& y) {
       if (starts_negative(x) != starts_negative(y)) return !starts_negative(x);  // a positive term first
@@ -113,6 +123,31 @@ class Printer {
     return {s, 0};
   }
 
+  // A factor of a product as its magnitude and whether it is negative. A sum, or an integer power of one, is
+  // written with the sign sign_free_key.hpp gives it: GiNaC's choice of (a - b) or -(b - a) follows hash values,
+  // which differ from run to run, and the emitted code must not.
+  std::pair<Printed, bool> signed_factor(const GiNaC::ex& f) const {
+    if (GiNaC::is_a<GiNaC::add>(f)) {
+      const bool negative = keys_.sign(f) < 0;
+      return {print_add(f, negative), negative};
+    }
+    if (GiNaC::is_a<GiNaC::power>(f)) {
+      const auto [flip, negative] = base_flip(f);
+      return {print_power(f, flip), negative};
+    }
+    return {print(f), false};
+  }
+
+  // For a power: whether its base is a sum to be written negated, and whether f then is negative.
+  std::pair<bool, bool> base_flip(const GiNaC::ex& f) const {
+    const GiNaC::ex& expo = f.op(1);
+    const bool flip =
+        GiNaC::is_a<GiNaC::add>(f.op(0)) && expo.info(GiNaC::info_flags::integer) && keys_.sign(f.op(0)) < 0;
+    return {flip, flip && !expo.info(GiNaC::info_flags::even)};
+  }
+
+  Printed base_of(const GiNaC::ex& f, bool flip) const { return flip ? print_add(f.op(0), true) : print(f.op(0)); }
+
   static bool is_negative_integer_power(const GiNaC::ex& f) {
     return GiNaC::is_a<GiNaC::power>(f) && f.op(1).info(GiNaC::info_flags::negint);
   }
@@ -125,9 +160,13 @@ class Printer {
       if (GiNaC::is_a<GiNaC::numeric>(f)) {
         coeff *= GiNaC::ex_to<GiNaC::numeric>(f);
       } else if (is_negative_integer_power(f)) {
-        den.push_back(as_factor(print(GiNaC::pow(f.op(0), -f.op(1)))));
+        const auto [flip, negative] = base_flip(f);
+        if (negative) coeff = -coeff;
+        den.push_back(as_factor(raised(base_of(f, flip), -GiNaC::ex_to<GiNaC::numeric>(f.op(1)))));
       } else {
-        num.push_back(as_factor(print(f)));
+        const auto [magnitude, negative] = signed_factor(f);
+        if (negative) coeff = -coeff;
+        num.push_back(as_factor(magnitude));
       }
     }
     std::sort(num.begin(), num.end());
@@ -157,26 +196,30 @@ class Printer {
     return {(negative ? "-" : "") + s, atom ? 2 : 1};
   }
 
-  Printed print_power(const GiNaC::ex& e) const {
-    const GiNaC::ex& base = e.op(0);
+  // base^expo; with `negate_base` the base (a sum) is written with its terms' signs flipped.
+  Printed print_power(const GiNaC::ex& e, bool negate_base = false) const {
     const GiNaC::ex& expo = e.op(1);
+    const Printed base = base_of(e, negate_base);
     if (GiNaC::is_a<GiNaC::numeric>(expo)) {
       GiNaC::numeric k = GiNaC::ex_to<GiNaC::numeric>(expo);
-      if (k.is_integer() && k.is_negative()) {
-        Printed d = print(GiNaC::pow(base, -expo));
-        return {"Scalar(1)/" + as_atom(d), 1};
-      }
-      if (k.is_integer() && k >= 2 && k <= 4) {
-        std::string b = as_atom(print(base));
-        std::string s = b;
-        for (int i = 1; i < k.to_int(); ++i) s += "*" + b;
-        return {s, 1};
-      }
-      if (k.is_equal(GiNaC::numeric(1, 2))) return {"sqrt(" + print(base).text + ")", 2};
-      if (k.is_equal(GiNaC::numeric(-1, 2))) return {"Scalar(1)/sqrt(" + print(base).text + ")", 1};
-      return {"pow(" + print(base).text + ", " + print_number(k).text + ")", 2};
+      if (k.is_integer() && k.is_negative()) return {"Scalar(1)/" + as_atom(raised(base, -k)), 1};
+      if (k.is_equal(GiNaC::numeric(1, 2))) return {"sqrt(" + base.text + ")", 2};
+      if (k.is_equal(GiNaC::numeric(-1, 2))) return {"Scalar(1)/sqrt(" + base.text + ")", 1};
+      return raised(base, k);
     }
-    return {"pow(" + print(base).text + ", " + print(expo).text + ")", 2};
+    return {"pow(" + base.text + ", " + print(expo).text + ")", 2};
+  }
+
+  // base^k for a number k: x^2..x^4 as products, others by pow().
+  Printed raised(const Printed& base, const GiNaC::numeric& k) const {
+    if (k.is_equal(1)) return base;
+    if (k.is_integer() && k >= 2 && k <= 4) {
+      std::string b = as_atom(base);
+      std::string s = b;
+      for (int i = 1; i < k.to_int(); ++i) s += "*" + b;
+      return {s, 1};
+    }
+    return {"pow(" + base.text + ", " + print_number(k).text + ")", 2};
   }
 
   Printed print_function(const GiNaC::ex& e) const {

@@ -2,7 +2,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <set>
+
 #include "emit/cse.hpp"
+#include "emit/test_symbol_orders.hpp"
 
 using namespace mbgen::emit;
 
@@ -69,6 +72,40 @@ TEST_CASE("CSE hoists repeated non-trivial subexpressions and keeps the value") 
   // Leaves and number-times-leaf are never hoisted.
   const CseResult trivial = eliminate_common_subexpressions({-s.a, -s.a, s.b, s.b});
   CHECK(trivial.temporaries.empty());
+}
+
+TEST_CASE("a sum used with both signs is one temporary") {
+  Symbols s;
+  const GiNaC::ex d = s.a - s.b;
+  const CseResult r = eliminate_common_subexpressions({d * s.c, -d * s.c * s.c, d * s.b, 1 / (-d)});
+  CHECK(r.temporaries.size() == 1);
+}
+
+TEST_CASE("the emitted statements do not depend on the order the symbols were created in") {
+  using namespace mbgen::emit::test;
+  const auto orders = creation_orders();
+  std::string reference;
+  std::set<std::string> ginac_texts;
+  for (const auto& order : orders) {
+    const OrderedSymbols y(order);
+    const SymbolNames names{{y.s[0], "p_a"}, {y.s[1], "p_b"}, {y.s[2], "p_c"}, {y.s[3], "p_d"}};
+    std::vector<GiNaC::ex> exprs = rational_expressions(y);
+    // Shared subexpressions with both signs: temporaries.
+    exprs.push_back(exprs[0] * exprs[1] - exprs[2]);
+    exprs.push_back(exprs[3] / exprs[4]);
+    ginac_texts.insert(ginac_text(exprs));
+    std::vector<CxxAssignment> as;
+    for (std::size_t i = 0; i < exprs.size(); ++i) as.push_back({"y" + std::to_string(i), exprs[i]});
+    const std::string code = cxx_assignments(as, names, "");
+    if (reference.empty()) reference = code;
+    INFO("creation order " << order[0] << order[1] << order[2] << order[3]);
+    CHECK(code == reference);
+
+    const CseResult r = eliminate_common_subexpressions(exprs);
+    const auto back = expand_temporaries(r);
+    for (std::size_t i = 0; i < exprs.size(); ++i) CHECK(GiNaC::normal(back[i] - exprs[i]).is_zero());
+  }
+  CHECK(ginac_texts.size() > 1);
 }
 
 TEST_CASE("CSE is deterministic") {

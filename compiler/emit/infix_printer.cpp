@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "emit/ginac_text.hpp"
+#include "emit/sign_free_key.hpp"
 
 namespace mbgen::emit {
 namespace {
@@ -53,7 +54,10 @@ class Printer {
     }
     if (GiNaC::is_a<GiNaC::add>(e)) return add(e);
     if (GiNaC::is_a<GiNaC::mul>(e)) return mul(e);
-    if (GiNaC::is_a<GiNaC::power>(e)) return power(e);
+    if (GiNaC::is_a<GiNaC::power>(e)) {
+      const auto [magnitude, negative] = signed_factor(e);
+      return negative ? Printed{"-" + magnitude.text, 1} : magnitude;
+    }
     if (GiNaC::is_a<GiNaC::function>(e)) {
       std::string s = GiNaC::ex_to<GiNaC::function>(e).get_name() + "(";
       for (std::size_t i = 0; i < e.nops(); ++i) s += (i ? ", " : "") + print(e.op(i)).text;
@@ -67,10 +71,16 @@ class Printer {
     return p.prec < min_prec ? "(" + p.text + ")" : p.text;
   }
 
-  // Operands in the order of their text (GiNaC's order follows symbol creation): deterministic output.
-  Printed add(const GiNaC::ex& e) const {
+  static std::string negated(const std::string& term) { return term[0] == '-' ? term.substr(1) : "-" + term; }
+
+  // Operands in the order of their text (GiNaC's order follows hash values): deterministic output. With `negate`,
+  // every term's sign is flipped: -(a - b) is written b - a.
+  Printed add(const GiNaC::ex& e, bool negate = false) const {
     std::vector<std::string> terms;
-    for (std::size_t i = 0; i < e.nops(); ++i) terms.push_back(wrap(print(e.op(i)), 1));
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      std::string t = wrap(print(e.op(i)), 1);
+      terms.push_back(negate ? negated(t) : t);
+    }
     std::sort(terms.begin(), terms.end(), [](const std::string& x, const std::string& y) {
       if ((x[0] == '-') != (y[0] == '-')) return y[0] == '-';  // a positive term first
       return x < y;
@@ -88,8 +98,30 @@ class Printer {
     return {s, 0};
   }
 
-  // A factor inside a product: a power or an atom, else parenthesised (sums, negations, quotients).
-  std::string factor(const GiNaC::ex& f) const { return wrap(print(f), 2); }
+  // A factor of a product as its magnitude and whether it is negative. A sum, or an integer power of one, is
+  // written with the sign sign_free_key.hpp gives it: GiNaC's choice of (a - b) or -(b - a) follows hash values,
+  // which differ from run to run, and the text must not.
+  std::pair<Printed, bool> signed_factor(const GiNaC::ex& f) const {
+    if (GiNaC::is_a<GiNaC::add>(f)) {
+      const bool negative = keys_.sign(f) < 0;
+      return {add(f, negative), negative};
+    }
+    if (GiNaC::is_a<GiNaC::power>(f)) {
+      const auto [flip, negative] = base_flip(f);
+      return {power(f, flip), negative};
+    }
+    return {print(f), false};
+  }
+
+  // For a power: whether its base is a sum to be written negated, and whether f then is negative.
+  std::pair<bool, bool> base_flip(const GiNaC::ex& f) const {
+    const GiNaC::ex& expo = f.op(1);
+    const bool flip =
+        GiNaC::is_a<GiNaC::add>(f.op(0)) && expo.info(GiNaC::info_flags::integer) && keys_.sign(f.op(0)) < 0;
+    return {flip, flip && !expo.info(GiNaC::info_flags::even)};
+  }
+
+  Printed base_of(const GiNaC::ex& f, bool flip) const { return flip ? add(f.op(0), true) : print(f.op(0)); }
 
   Printed mul(const GiNaC::ex& e) const {
     GiNaC::numeric coeff = 1;
@@ -100,9 +132,13 @@ class Printer {
         coeff *= exact(GiNaC::ex_to<GiNaC::numeric>(f));
       } else if (GiNaC::is_a<GiNaC::power>(f) && f.op(1).info(GiNaC::info_flags::negative) &&
                  GiNaC::is_a<GiNaC::numeric>(f.op(1))) {
-        den.push_back(factor(GiNaC::pow(f.op(0), -f.op(1))));
+        const auto [flip, negative] = base_flip(f);
+        if (negative) coeff = -coeff;
+        den.push_back(wrap(raised(base_of(f, flip), -f.op(1)), 2));
       } else {
-        num.push_back(factor(f));
+        const auto [magnitude, negative] = signed_factor(f);
+        if (negative) coeff = -coeff;
+        num.push_back(wrap(magnitude, 2));
       }
     }
     std::sort(num.begin(), num.end());
@@ -122,17 +158,21 @@ class Printer {
     return {(negative ? "-" : "") + s, single ? 2 : 1};
   }
 
-  Printed power(const GiNaC::ex& e) const {
-    const GiNaC::ex& base = e.op(0);
+  // base^expo; with `negate_base` the base (a sum) is written with its terms' signs flipped.
+  Printed power(const GiNaC::ex& e, bool negate_base = false) const {
     const GiNaC::ex& expo = e.op(1);
-    if (GiNaC::is_a<GiNaC::numeric>(expo) && expo.info(GiNaC::info_flags::negative)) {
-      Printed d = print(GiNaC::pow(base, -expo));
-      return {"1/" + wrap(d, 2), 1};
-    }
-    std::string b = wrap(print(base), 3);
-    Printed x = print(expo);
-    return {b + "^" + wrap(x, 3), 2};
+    const Printed b = base_of(e, negate_base);
+    if (GiNaC::is_a<GiNaC::numeric>(expo) && expo.info(GiNaC::info_flags::negative))
+      return {"1/" + wrap(raised(b, -expo), 2), 1};
+    return raised(b, expo);
   }
+
+  Printed raised(const Printed& base, const GiNaC::ex& expo) const {
+    if (expo.is_equal(1)) return base;
+    return {wrap(base, 3) + "^" + wrap(print(expo), 3), 2};
+  }
+
+  mutable SignFreeKeys keys_;
 };
 
 }  // namespace

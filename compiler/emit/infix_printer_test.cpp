@@ -3,6 +3,9 @@
 #include <catch2/catch.hpp>
 
 #include <regex>
+#include <set>
+
+#include "emit/test_symbol_orders.hpp"
 
 using namespace mbgen::emit;
 
@@ -52,4 +55,30 @@ TEST_CASE("infix text uses only the schema syntax and reads back to the same exp
 TEST_CASE("floating-point numbers are written as the exact ratio they hold") {
   const std::string text = infix_text(GiNaC::numeric(0.1));
   CHECK(text == "3602879701896397/36028797018963968");
+}
+
+TEST_CASE("the text does not depend on the order the symbols were created in") {
+  using namespace mbgen::emit::test;
+  std::vector<std::string> reference;
+  std::set<std::string> ginac_texts;
+  for (const auto& order : creation_orders()) {
+    const OrderedSymbols y(order);
+    const std::vector<GiNaC::ex> exprs = rational_expressions(y);
+    ginac_texts.insert(ginac_text(exprs));
+    const GiNaC::symtab table = {{"a", y.s[0]}, {"b", y.s[1]}, {"c", y.s[2]}, {"d", y.s[3]}};
+    std::vector<std::string> texts;
+    for (const auto& e : exprs) {
+      texts.push_back(infix_text(e));
+      INFO(texts.back());
+      CHECK(GiNaC::normal(read_back(texts.back(), table) - e).is_zero());
+    }
+    if (reference.empty()) reference = texts;
+    INFO("creation order " << order[0] << order[1] << order[2] << order[3]);
+    CHECK(texts == reference);
+  }
+  CHECK(ginac_texts.size() > 1);
+  // The sign of a sum in a product is that of its first term in key order (sign_free_key.hpp).
+  GiNaC::symbol a("a"), b("b"), c("c");
+  CHECK(infix_text(c * (b - a)) == "-(a - b)*c");
+  CHECK(infix_text(GiNaC::pow(b - a, -3)) == "-1/(a - b)^3");
 }

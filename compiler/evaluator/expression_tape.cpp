@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -16,104 +15,18 @@ ExpressionTape::ExpressionTape(const std::vector<GiNaC::symbol>& parameters, con
   for (int i = 0; i < n_params_; ++i) {
     const GiNaC::symbol& p = parameters[static_cast<std::size_t>(i)];
     registers_.emplace(p, i);
-    keys_.emplace(p, p.get_name());
   }
   const emit::CseResult cse = emit::eliminate_common_subexpressions(expressions, "tape_t");
-  for (const auto& [sym, body] : cse.temporaries) {
-    registers_.emplace(sym, compile(body));
-    keys_.emplace(sym, ordering_key(body));
-  }
+  for (const auto& [sym, body] : cse.temporaries) registers_.emplace(sym, compile(body));
   for (const GiNaC::ex& e : cse.outputs) outputs_.push_back(compile(e));
   // Only needed while compiling; the tape itself holds no GiNaC object.
   registers_.clear();
-  keys_.clear();
-}
-
-namespace {
-
-// A number's magnitude as exact text (GiNaC prints rationals exactly).
-std::string magnitude_text(const GiNaC::numeric& n) {
-  std::ostringstream text;
-  text << GiNaC::abs(n);
-  return text.str();
-}
-
-// A term's numeric coefficient and what it multiplies.
-std::pair<GiNaC::numeric, GiNaC::ex> split_coefficient(const GiNaC::ex& term) {
-  using namespace GiNaC;
-  if (is_a<numeric>(term)) return {ex_to<numeric>(term), 1};
-  if (!is_a<mul>(term)) return {1, term};
-  numeric c = 1;
-  ex rest = 1;
-  for (std::size_t i = 0; i < term.nops(); ++i) {
-    if (is_a<numeric>(term.op(i)))
-      c *= ex_to<numeric>(term.op(i));
-    else
-      rest *= term.op(i);
-  }
-  return {c, rest};
-}
-
-}  // namespace
-
-const std::string& ExpressionTape::ordering_key(const GiNaC::ex& e) {
-  using namespace GiNaC;
-  if (auto it = keys_.find(e); it != keys_.end()) return it->second;
-  std::string key;
-  if (is_a<numeric>(e)) {
-    key = magnitude_text(ex_to<numeric>(e));
-  } else if (is_a<symbol>(e)) {
-    key = ex_to<symbol>(e).get_name();
-  } else if (is_a<constant>(e)) {
-    std::ostringstream text;
-    text << e;
-    key = text.str();
-  } else if (is_a<add>(e)) {
-    // Terms as (what the coefficient multiplies, |coefficient|, sign), sorted; signs relative to the first term's.
-    std::vector<std::pair<std::string, bool>> terms;
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-      const auto [c, rest] = split_coefficient(e.op(i));
-      terms.emplace_back(ordering_key(rest) + "*" + magnitude_text(c), c.is_negative());
-    }
-    std::sort(terms.begin(), terms.end());
-    key = "+(";
-    for (const auto& [text, negative] : terms) key += (negative == terms.front().second ? "+" : "-") + text + ",";
-    key += ")";
-  } else if (is_a<mul>(e)) {
-    std::vector<std::string> factors;
-    for (std::size_t i = 0; i < e.nops(); ++i) factors.push_back(ordering_key(e.op(i)));
-    std::sort(factors.begin(), factors.end());
-    key = "*(";
-    for (const std::string& f : factors) key += f + ",";
-    key += ")";
-  } else {
-    // A power or a function: operands in their fixed order. (An exponent's sign matters and is kept: exponents
-    // are plain numbers GiNaC does not re-sign.)
-    std::ostringstream head;
-    if (is_a<power>(e))
-      head << "^";
-    else if (is_a<function>(e))
-      head << ex_to<function>(e).get_name();
-    else
-      head << "?";
-    key = head.str() + "(";
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-      const ex& o = e.op(i);
-      key += (is_a<power>(e) && i == 1 && is_a<numeric>(o) ? std::string(ex_to<numeric>(o).is_negative() ? "-" : "")
-                                                           : std::string()) +
-             ordering_key(o) + ",";
-    }
-    key += ")";
-  }
-  return keys_.emplace(e, std::move(key)).first->second;
+  keys_ = emit::SignFreeKeys();
 }
 
 std::vector<GiNaC::ex> ExpressionTape::canonical_operands(const GiNaC::ex& e) {
-  std::vector<std::pair<std::string, GiNaC::ex>> keyed;
-  for (std::size_t i = 0; i < e.nops(); ++i) keyed.emplace_back(ordering_key(e.op(i)), e.op(i));
-  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<GiNaC::ex> out;
-  for (auto& k : keyed) out.push_back(std::move(k.second));
+  for (std::size_t i : keys_.operand_order(e)) out.push_back(e.op(i));
   return out;
 }
 

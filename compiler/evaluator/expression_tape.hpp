@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "emit/sign_free_key.hpp"
+
 namespace mbgen::evaluator {
 
 class ExpressionTape {
@@ -33,27 +35,21 @@ class ExpressionTape {
   };
 
   int compile(const GiNaC::ex& e);
-  // The operands of a sum or product in the order of their keys (ordering_key), not GiNaC's internal order: that
-  // order follows hash values which depend on where the program is loaded (address-space randomization), and the
-  // order of a floating-point sum changes its rounding, so that two runs of one fit would differ in the last
-  // digits and then, through a long iteration, in more.
+  // The operands of a sum or product in the order of their sign-free keys (emit/sign_free_key.hpp), not GiNaC's
+  // internal order: that order follows hash values which depend on where the program is loaded (address-space
+  // randomization), and the order of a floating-point sum changes its rounding, so that two runs of one fit would
+  // differ in the last digits and then, through a long iteration, in more. An operand and its negative take the
+  // same place, so two runs differ at most by an exact sign.
   std::vector<GiNaC::ex> canonical_operands(const GiNaC::ex& e);
-  // A text of `e` that depends neither on GiNaC's term order nor on the signs GiNaC gives the sums in a product
-  // (it writes a factor as (a - b) or as (b - a), the sign moved to the coefficient, by that same hash order; so
-  // does the common-subexpression pass, whose temporaries then differ in sign and number from run to run): numbers
-  // by magnitude, a sum by its terms with signs relative to its first, a temporary by its body. An operand and its
-  // negative take the same place, so the two runs' results differ at most by an exact sign.
-  const std::string& ordering_key(const GiNaC::ex& e);
   int emit(Op op, int a, int b = -1, double value = 0, int exponent = 0);
 
   int n_params_ = 0;
   int n_registers_ = 0;
   std::vector<Instruction> code_;
   std::vector<int> outputs_;
-  // While compiling: symbols and temporaries already in a register, and ordering keys (parameters by name,
-  // temporaries by their bodies', other nodes memoized).
+  // While compiling: symbols and temporaries already in a register, and the operands' ordering keys.
   std::map<GiNaC::ex, int, GiNaC::ex_is_less> registers_;
-  std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> keys_;
+  emit::SignFreeKeys keys_;
 };
 
 }  // namespace mbgen::evaluator
