@@ -51,8 +51,8 @@ const std::set<std::string> kOtherPlane = {"k_fy", "k_ry", "k_fz", "c_fy", "c_ry
 
 }  // namespace
 
-TEST_CASE("Spindle FRF data: bearing and mount stiffnesses within 2 % of the truth at 40 dB SNR",
-          "[fit][frf][spindle]") {
+TEST_CASE("slow: Spindle FRF data: bearing and mount stiffnesses within 2 % of the truth at 40 dB SNR",
+          "[fit][frf][spindle][slow]") {
   const auto model = spindle_model();
   const std::map<std::string, double> truth = truth_parameters();
   // From the model file's defaults (the nominal values; the truth is 3-10 % off), as `mbgen fit` does.

@@ -75,7 +75,7 @@ TEST_CASE("slow: global search from 20 random priors within a factor 3 of the tr
   }
 }
 
-TEST_CASE("the multi-start result does not depend on the number of threads", "[fit][frf][global]") {
+TEST_CASE("slow: the multi-start result does not depend on the number of threads", "[fit][frf][global][slow]") {
   const test::Mdof2Values truth;
   std::mt19937 rng(8);
   const FrfData data = test::mdof2_frf_data(truth, frequencies(), 0.01, rng);

@@ -110,8 +110,8 @@ TEST_CASE("records with and without an added mass on mass2 are fitted jointly", 
   CHECK(wrong.cost > 10 * joint.cost);
 }
 
-TEST_CASE("time records: the multi-start search on their H1 reaches the time-domain optimum from priors within x3",
-          "[fit][time][global]") {
+TEST_CASE("slow: time records: the multi-start search on their H1 reaches the time-domain optimum from priors within x3",
+          "[fit][time][global][slow]") {
   const test::Mdof2Values truth;
   std::mt19937 rng(11);
   const TimeRecord record = test::mdof2_time_record(truth, 4000, 1.0 / 2000, 0.01, rng);
