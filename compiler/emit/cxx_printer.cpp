@@ -123,27 +123,14 @@ class Printer {
     return {s, 0};
   }
 
-  // A factor of a product as its magnitude and whether it is negative. A sum, or an integer power of one, is
-  // written with the sign sign_free_key.hpp gives it: GiNaC's choice of (a - b) or -(b - a) follows hash values,
-  // which differ from run to run, and the emitted code must not.
+  // A factor of a product as its magnitude and whether it is negative: a sum, or an integer power of one, is
+  // written with the sign sign_free_key.hpp gives it (GiNaC's choice of (a - b) or -(b - a) follows hash values,
+  // which differ from run to run, and the text must not).
   std::pair<Printed, bool> signed_factor(const GiNaC::ex& f) const {
-    if (GiNaC::is_a<GiNaC::add>(f)) {
-      const bool negative = keys_.sign(f) < 0;
-      return {print_add(f, negative), negative};
-    }
-    if (GiNaC::is_a<GiNaC::power>(f)) {
-      const auto [flip, negative] = base_flip(f);
-      return {print_power(f, flip), negative};
-    }
+    const SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
+    if (GiNaC::is_a<GiNaC::add>(f)) return {print_add(f, fs.negate_sum), fs.negative};
+    if (GiNaC::is_a<GiNaC::power>(f)) return {print_power(f, fs.negate_sum), fs.negative};
     return {print(f), false};
-  }
-
-  // For a power: whether its base is a sum to be written negated, and whether f then is negative.
-  std::pair<bool, bool> base_flip(const GiNaC::ex& f) const {
-    const GiNaC::ex& expo = f.op(1);
-    const bool flip =
-        GiNaC::is_a<GiNaC::add>(f.op(0)) && expo.info(GiNaC::info_flags::integer) && keys_.sign(f.op(0)) < 0;
-    return {flip, flip && !expo.info(GiNaC::info_flags::even)};
   }
 
   Printed base_of(const GiNaC::ex& f, bool flip) const { return flip ? print_add(f.op(0), true) : print(f.op(0)); }
@@ -160,9 +147,9 @@ class Printer {
       if (GiNaC::is_a<GiNaC::numeric>(f)) {
         coeff *= GiNaC::ex_to<GiNaC::numeric>(f);
       } else if (is_negative_integer_power(f)) {
-        const auto [flip, negative] = base_flip(f);
-        if (negative) coeff = -coeff;
-        den.push_back(as_factor(raised(base_of(f, flip), -GiNaC::ex_to<GiNaC::numeric>(f.op(1)))));
+        const SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
+        if (fs.negative) coeff = -coeff;
+        den.push_back(as_factor(raised(base_of(f, fs.negate_sum), -GiNaC::ex_to<GiNaC::numeric>(f.op(1)))));
       } else {
         const auto [magnitude, negative] = signed_factor(f);
         if (negative) coeff = -coeff;

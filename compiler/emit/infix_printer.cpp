@@ -98,27 +98,14 @@ class Printer {
     return {s, 0};
   }
 
-  // A factor of a product as its magnitude and whether it is negative. A sum, or an integer power of one, is
-  // written with the sign sign_free_key.hpp gives it: GiNaC's choice of (a - b) or -(b - a) follows hash values,
-  // which differ from run to run, and the text must not.
+  // A factor of a product as its magnitude and whether it is negative: a sum, or an integer power of one, is
+  // written with the sign sign_free_key.hpp gives it (GiNaC's choice of (a - b) or -(b - a) follows hash values,
+  // which differ from run to run, and the text must not).
   std::pair<Printed, bool> signed_factor(const GiNaC::ex& f) const {
-    if (GiNaC::is_a<GiNaC::add>(f)) {
-      const bool negative = keys_.sign(f) < 0;
-      return {add(f, negative), negative};
-    }
-    if (GiNaC::is_a<GiNaC::power>(f)) {
-      const auto [flip, negative] = base_flip(f);
-      return {power(f, flip), negative};
-    }
+    const SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
+    if (GiNaC::is_a<GiNaC::add>(f)) return {add(f, fs.negate_sum), fs.negative};
+    if (GiNaC::is_a<GiNaC::power>(f)) return {power(f, fs.negate_sum), fs.negative};
     return {print(f), false};
-  }
-
-  // For a power: whether its base is a sum to be written negated, and whether f then is negative.
-  std::pair<bool, bool> base_flip(const GiNaC::ex& f) const {
-    const GiNaC::ex& expo = f.op(1);
-    const bool flip =
-        GiNaC::is_a<GiNaC::add>(f.op(0)) && expo.info(GiNaC::info_flags::integer) && keys_.sign(f.op(0)) < 0;
-    return {flip, flip && !expo.info(GiNaC::info_flags::even)};
   }
 
   Printed base_of(const GiNaC::ex& f, bool flip) const { return flip ? add(f.op(0), true) : print(f.op(0)); }
@@ -132,9 +119,9 @@ class Printer {
         coeff *= exact(GiNaC::ex_to<GiNaC::numeric>(f));
       } else if (GiNaC::is_a<GiNaC::power>(f) && f.op(1).info(GiNaC::info_flags::negative) &&
                  GiNaC::is_a<GiNaC::numeric>(f.op(1))) {
-        const auto [flip, negative] = base_flip(f);
-        if (negative) coeff = -coeff;
-        den.push_back(wrap(raised(base_of(f, flip), -f.op(1)), 2));
+        const SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
+        if (fs.negative) coeff = -coeff;
+        den.push_back(wrap(raised(base_of(f, fs.negate_sum), -f.op(1)), 2));
       } else {
         const auto [magnitude, negative] = signed_factor(f);
         if (negative) coeff = -coeff;

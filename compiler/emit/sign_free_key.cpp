@@ -90,4 +90,15 @@ std::vector<std::size_t> SignFreeKeys::operand_order(const GiNaC::ex& e) {
   return order;
 }
 
+SignFreeKeys::FactorSign SignFreeKeys::factor_sign(const GiNaC::ex& f) {
+  if (GiNaC::is_a<GiNaC::add>(f)) {
+    const bool negative = sign(f) < 0;
+    return {negative, negative};
+  }
+  if (GiNaC::is_a<GiNaC::power>(f) && GiNaC::is_a<GiNaC::add>(f.op(0)) && f.op(1).info(GiNaC::info_flags::integer) &&
+      sign(f.op(0)) < 0)
+    return {true, !f.op(1).info(GiNaC::info_flags::even)};
+  return {};
+}
+
 }  // namespace mbgen::emit

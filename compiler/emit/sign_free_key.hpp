@@ -32,6 +32,14 @@ class SignFreeKeys {
   int sign(const GiNaC::ex& e) { return entry(e).second; }
   // The indices of e's operands in the order of their keys (a stable sort: equal keys keep GiNaC's order).
   std::vector<std::size_t> operand_order(const GiNaC::ex& e);
+  // How a printer writes a factor f of a product so that its text is the same in every run: a sum, or the base of
+  // an integer power of one, with every term's sign flipped (negate_sum) when its sign is negative; f is then
+  // negative (its sign goes to the product's coefficient) unless the power is even.
+  struct FactorSign {
+    bool negate_sum = false;
+    bool negative = false;
+  };
+  FactorSign factor_sign(const GiNaC::ex& f);
 
  private:
   const std::pair<std::string, int>& entry(const GiNaC::ex& e);
