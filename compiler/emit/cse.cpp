@@ -1,7 +1,7 @@
 #include "emit/cse.hpp"
 
-#include <algorithm>
 #include <map>
+#include <numeric>
 
 #include "emit/sign_free_key.hpp"
 
@@ -70,9 +70,9 @@ struct Hoister {
       // so changes from run to run): temporaries are numbered the same every run.
       GiNaC::exvector children(e.nops());
       bool changed = false;
-      const bool sum_or_product = GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e);
-      std::vector<std::size_t> order = keys.operand_order(e);
-      if (!sum_or_product) std::sort(order.begin(), order.end());
+      std::vector<std::size_t> order(e.nops());
+      std::iota(order.begin(), order.end(), std::size_t{0});
+      if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) order = keys.operand_order(e);
       for (std::size_t i : order) {
         children[i] = rewrite(e.op(i));
         changed = changed || !children[i].is_equal(e.op(i));
