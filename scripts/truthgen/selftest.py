@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Self-checks of truthgen (exit 1 on any failure).
 
-    python3 scripts/truthgen/selftest.py            # fast checks (~1-2 min on a shared 2-core machine)
-    python3 scripts/truthgen/selftest.py --effects  # also the effect size of every case (~15 min)
-    python3 scripts/truthgen/selftest.py --corners  # and at the weak ends of the --draw ranges (~15 min)
+    python3 scripts/truthgen/selftest.py            # fast checks (~75 s on a shared 2-core machine)
+    python3 scripts/truthgen/selftest.py --effects  # also the effect size of every case (~5 min more)
+    python3 scripts/truthgen/selftest.py --corners  # and at the weak ends of the --draw ranges (~4 min more)
+    python3 scripts/truthgen/selftest.py --only=CASE[,CASE] [--corners]   # just those cases' effect sizes
 
 0. Existing command lines still write byte-identical files: hashes of files made before --draw, --averages,
    --no-coherence and the sensor, base_on_feet and frame3 cases were added (the test data of tests/diagnosis
