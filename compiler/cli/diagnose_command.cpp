@@ -55,7 +55,7 @@ int run_diagnose(int argc, char** argv) {
   CLI::App app{"Fit the model, find what its simulation gets wrong beyond the noise, try extensions of the model "
                "built from its own structure, and keep one only on strong evidence.",
                "mbgen diagnose"};
-  std::string model_path, json_path, report_dir, extended_path;
+  std::string model_path, json_path, report_dir, extended_path, fit_band;
   std::vector<std::string> data_paths, sets;
   diagnosis::DiagnoseOptions options;
   app.add_option("model", model_path, "model file (.mdl)")->required();
@@ -68,6 +68,12 @@ int run_diagnose(int argc, char** argv) {
   app.add_option("--starts", options.fit.starts, "starts of the nominal fit's global search (default 16)")
       ->check(CLI::PositiveNumber);
   app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)");
+  app.add_option("--full-fits", options.full_fits,
+                 "candidates fitted fully after the screening (default 6; 0: every candidate)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--fit-band", fit_band,
+                 "fit the models on the FRF lines within LO:HI Hz only (the band the model is meant to represent), "
+                 "and judge them over all the data");
   app.set_version_flag("--version", std::string("mbgen ") + kVersion);
   return run_guarded(app, argc, argv, [&] {
     options.set = parse_set_options(sets);
@@ -79,6 +85,7 @@ int run_diagnose(int argc, char** argv) {
     symbolic::DeriveOptions derive;
     derive.set = options.set;
     const std::vector<DataSet> data = load_data(data_paths, evaluator::make_evaluator(model, derive)->info());
+    if (!fit_band.empty()) options.fit_data = within_band(data, parse_band("--fit-band", fit_band));
     options.progress = [](const std::string& line) {
       progress_done();
       std::cerr << "diagnose: " << line << "\n";

@@ -45,7 +45,7 @@ int run_fit(int argc, char** argv) {
                "analytic Jacobians, bounds by reparameterisation, a deterministic multi-start global search, "
                "uncertainties and an identifiability report.",
                "mbgen fit"};
-  std::string model_path, method = "auto", json_path, report_dir;
+  std::string model_path, method = "auto", json_path, report_dir, band;
   std::vector<std::string> data_paths, sets;
   FitOptions options;
   app.add_option("model", model_path, "model file (.mdl)")->required();
@@ -57,6 +57,7 @@ int run_fit(int argc, char** argv) {
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("--starts", options.starts, "number of starts of the global search (default 16)")->check(CLI::PositiveNumber);
   app.add_option("--seed", options.seed, "seed of the global search (default 1)");
+  app.add_option("--band", band, "fit only the FRF lines within LO:HI Hz (the band the model is meant to represent)");
   app.set_version_flag("--version", std::string("mbgen ") + kVersion);
   return run_guarded(app, argc, argv, [&] {
     symbolic::DeriveOptions derive;
@@ -65,7 +66,8 @@ int run_fit(int argc, char** argv) {
     OutputFiles::require_writable(report_dir);
     const ir::Model model = frontend::parse_file(model_path);
     const auto evaluator = evaluator::make_evaluator(model, derive);
-    const std::vector<DataSet> data = load_data(data_paths, evaluator->info());
+    std::vector<DataSet> data = load_data(data_paths, evaluator->info());
+    if (!band.empty()) data = within_band(data, parse_band("--band", band));
     for (const DataSet& d : data) {
       if (method == "frf-output-error" && !d.is_frf())
         throw CLI::ValidationError("--method", "frf-output-error needs FRF data, but " + d.file() + " is a time record");

@@ -97,6 +97,43 @@ TEST_CASE("compliant_ground:base on the spindle: the base is a translating body 
   CHECK(same(sm.M(coordinate(sm, "base.z"), coordinate(sm, "base.z")), p("m_base")));
 }
 
+TEST_CASE("compliant_ground:base on feet: a six-coordinate base standing on a foot at each mount's base point",
+          "[diagnosis][physics]") {
+  const test::Example sp = test::load("spindle");
+  const std::vector<Extension> xs = enumerate_extensions(sp.model, sp.text, {});
+  const auto it = std::find_if(xs.begin(), xs.end(), [](const Extension& x) { return x.variant == "on feet"; });
+  REQUIRE(it != xs.end());
+  const Extension& x = *it;
+  CHECK(x.id == "compliant_ground:base");
+  const symbolic::SymbolicModel sm = test::check_candidate(x);
+  CHECK(sm.coordinates.size() == 11 + 6);
+  const ir::Body* base = x.model.find_body("base");
+  REQUIRE(base);
+  CHECK(base->dofs.size() == 6);
+  int feet = 0;
+  for (const ir::Element& e : x.model.elements) feet += e.name.rfind("base_foot", 0) == 0;
+  CHECK(feet == 4);
+  // Hand-assembled: each mount's base point p lies at p - c = (+-0.048, 0, +-0.060) from the centroid c, and
+  // carries a foot (k_basex, k_basey, k_basez) in parallel with the mount (k_hbx, k_hby, k_hbz). A spring3 along
+  // global axes at offset d adds k_y d_x^2 + k_x d_y^2 to the rotation about z, k_z d_x^2 + k_x d_z^2 about y,
+  // and k_y d_z^2 + k_z d_y^2 about x.
+  auto p = [&](const char* n) { return symbolic::test::symbol_of(sm, n); };
+  const ex kx = p("k_basex") + p("k_hbx"), ky = p("k_basey") + p("k_hby"), kz = p("k_basez") + p("k_hbz");
+  const ex dx2 = GiNaC::numeric(48, 1000) * GiNaC::numeric(48, 1000), dz2 = GiNaC::numeric(6, 100) * GiNaC::numeric(6, 100);
+  CHECK(same(sm.K(coordinate(sm, "base.rz"), coordinate(sm, "base.rz")), 4 * ky * dx2));
+  CHECK(same(sm.K(coordinate(sm, "base.ry"), coordinate(sm, "base.ry")), 4 * (kz * dx2 + kx * dz2)));
+  CHECK(same(sm.K(coordinate(sm, "base.rx"), coordinate(sm, "base.rx")), 4 * ky * dz2));
+  CHECK(same(sm.K(coordinate(sm, "base.x"), coordinate(sm, "base.x")), 4 * kx));
+  CHECK_FALSE(same(sm.K(coordinate(sm, "base.rz"), coordinate(sm, "base.rz")), 4 * kx * dx2));  // can fail
+  const ex m = p("m_base"), r = p("r_base");
+  for (const char* c : {"base.rx", "base.ry", "base.rz"}) CHECK(same(sm.M(coordinate(sm, c), coordinate(sm, c)), m * r * r));
+  CHECK(same(sm.M(coordinate(sm, "base.x"), coordinate(sm, "base.x")), m));
+  // The variant estimates the radius of gyration and the per-axis foot stiffnesses, with one damping.
+  std::vector<std::string> fresh;
+  for (const NewParameter& np : x.new_parameters) fresh.push_back(np.name);
+  CHECK(fresh == std::vector<std::string>{"m_base", "r_base", "k_basex", "k_basey", "k_basez", "c_base"});
+}
+
 TEST_CASE("added_mass changes the mass by exactly ma and the moments about the origin as a point mass does",
           "[diagnosis][physics]") {
   const test::Example sp = test::load("spindle");

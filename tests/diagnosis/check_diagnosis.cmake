@@ -1,7 +1,8 @@
 # One hidden-effect test: make data with the independent truth-model generator (scripts/truthgen, numpy; not
 # mbgen's code), run `mbgen diagnose`, and check the verdict and the selected extensions in its JSON.
 #   -DMBGEN=... -DPYTHON=... -DTRUTHGEN=... -DMODEL=... -DWORK_DIR=...
-#   -DDATA="example:case:kind:seed[:NAME=VALUE][:duration=S]|..."   one or more data sets
+#   -DDATA="example:case:kind:seed[:NAME=VALUE][:duration=S][:draw=N][:averages=N][:nocoh][:fs=HZ]|..."
+#                                                                     one or more data sets
 #   -DEXPECT_VERDICT=extended|no_extension_justified|unexplained|not_extended
 #   -DEXPECT_SELECTED=id (first selected extension, when extended)
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -22,6 +23,14 @@ foreach(set IN LISTS sets)
     foreach(option IN LISTS options)
       if(option MATCHES "^duration=(.*)$")
         list(APPEND extra --duration "${CMAKE_MATCH_1}")  # a time record's length, s
+      elseif(option MATCHES "^draw=(.*)$")
+        list(APPEND extra --draw "${CMAKE_MATCH_1}")  # the truth drawn at random from this seed
+      elseif(option MATCHES "^averages=(.*)$")
+        list(APPEND extra --averages "${CMAKE_MATCH_1}")  # an FRF averaged this many times
+      elseif(option STREQUAL "nocoh")
+        list(APPEND extra --no-coherence)  # an FRF file without coherence columns
+      elseif(option MATCHES "^fs=(.*)$")
+        list(APPEND extra --fs "${CMAKE_MATCH_1}")  # a time record's sample rate, Hz
       else()
         list(APPEND extra --set "${option}")
       endif()

@@ -21,6 +21,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,12 +34,21 @@ struct DiagnoseOptions {
   std::map<std::string, std::string> set;  // --set overrides (decimal text)
   FitOptions fit;                          // the nominal fit (starts, seed, threads, weighting)
   int candidate_starts = 2;                // starts per search of a candidate (start 0: the search's centre)
+  // Screening: every candidate is first fitted cheaply (two short local fits, from the current estimate and from
+  // the priors, each at most `screen_iterations` Levenberg-Marquardt steps, on FRFs: the measured ones or the
+  // records' H1 estimates); only the `full_fits` with the lowest screened BIC get the full two-search fit and a
+  // verdict. 0: every candidate is fitted fully.
+  int full_fits = 6;
+  int screen_iterations = 40;
   double min_delta_bic = -10.0;
   double min_validation_gain = 0.01;       // relative decrease of the validation error required
   int max_extensions = 3;
   double max_final_residual = 3.0;         // mean normalized residual the extended model must reach (noise: 1)
   double max_remaining_findings = 0.5;     // fraction of the nominal model's findings the extended one may keep
   ResidualOptions residual;
+  // The data the models are fitted on, when not all of it (`--fit-band`: the band a model is meant to represent);
+  // the findings are judged over all the data either way. Same data sets, in the same order.
+  std::optional<std::vector<DataSet>> fit_data;
   std::function<void(const std::string&)> progress;  // one line per step
 };
 
@@ -59,6 +69,8 @@ struct CandidateOutcome {
   std::vector<std::string> doubts;  // why it is not plausible
   bool qualifies = false;           // strong evidence by BIC, validation and plausibility
   std::string error;                // it could not be derived or fitted
+  double screen_delta_bic = 0;      // the screening fit's BIC minus the current model's on the same data
+  bool fully_fitted = true;         // false: screened out (its fit is the screening fit; it cannot qualify)
 };
 
 // One model with its fit and judgement: the nominal, then each accepted extension.

@@ -23,10 +23,12 @@ ordered_json parameter(const ParameterEstimate& p) {
 
 ordered_json discrepancies(const ResidualSummary& r) {
   ordered_json out = ordered_json::array();
-  for (const Discrepancy& d : r.discrepancies)
+  for (const Discrepancy& d : r.discrepancies) {
     out.push_back({{"kind", d.kind}, {"channel", d.channel}, {"f_hz", number(d.f_hz)}, {"text", d.text},
                    {"data_set", d.data_set}, {"f_lo_hz", number(d.f_lo)}, {"f_hi_hz", number(d.f_hi)},
                    {"size_db", number(d.size_db)}, {"significance", number(d.significance)}});
+    if (!d.parameter.empty()) out.back()["parameter"] = d.parameter;
+  }
   return out;
 }
 
@@ -68,6 +70,9 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
                           {"plausible", c.plausible},
                           {"doubts", c.doubts},
                           {"qualifies", c.qualifies}};
+    entry["screen_delta_bic"] = number(c.screen_delta_bic);
+    entry["fully_fitted"] = c.fully_fitted;
+    if (!c.fully_fitted) entry["validation_nrmse"] = nullptr;
     if (!c.variant.empty()) {
       entry["variant"] = c.variant;
       entry["variants_tried"] = c.variants_tried;

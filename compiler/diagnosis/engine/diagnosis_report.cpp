@@ -101,12 +101,18 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
       md << "failed | | | | " << c.error << " |\n";
       continue;
     }
+    if (!c.fully_fitted) {
+      md << "screened out (" << num(c.screen_delta_bic, 5) << " in screening) | | | no | " << c.description << " |\n";
+      continue;
+    }
     md << num(c.delta_bic, 5) << " | " << num(c.validation_nrmse) << " | "
        << (c.plausible ? "yes" : "no: " + (c.doubts.empty() ? std::string() : c.doubts.front())) << " | "
        << (c.qualifies ? "**yes**" : "no") << " | " << c.description << " |\n";
   }
-  md << "\nA candidate qualifies when its BIC is lower by more than 10, its validation error is lower, and its new "
-        "parameters are plausible; the best one is selected if it also explains the discrepancy.\n\n";
+  md << "\nEvery candidate is first fitted cheaply (one local fit from the current estimate); the best by that "
+        "screening are fitted fully. A candidate qualifies when its BIC is lower by more than 10, its validation error "
+        "is lower, and its new parameters are plausible; the best one is selected if it also explains the "
+        "discrepancy.\n\n";
 
   md << "## Parameters of the nominal model\n\n";
   parameter_table(md, r.nominal.fit);

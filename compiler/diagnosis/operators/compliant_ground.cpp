@@ -1,6 +1,14 @@
 // compliant_ground:G -- a ground that elements attach to is not rigid after all (thesis Sec. 5.4.3: an
-// unexplained 190 Hz peak, "possibly the table" the spindle housing stands on). It becomes a body that moves
-// in translation, held to a new fixed ground by one isotropic spring-damper.
+// unexplained 190 Hz peak, "possibly the table" the spindle housing stands on). Two variants, BIC chooses:
+//
+//   simple        G becomes a body that moves in translation, held to a new fixed ground by one isotropic
+//                 spring-damper at the centroid of its attachments: a base that moves as a whole.
+//   on feet       G becomes a rigid body with all six coordinates (mass, and an inertia from an estimated radius of
+//                 gyration), standing on a foot at each point where the model's elements meet it: a spring3 per
+//                 point with per-axis stiffness and one damping, shared by the feet. A heavy base rocks as well as
+//                 translates, and its rocking couples into the structure through the attachment points' offsets.
+//                 Offered where the attachment points are at least three and not on one line (else the feet
+//                 cannot hold the rotations).
 #include <algorithm>
 #include <cmath>
 
@@ -36,86 +44,173 @@ std::size_t bodies_before(const ir::Model& m, ir::SourceLoc loc) {
   });
 }
 
-Extension extend(const OperatorInput& in, const ir::Ground& ground) {
-  const ir::Model& m = in.model;
-  Draft d(in, "compliant_ground", ground.name);
-
-  // Centroid and spread of the attachment points, at the current values.
-  std::vector<std::array<double, 3>> points;
-  for (const ir::Element& e : m.elements)
-    for (const ir::Attachment* a : {&e.a, &e.b})
-      if (a->frame == ground.name)
-        points.push_back({in.values.of(a->point[0]), in.values.of(a->point[1]), in.values.of(a->point[2])});
+// The attachment points of a ground (at the current values), and their centroid and spread.
+struct Attachments {
+  std::vector<std::array<double, 3>> points;  // one per attachment, repeats included
+  std::vector<std::array<double, 3>> distinct;
   std::array<double, 3> centre{0, 0, 0};
-  for (const auto& p : points)
-    for (int k = 0; k < 3; ++k) centre[k] += p[k] / points.size();
+  double radius = 0;     // farthest point from the centroid
+  bool centred = false;  // the centroid is the origin
+};
+
+Attachments attachments_of(const OperatorInput& in, const std::string& ground) {
+  Attachments a;
+  for (const ir::Element& e : in.model.elements)
+    for (const ir::Attachment* at : {&e.a, &e.b})
+      if (at->frame == ground)
+        a.points.push_back({in.values.of(at->point[0]), in.values.of(at->point[1]), in.values.of(at->point[2])});
+  for (const auto& p : a.points)
+    for (int k = 0; k < 3; ++k) a.centre[k] += p[k] / a.points.size();
   // Rounding must not turn a centred layout into a 1e-18 offset.
   double scale = 1;
-  for (const auto& p : points)
+  for (const auto& p : a.points)
     for (double v : p) scale = std::max(scale, std::abs(v));
-  for (double& c : centre)
+  for (double& c : a.centre)
     if (std::abs(c) < 1e-12 * scale) c = 0;
-  double radius = 0;
-  for (const auto& p : points)
-    radius = std::max(radius, std::hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]));
-  const bool centred = centre == std::array<double, 3>{0, 0, 0};
-
-  // Start values: a few times the moving mass; the new mode at the strongest unexplained peak, else well above
-  // the model's own modes (twice the frequency sqrt(k_max/m_min) of its stiffest element on its lightest body).
-  const double total = total_moving_mass(m, in.values);
-  const double mass = 3 * total;
-  const double omega = in.ctx.peak_hz.empty()
-                           ? 2 * std::sqrt(largest_translational_stiffness(m, in.values) / smallest_body_mass(m, in.values))
-                           : kTwoPi * in.ctx.peak_hz.front();
-  const double k = mass * omega * omega;
-  const std::string& g = ground.name;
-  const std::string m_g = d.add_parameter("m_" + g, mass, "kg", 1e-3 * total, 1e3 * total, "mass of " + g + " when it moves");
-  const std::string k_g = d.add_parameter("k_" + g, k, "N/m", 0.0, std::nullopt, "stiffness holding " + g + ", each axis");
-  const std::string c_g = d.add_parameter("c_" + g, light_damping(k, mass), "N s/m", 0.0, std::nullopt,
-                                          "damping holding " + g + ", each axis");
-
-  ir::Body body;
-  body.name = g;
-  body.mass = sym(m_g);
-  if (radius > 0) {
-    // A rigid block of the size the attachments span: inertia of a solid sphere of that radius, known.
-    const std::string r_g = d.add_parameter("r_" + g, radius, "m", std::nullopt, std::nullopt,
-                                            "size of " + g + ": farthest attachment from their centroid", ir::Role::Known);
-    for (int j = 0; j < 3; ++j) body.inertia[j] = div(mul(mul(num("2"), sym(m_g)), square(sym(r_g))), num("5"));
+  for (const auto& p : a.points) {
+    a.radius = std::max(a.radius, std::hypot(p[0] - a.centre[0], p[1] - a.centre[1], p[2] - a.centre[2]));
+    const bool seen = std::any_of(a.distinct.begin(), a.distinct.end(), [&](const auto& q) {
+      return std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]) <= 1e-9 * scale;
+    });
+    if (!seen) a.distinct.push_back(p);
   }
-  for (int j = 0; j < 3; ++j) body.position[j] = number_expr(centre[j]);
-  body.dofs = translations_needed(m, g, in.values);
+  a.centred = a.centre == std::array<double, 3>{0, 0, 0};
+  return a;
+}
 
+// At least three distinct points not on one line: feet there hold every rotation.
+bool spans_a_plane(const std::vector<std::array<double, 3>>& p) {
+  for (std::size_t i = 1; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const double u[3] = {p[i][0] - p[0][0], p[i][1] - p[0][1], p[i][2] - p[0][2]};
+      const double v[3] = {p[j][0] - p[0][0], p[j][1] - p[0][1], p[j][2] - p[0][2]};
+      const double c = std::hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+      if (c > 1e-9 * std::hypot(u[0], u[1], u[2]) * std::hypot(v[0], v[1], v[2])) return true;
+    }
+  return false;
+}
+
+ir::Vec3 point_expr(const std::array<double, 3>& p) {
+  return {number_expr(p[0]), number_expr(p[1]), number_expr(p[2])};
+}
+
+// The ground replaced by `body` in the model and in the text; attachments that meant the ground's origin keep
+// that point (a body's implicit point is its centre of mass). Returns the new fixed ground's name.
+std::string ground_to_body(Draft& d, const OperatorInput& in, const ir::Ground& ground, const ir::Body& body,
+                           bool centred) {
+  const std::string& g = ground.name;
   ir::Model& x = d.model();
   x.grounds.erase(std::find_if(x.grounds.begin(), x.grounds.end(), [&](const ir::Ground& q) { return q.name == g; }));
-  x.bodies.insert(x.bodies.begin() + bodies_before(m, ground.loc), body);
+  x.bodies.insert(x.bodies.begin() + bodies_before(in.model, ground.loc), body);
   d.patch().replace_statement(ground.loc, "ground `" + g + "` now moves: it is a body held by spring-dampers",
                               frontend::write_body(body));
-
-  // Attachments that meant the ground's origin keep that point (a body's implicit point is its centre of mass).
   for (ir::Element& e : x.elements)
     for (ir::Attachment* a : {&e.a, &e.b})
       if (a->frame == g && !a->has_point && !centred && e.kind != ir::ElementKind::Torsion) {
         a->has_point = true;
         d.patch().insert_after(a->loc, g, " at (0, 0, 0)");
       }
-
   ir::Ground fixed{d.names().fresh(g + "_fixed"), {}};
   d.add_ground(fixed);
-  ir::Element support;
-  support.name = d.names().fresh(g + "_support");
-  support.kind = ir::ElementKind::Spring3;
-  support.a.frame = g;
-  support.a.point = body.position;
-  support.b.frame = fixed.name;
-  support.b.point = body.position;
-  support.b.has_point = !centred;
-  support.stiffness = {sym(k_g), sym(k_g), sym(k_g)};
-  support.damping = {sym(c_g), sym(c_g), sym(c_g)};
-  d.add_element(support);
+  return fixed.name;
+}
 
-  return d.finish("ground " + g + " is not rigid: it becomes a body of mass " + m_g + " held to a fixed " + fixed.name +
+ir::Element spring3(const std::string& name, const std::string& body, const std::string& fixed, const ir::Vec3& point,
+                    bool fixed_point_written, std::vector<ir::Expr> k, std::vector<ir::Expr> c) {
+  ir::Element e;
+  e.name = name;
+  e.kind = ir::ElementKind::Spring3;
+  e.a.frame = body;
+  e.a.point = point;
+  e.b.frame = fixed;
+  e.b.point = point;
+  e.b.has_point = fixed_point_written;
+  e.stiffness = std::move(k);
+  e.damping = std::move(c);
+  return e;
+}
+
+// Start values: a few times the moving mass; the new mode at the strongest unexplained peak, else well above the
+// model's own modes (twice the frequency sqrt(k_max/m_min) of its stiffest element on its lightest body).
+struct Start {
+  double total, mass, omega;
+};
+Start start_values(const OperatorInput& in) {
+  const ir::Model& m = in.model;
+  const double total = total_moving_mass(m, in.values);
+  const double omega = in.ctx.peak_hz.empty()
+                           ? 2 * std::sqrt(largest_translational_stiffness(m, in.values) / smallest_body_mass(m, in.values))
+                           : kTwoPi * in.ctx.peak_hz.front();
+  return {total, 3 * total, omega};
+}
+
+Extension simple(const OperatorInput& in, const ir::Ground& ground, const Attachments& at, bool with_variants) {
+  const ir::Model& m = in.model;
+  Draft d(in, "compliant_ground", ground.name);
+  if (with_variants) d.set_variant("simple");
+  const Start st = start_values(in);
+  const double k = st.mass * st.omega * st.omega;
+  const std::string& g = ground.name;
+  const std::string m_g =
+      d.add_parameter("m_" + g, st.mass, "kg", 1e-3 * st.total, 1e3 * st.total, "mass of " + g + " when it moves");
+  const std::string k_g = d.add_parameter("k_" + g, k, "N/m", 0.0, std::nullopt, "stiffness holding " + g + ", each axis");
+  const std::string c_g = d.add_parameter("c_" + g, light_damping(k, st.mass), "N s/m", 0.0, std::nullopt,
+                                          "damping holding " + g + ", each axis");
+
+  ir::Body body;
+  body.name = g;
+  body.mass = sym(m_g);
+  if (at.radius > 0) {
+    // A rigid block of the size the attachments span: inertia of a solid sphere of that radius, known.
+    const std::string r_g = d.add_parameter("r_" + g, at.radius, "m", std::nullopt, std::nullopt,
+                                            "size of " + g + ": farthest attachment from their centroid", ir::Role::Known);
+    for (int j = 0; j < 3; ++j) body.inertia[j] = div(mul(mul(num("2"), sym(m_g)), square(sym(r_g))), num("5"));
+  }
+  body.position = point_expr(at.centre);
+  body.dofs = translations_needed(m, g, in.values);
+  const std::string fixed = ground_to_body(d, in, ground, body, at.centred);
+  d.add_element(spring3(d.names().fresh(g + "_support"), g, fixed, body.position, !at.centred,
+                        {sym(k_g), sym(k_g), sym(k_g)}, {sym(c_g), sym(c_g), sym(c_g)}));
+  return d.finish("ground " + g + " is not rigid: it becomes a body of mass " + m_g + " held to a fixed " + fixed +
                   " by springs of stiffness " + k_g + " and damping " + c_g + " in every direction");
+}
+
+Extension on_feet(const OperatorInput& in, const ir::Ground& ground, const Attachments& at) {
+  Draft d(in, "compliant_ground", ground.name);
+  d.set_variant("on feet");
+  const Start st = start_values(in);
+  const double feet = static_cast<double>(at.distinct.size());
+  const double k_foot = st.mass * st.omega * st.omega / feet;
+  const std::string& g = ground.name;
+  const std::string m_g =
+      d.add_parameter("m_" + g, st.mass, "kg", 1e-3 * st.total, 1e3 * st.total, "mass of " + g + " when it moves");
+  const std::string r_g = d.add_parameter("r_" + g, at.radius, "m", 1e-2 * at.radius, 1e2 * at.radius,
+                                          "radius of gyration of " + g + " (its inertia is m r^2 about each axis)");
+  std::vector<ir::Expr> k, c;
+  std::string k_names;
+  for (const char* axis : {"x", "y", "z"}) {
+    const std::string name = d.add_parameter("k_" + g + axis, k_foot, "N/m", 0.0, std::nullopt,
+                                             std::string("stiffness of each foot of ") + g + " along " + axis);
+    k.push_back(sym(name));
+    k_names += (k_names.empty() ? "" : ", ") + name;
+  }
+  const std::string c_g = d.add_parameter("c_" + g, light_damping(k_foot, st.mass / feet), "N s/m", 0.0, std::nullopt,
+                                          "damping of each foot of " + g + ", each axis");
+  c = {sym(c_g), sym(c_g), sym(c_g)};
+
+  ir::Body body;
+  body.name = g;
+  body.mass = sym(m_g);
+  for (int j = 0; j < 3; ++j) body.inertia[j] = mul(sym(m_g), square(sym(r_g)));
+  body.position = point_expr(at.centre);
+  body.dofs = {ir::Dof::X, ir::Dof::Y, ir::Dof::Z, ir::Dof::RX, ir::Dof::RY, ir::Dof::RZ};
+  const std::string fixed = ground_to_body(d, in, ground, body, at.centred);
+  for (std::size_t i = 0; i < at.distinct.size(); ++i)
+    d.add_element(spring3(d.names().fresh(g + "_foot" + std::to_string(i + 1)), g, fixed, point_expr(at.distinct[i]),
+                          true, k, c));
+  return d.finish("ground " + g + " is a rigid body of mass " + m_g + " (radius of gyration " + r_g + ") standing on " +
+                  std::to_string(at.distinct.size()) + " feet where the model's elements meet it, each with stiffnesses " +
+                  k_names + " along x, y, z and damping " + c_g + ": it translates and rocks");
 }
 
 }  // namespace
@@ -126,7 +221,11 @@ std::vector<Extension> compliant_ground(const OperatorInput& in) {
     const bool held = std::any_of(in.model.elements.begin(), in.model.elements.end(), [&](const ir::Element& e) {
       return e.kind != ir::ElementKind::Torsion && (e.a.frame == g.name || e.b.frame == g.name);
     });
-    if (held) out.push_back(extend(in, g));
+    if (!held) continue;
+    const Attachments at = attachments_of(in, g.name);
+    const bool feet = at.distinct.size() >= 3 && spans_a_plane(at.distinct);
+    out.push_back(simple(in, g, at, feet));
+    if (feet) out.push_back(on_feet(in, g, at));
   }
   return out;
 }

@@ -116,6 +116,11 @@ struct ParameterEstimate {
   bool estimated = false;     // a candidate that was fitted
   bool identifiable = true;   // false: kept at the prior because the data cannot determine it
   std::vector<std::string> confounded_with;  // parameters it is not separable from (if any)
+  // How much the fit would gain by moving this parameter alone beyond where it stands, in units of the residual
+  // variance (chi-square): (r . J_p)^2 / (|J_p|^2 s^2) at the estimate. An interior optimum has zero gradient, so
+  // this is near zero unless a bound holds the parameter; `toward` says which way the fit pulls (-1 lower, +1 higher).
+  double pull_chi2 = 0;
+  int toward = 0;
 };
 
 struct FitResult {

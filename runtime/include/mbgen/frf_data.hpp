@@ -28,4 +28,8 @@ struct FrfData {
   const FrfChannel* find(const std::string& output, const std::string& input) const;
 };
 
+// The lines of `data` within [lo_hz, hi_hz] (a fit band: the band a model is meant to represent). Throws
+// std::invalid_argument when no line is left.
+FrfData within_band(const FrfData& data, double lo_hz, double hi_hz);
+
 }  // namespace mbgen

@@ -29,8 +29,10 @@ struct ChannelResidual {
 
 struct Discrepancy {
   // unexplained_resonance, unexplained_antiresonance, frequency_shift, damping_mismatch, static_compliance,
-  // mass_line, phase_trend, misfit
+  // mass_line, phase_trend, misfit; parameter_at_bound (the fit pressed `parameter` against a bound: the model
+  // fits the data only with values it does not allow)
   std::string kind;
+  std::string parameter;        // parameter_at_bound: its name
   std::string channel, data_set;
   double f_hz = 0;              // the characteristic frequency (a peak of the data, or the band's centre)
   double f_lo = 0, f_hi = 0;    // the band

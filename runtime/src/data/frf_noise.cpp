@@ -130,34 +130,43 @@ FrfNoise from_scatter(const Eigen::VectorXd& f_hz, const Eigen::VectorXcd& h, do
   return out;
 }
 
-// The coherence-based level in shape (one average), each line's |H|^2 averaged over five lines: a single line's
-// |H| is itself noisy, and where noise dominates (anti-resonances) a low draw would shrink the level and make noise
-// look like a finding, while the average includes the noise power and errs safe. Its scale is then estimated from
-// the data's scatter.
+// The coherence-based level in shape: the H1 variance is (1 - coh^2)/(n coh^2) |H|^2 with the true |H|. The measured
+// |h|^2 holds the noise too (E|h|^2 = |H|^2 / coh^2 for an output-noise-limited estimate), so (1 - coh^2) |h|^2
+// estimates the variance without the bias that (1 - coh^2)/coh^2 |h|^2 has where the data are near the noise;
+// |h|^2 is averaged over five lines, since a single line's is itself noisy. Its scale (1/n) is then estimated from
+// the data's scatter on the lines where the response stands out of the noise (coherence 0.8 and up), where the
+// coherence itself is well determined.
 FrfNoise from_coherence(const Eigen::VectorXcd& h, const Eigen::VectorXd& coherence, double floor) {
   const Eigen::Index n = h.size();
   const double rms = std::sqrt(h.cwiseAbs2().mean());
-  Eigen::VectorXd line_variance(n), judged(n);
+  Eigen::VectorXd variance(n);
   for (Eigen::Index k = 0; k < n; ++k) {
     const double g2 = std::clamp(coherence[k], 1e-12, 1.0);
-    const double ratio = (1.0 - g2) / g2;
     const Eigen::Index lo = std::max<Eigen::Index>(0, k - 2), hi = std::min<Eigen::Index>(n - 1, k + 2);
-    line_variance[k] = std::max(ratio * std::norm(h[k]), floor * floor * rms * rms);
-    judged[k] = std::max(ratio * h.segment(lo, hi - lo + 1).cwiseAbs2().mean(), floor * floor * rms * rms);
+    variance[k] = std::max((1.0 - g2) * h.segment(lo, hi - lo + 1).cwiseAbs2().mean(), floor * floor * rms * rms);
   }
   // Maximum likelihood of the scale of e_k ~ Exp(scale v_k), the curvature-dominated lines left out.
   const Stencil s = differences(h);
-  const Eigen::VectorXd v = stencil_sum(line_variance);
+  const Eigen::VectorXd v = stencil_sum(variance);
   const Eigen::Index m = s.e.size();
-  double scale = (s.e.array() / v.array()).mean();
+  std::vector<char> usable(static_cast<std::size_t>(m), 0);
+  int usable_count = 0;
+  for (Eigen::Index k = 0; k < m; ++k) {
+    bool clear = true;
+    for (int j = 0; j <= 2 * kHalf; ++j) clear = clear && coherence[k + j] >= 0.8;
+    usable[static_cast<std::size_t>(k)] = clear;
+    usable_count += clear;
+  }
+  if (usable_count < FrfNoise::kMinLines) std::fill(usable.begin(), usable.end(), 1);  // too few: use all
+  double scale = 1;
   int left_out = 0;
   for (int iteration = 0; iteration < 40; ++iteration) {
     double sum = 0;
     int kept = 0;
     for (Eigen::Index k = 0; k < m; ++k)
-      if (s.e[k] <= kCut * scale * v[k]) sum += s.e[k] / v[k], ++kept;
+      if (usable[static_cast<std::size_t>(k)] && s.e[k] <= kCut * scale * v[k]) sum += s.e[k] / v[k], ++kept;
     const double next = kept > 0 ? sum / kept / kTruncatedMean : scale;
-    left_out = static_cast<int>(m) - kept;
+    left_out = usable_count - kept;
     const bool settled = std::abs(next - scale) <= 1e-9 * scale;
     scale = next;
     if (settled) break;
@@ -165,8 +174,8 @@ FrfNoise from_coherence(const Eigen::VectorXcd& h, const Eigen::VectorXd& cohere
   FrfNoise out;
   out.source = FrfNoise::Source::Coherence;
   out.coherence_scale = scale;
-  out.lines_left_out = left_out;
-  out.sigma = (scale * judged.array()).sqrt();
+  out.lines_left_out = std::max(left_out, 0);
+  out.sigma = (scale * variance.array()).sqrt();
   return out;
 }
 

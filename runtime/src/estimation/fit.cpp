@@ -3,7 +3,7 @@
 #include "levenberg_marquardt.hpp"
 #include "multistart.hpp"
 #include "output_error.hpp"
-#include "spectral_companion.hpp"
+#include "mbgen/spectral_companion.hpp"
 
 #include "mbgen/identifiability.hpp"
 #include "mbgen/parameterization.hpp"
@@ -310,6 +310,14 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
     if (it != free.end()) {
       const Eigen::Index j = it - free.begin();
       e.std = std::sqrt(std::max(result.covariance(j, j), 0.0));
+      // The one-parameter Newton step from the estimate: cost C = |r|^2 drops by (r . J_j)^2 / |J_j|^2 moving
+      // along column j of the Jacobian (physical units: Js's columns are J's times the scale, which cancels).
+      const double along = r.dot(Js.col(j)), norm2 = Js.col(j).squaredNorm();
+      if (norm2 > 0 && result.residual_variance > 0) {
+        e.pull_chi2 = along * along / (norm2 * result.residual_variance);
+        // r is model minus measured: the cost falls for a step -along/norm2 in the scaled parameter.
+        e.toward = along > 0 ? -1 : along < 0 ? 1 : 0;
+      }
     }
     std::vector<int> conf = confounded[c];
     std::sort(conf.begin(), conf.end());

@@ -1,4 +1,4 @@
-#include "spectral_companion.hpp"
+#include "mbgen/spectral_companion.hpp"
 
 #include "mbgen/welch.hpp"
 

@@ -1,4 +1,5 @@
-// FRFs estimated from time records, for the global search of a time-domain fit. Internal header.
+// FRFs estimated from time records, for the global search of a time-domain fit (and a diagnosis's screening of
+// candidates).
 //
 // A time-domain output-error evaluation simulates the model with all parameter sensitivities over every sample,
 // and from a poor start its cost is as multimodal as an FRF cost (a model mode on the wrong side of a measured
