@@ -34,17 +34,16 @@ struct DiagnoseOptions {
   std::map<std::string, std::string> set;  // --set overrides (decimal text)
   FitOptions fit;                          // the nominal fit (starts, seed, threads, weighting)
   int candidate_starts = 2;                // starts per search of a candidate (start 0: the search's centre)
-  // Screening: every candidate is first fitted cheaply (two short local fits, from the current estimate and from
-  // the priors, each at most `screen_iterations` Levenberg-Marquardt steps, on FRFs: the measured ones or the
-  // records' H1 estimates); only the `full_fits` with the lowest screened BIC get the full two-search fit and a
-  // verdict. 0: every candidate is fitted fully.
+  // Screening: every candidate is first fitted more cheaply (two local fits, from the current estimate and from
+  // the priors, without random starts, validation or residual analysis, on FRFs: the measured ones or the records'
+  // H1 estimates; with records also three Gauss-Newton steps on the records); only the `full_fits` best by
+  // screened BIC get the full two-search fit and a verdict. 0: every candidate is fitted fully.
   int full_fits = 6;
-  int screen_iterations = 40;
   double min_delta_bic = -10.0;
   double min_validation_gain = 0.01;       // relative decrease of the validation error required
   int max_extensions = 3;
   double max_final_residual = 3.0;         // mean normalized residual the extended model must reach (noise: 1)
-  double max_remaining_findings = 0.5;     // fraction of the nominal model's findings the extended one may keep
+  double max_remaining_findings = 1.0 / 3;  // fraction of the nominal model's findings the extended one may keep
   ResidualOptions residual;
   // The data the models are fitted on, when not all of it (`--fit-band`: the band a model is meant to represent);
   // the findings are judged over all the data either way. Same data sets, in the same order.
@@ -70,6 +69,7 @@ struct CandidateOutcome {
   bool qualifies = false;           // strong evidence by BIC, validation and plausibility
   std::string error;                // it could not be derived or fitted
   double screen_delta_bic = 0;      // the screening fit's BIC minus the current model's on the same data
+  double screen_records_delta_bic = 0;  // with time records: the same for the few steps on the records
   bool fully_fitted = true;         // false: screened out (its fit is the screening fit; it cannot qualify)
 };
 

@@ -71,6 +71,7 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
                           {"doubts", c.doubts},
                           {"qualifies", c.qualifies}};
     entry["screen_delta_bic"] = number(c.screen_delta_bic);
+    if (c.screen_records_delta_bic != 0) entry["screen_records_delta_bic"] = number(c.screen_records_delta_bic);
     entry["fully_fitted"] = c.fully_fitted;
     if (!c.fully_fitted) entry["validation_nrmse"] = nullptr;
     if (!c.variant.empty()) {

@@ -47,6 +47,13 @@ struct ResidualOptions {
   int window = 5;            // running-mean width in lines
   double threshold = 4.0;    // running mean of z above this is a finding (noise alone: ~1e-5 per line)
   double peak_tolerance = 0.03;  // relative frequency distance within which a data and a model peak are "the same"
+  // Where the model misses a channel throughout (a band wider than `wide_band` lines), the residual's own floor
+  // there is far above the noise, and what matters is what stands out of that floor: sub-bands whose running
+  // mean exceeds `contrast` times the floor (its running median over `floor_window` lines) are findings of their
+  // own, beside the wide band's (a mode outside a lumped model, two decades above a misfit it has everywhere).
+  int wide_band = 60;
+  double contrast = 30.0;
+  int floor_window = 41;
 };
 
 struct ResidualSummary {

@@ -44,24 +44,26 @@ struct Band {
   double mean_z;
 };
 
-std::vector<Band> significant_bands(const Eigen::VectorXd& z, const ResidualOptions& o) {
+// Runs of lines whose running mean of z exceeds level(i), widened by the window and merged across short gaps.
+template <class Level>
+std::vector<Band> bands_above(const Eigen::VectorXd& z, const ResidualOptions& o, Level level, int from, int to) {
   const int n = static_cast<int>(z.size());
   const int half = std::max(0, o.window / 2);
   std::vector<double> running(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    const int lo = std::max(0, i - half), hi = std::min(n - 1, i + half);
+  for (int i = from; i <= to; ++i) {
+    const int lo = std::max(from, i - half), hi = std::min(to, i + half);
     running[static_cast<std::size_t>(i)] = z.segment(lo, hi - lo + 1).mean();
   }
   std::vector<Band> bands;
-  for (int i = 0; i < n;) {
-    if (running[static_cast<std::size_t>(i)] <= o.threshold) {
+  for (int i = from; i <= to;) {
+    if (running[static_cast<std::size_t>(i)] <= level(i)) {
       ++i;
       continue;
     }
     int j = i;
-    while (j + 1 < n && running[static_cast<std::size_t>(j + 1)] > o.threshold) ++j;
+    while (j + 1 <= to && running[static_cast<std::size_t>(j + 1)] > level(j + 1)) ++j;
     // Widen by the window so the band covers the lines that raised the running mean.
-    const int lo = std::max(0, i - half), hi = std::min(n - 1, j + half);
+    const int lo = std::max(from, i - half), hi = std::min(to, j + half);
     if (!bands.empty() && lo - bands.back().hi <= o.window) {
       bands.back().hi = hi;  // a short gap between two bands is one finding, split by noise
       bands.back().mean_z = z.segment(bands.back().lo, hi - bands.back().lo + 1).mean();
@@ -71,6 +73,26 @@ std::vector<Band> significant_bands(const Eigen::VectorXd& z, const ResidualOpti
     i = j + 1;
   }
   return bands;
+}
+
+std::vector<Band> significant_bands(const Eigen::VectorXd& z, const ResidualOptions& o) {
+  return bands_above(z, o, [&](int) { return o.threshold; }, 0, static_cast<int>(z.size()) - 1);
+}
+
+// Within a wide band, the sub-bands that stand out of the residual's own floor (ResidualOptions::contrast).
+std::vector<Band> contrasted_bands(const Eigen::VectorXd& z, const Band& band, const ResidualOptions& o) {
+  const int half = std::max(1, o.floor_window / 2);
+  std::vector<double> floor(static_cast<std::size_t>(z.size()), 0.0);
+  std::vector<double> window;
+  for (int i = band.lo; i <= band.hi; ++i) {
+    const int lo = std::max(band.lo, i - half), hi = std::min(band.hi, i + half);
+    window.assign(z.data() + lo, z.data() + hi + 1);
+    std::nth_element(window.begin(), window.begin() + static_cast<long>(window.size() / 2), window.end());
+    floor[static_cast<std::size_t>(i)] = window[window.size() / 2];
+  }
+  return bands_above(
+      z, o, [&](int i) { return std::max(o.threshold, o.contrast * floor[static_cast<std::size_t>(i)]); }, band.lo,
+      band.hi);
 }
 
 Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vector<int>& data_peaks,
@@ -110,7 +132,16 @@ Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vect
   if (data_peak >= 0) {
     const int model_peak = nearest_peak(model_peaks, f, d.f_hz);
     const double rel = model_peak >= 0 ? std::abs(f[static_cast<std::size_t>(model_peak)] - d.f_hz) / d.f_hz : 1e300;
-    if (rel <= o.peak_tolerance && std::abs(d.size_db) < 1.0) {
+    // A model peak two or more lines from the data's is a frequency difference, however close: where a
+    // resonance is narrower than a line (a lightly damped mode on coarse lines), such a shift changes the height
+    // at the peak line by tens of dB, which is no damping mismatch.
+    const bool other_line = model_peak >= 0 && std::abs(model_peak - data_peak) >= 2;
+    if (rel <= o.peak_tolerance && other_line) {
+      d.kind = "frequency_shift";
+      d.model_f_hz = f[static_cast<std::size_t>(model_peak)];
+      d.text = format("the resonance at %.1f Hz on %s sits at %.1f Hz in the model (%+.2f %%)", d.f_hz, where.c_str(),
+                      d.model_f_hz, 100.0 * (d.model_f_hz - d.f_hz) / d.f_hz);
+    } else if (rel <= o.peak_tolerance && std::abs(d.size_db) < 1.0) {
       // The peak has the model's height but the residual is large: the difference is in phase, which at a
       // resonance turns by 90 degrees over the half-power band. A frequency off by less than the line spacing
       // shows so (a damping mismatch changes the height).
@@ -273,8 +304,13 @@ ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, 
       }
     }
     const std::vector<int> data_peaks = magnitude_peaks(smoothed(c.measured)), model_peaks = magnitude_peaks(c.model);
-    for (const Band& band : significant_bands(z, options))
+    for (const Band& band : significant_bands(z, options)) {
       summary.discrepancies.push_back(classify(c, band, data_peaks, model_peaks, options));
+      if (band.hi - band.lo + 1 < options.wide_band) continue;
+      for (const Band& sub : contrasted_bands(z, band, options))
+        if (sub.lo != band.lo || sub.hi != band.hi)
+          summary.discrepancies.push_back(classify(c, sub, data_peaks, model_peaks, options));
+    }
   }
   summary.mean_z = summary.lines ? z_sum / static_cast<double>(summary.lines) : 0;
   summary.discrepancies = merge_across_channels(std::move(summary.discrepancies));
