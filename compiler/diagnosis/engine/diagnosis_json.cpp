@@ -94,7 +94,8 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
                      {"mean_normalized_residual", number(result.final.residual.mean_z)},
                      {"remaining_discrepancies", discrepancies(result.final.residual)}};
   }
-  return j.dump(2) + "\n";
+  // Invalid UTF-8 (a file name in another encoding) cannot be JSON text: such bytes become U+FFFD.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace mbgen::diagnosis

@@ -62,7 +62,8 @@ std::string fit_result_json(const FitResult& r) {
   nlohmann::json history = nlohmann::json::array();
   for (double c : r.cost_history) history.push_back(number(c));
   j["cost_history"] = history;
-  return j.dump(2) + "\n";
+  // Invalid UTF-8 (a file name in another encoding) cannot be JSON text: such bytes become U+FFFD.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 void write_fit_json(std::ostream& out, const FitResult& result) { out << fit_result_json(result); }
