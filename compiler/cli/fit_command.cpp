@@ -23,8 +23,10 @@ std::string summary(const FitResult& r) {
   std::snprintf(line, sizeof line, "%-12s %14s %14s %12s  %s\n", "parameter", "prior", "estimate", "std", "");
   out += line;
   for (const ParameterEstimate& p : r.parameters) {
-    const char* note = !p.identifiable ? "not identifiable: kept at the prior" : "";
-    std::snprintf(line, sizeof line, "%-12s %14.6g %14.6g %12.3g  %s\n", p.name.c_str(), p.prior, p.value, p.std, note);
+    const std::string note = !p.at_bound.empty() ? "at its " + p.at_bound + " bound: the data pull it beyond; no std"
+                             : !p.identifiable ? "not identifiable: kept at the prior"
+                                               : "";
+    std::snprintf(line, sizeof line, "%-12s %14.6g %14.6g %12.3g  %s\n", p.name.c_str(), p.prior, p.value, p.std, note.c_str());
     out += line;
   }
   std::snprintf(line, sizeof line, "\nnrmse %.4g   BIC %.6g   (%ld residuals, %s)\n", r.nrmse, r.bic, r.residual_count,

@@ -204,10 +204,10 @@ void OutputPlan::check() const {
   }
   if (report_dir.empty()) return;
   const fs::path dir = clean(report_dir);
+  report_target(dir);
   for (const std::string& input : inputs)
     if (input != "-" && within(clean(input), dir))
       fail(dir, "cannot write a report here: it holds the input " + input + ", which replacing it would delete");
-  report_target(dir);
 }
 
 OutputFiles::~OutputFiles() {

@@ -16,8 +16,6 @@ class Checker {
   explicit Checker(ir::Model& m) : m_(m) {}
 
   void run() {
-    if (m_.bodies.empty())
-      fail({}, "the model has no bodies, so there is nothing to derive (is the file empty, or only comments?)");
     declare_all();
     check_parameters();
     for (ir::Body& b : m_.bodies) check_body(b);

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
-#include <string>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "frontend/diagnostics.hpp"
 
@@ -175,11 +176,27 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
 
 void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& set_text) const {
   const ir::Parameter& p = *fp.ir;
+  // Values and bounds become doubles in generated code and fits: beyond the double range they would be infinite.
+  const GiNaC::numeric largest(std::numeric_limits<double>::max());
+  auto beyond_doubles = [&](const GiNaC::ex& v) {
+    return GiNaC::is_a<GiNaC::numeric>(v) && GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v)) > largest;
+  };
+  const GiNaC::ex value = GiNaC::evalf(fp.value);
+  if (beyond_doubles(value))
+    throw frontend::ModelError(model_.file, set_text.empty() ? p.value.loc : p.loc,
+                               (set_text.empty() ? "" : "--set " + p.name + "=" + set_text + ": ") + "the value of `" +
+                                   p.name + "` is beyond the range of a double (about 1.8e308)");
   if (!p.lower && !p.upper) return;
   const GiNaC::exmap at = values();
-  auto value_of = [&](const ir::Expr& bound) { return GiNaC::evalf(convert(bound).subs(at)); };
+  auto value_of = [&](const ir::Expr& bound) {
+    const GiNaC::ex v = GiNaC::evalf(convert(bound).subs(at));
+    if (beyond_doubles(v))
+      throw frontend::ModelError(model_.file, bound.loc,
+                                 "the bound `" + ir::to_string(bound) + "` of `" + p.name +
+                                     "` is beyond the range of a double (about 1.8e308); write inf for an open end");
+    return v;
+  };
   const GiNaC::ex lower = p.lower ? value_of(*p.lower) : GiNaC::ex(), upper = p.upper ? value_of(*p.upper) : GiNaC::ex();
-  const GiNaC::ex value = GiNaC::evalf(fp.value);
   auto below = [](const GiNaC::ex& a, const GiNaC::ex& b) {  // a < b, for numbers
     return GiNaC::is_a<GiNaC::numeric>(a) && GiNaC::is_a<GiNaC::numeric>(b) &&
            GiNaC::ex_to<GiNaC::numeric>(a) < GiNaC::ex_to<GiNaC::numeric>(b);
@@ -247,11 +264,23 @@ GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
     }
     case K::Add:
     case K::Mul: {
-      // One GiNaC node for all terms (factors): adding them one at a time would rebuild the sum each time.
+      // One GiNaC node for all terms (factors): adding them one at a time would rebuild the sum each time. Numbers
+      // are combined here, one at a time, so that an exact result growing past the limit stops the work early.
+      const bool sum = e.kind == K::Add;
       GiNaC::exvector operands;
       operands.reserve(e.args.size());
-      for (const ir::Expr& a : e.args) operands.push_back(convert(a));
-      return bounded(e, e.kind == K::Add ? GiNaC::ex(GiNaC::add(operands)) : GiNaC::ex(GiNaC::mul(operands)));
+      GiNaC::numeric constant = sum ? 0 : 1;
+      for (const ir::Expr& a : e.args) {
+        const GiNaC::ex x = convert(a);
+        if (!GiNaC::is_a<GiNaC::numeric>(x)) {
+          operands.push_back(x);
+          continue;
+        }
+        constant = sum ? constant + GiNaC::ex_to<GiNaC::numeric>(x) : constant * GiNaC::ex_to<GiNaC::numeric>(x);
+        bounded(e, constant);
+      }
+      operands.push_back(constant);
+      return bounded(e, sum ? GiNaC::ex(GiNaC::add(operands)) : GiNaC::ex(GiNaC::mul(operands)));
     }
     case K::Sub: return convert(e.args.at(0)) - convert(e.args.at(1));
     case K::Div: {

@@ -18,7 +18,12 @@ ordered_json fit_summary(const FitResult& fit, double validation) {
 }
 
 ordered_json parameter(const ParameterEstimate& p) {
-  return {{"value", number(p.value)}, {"std", number(p.std)}, {"identifiable", p.identifiable}};
+  // A parameter at a bound has no std (fit.hpp); the bound it sits on is named.
+  ordered_json out = {{"value", number(p.value)},
+                      {"std", p.at_bound.empty() ? number(p.std) : ordered_json(nullptr)},
+                      {"identifiable", p.identifiable}};
+  if (!p.at_bound.empty()) out["at_bound"] = p.at_bound;
+  return out;
 }
 
 ordered_json discrepancies(const ResidualSummary& r) {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
-#include <sstream>
+#include <streambuf>
 
 #include "mbgen/csv.hpp"
 #include "mbgen/data_error.hpp"
@@ -27,9 +27,39 @@ bool has_uff_extension(const std::string& name) {
 
 enum class Kind { Uff, Time, Frf };
 
-Kind detect(const std::string& bytes, const std::string& file_name) {
+// An input stream over bytes already in memory, without copying them (std::istringstream would).
+class BytesBuffer : public std::streambuf {
+ public:
+  // A UTF-8 byte order mark (as some programs write before the first line) is left out.
+  explicit BytesBuffer(std::string& bytes) {
+    char* start = bytes.data() + (bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0);
+    setg(start, start, bytes.data() + bytes.size());
+  }
+};
+
+// All of a stream's bytes, in one allocation of the right size where the stream can tell its size (a file).
+std::string read_all(std::istream& in) {
+  std::string bytes;
+  const std::streampos start = in.tellg();
+  if (start != std::streampos(-1) && in.seekg(0, std::ios::end)) {
+    const std::streampos end = in.tellg();
+    in.seekg(start);
+    if (end != std::streampos(-1) && end >= start) {
+      bytes.resize(static_cast<std::size_t>(end - start));
+      in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+      bytes.resize(static_cast<std::size_t>(in.gcount()));
+      return bytes;
+    }
+  }
+  in.clear();
+  bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return bytes;
+}
+
+Kind detect(std::string& bytes, const std::string& file_name) {
   if (has_uff_extension(file_name)) return Kind::Uff;
-  std::istringstream in(bytes);
+  BytesBuffer buffer(bytes);
+  std::istream in(&buffer);
   LineReader reader(in);
   std::string line;
   while (reader.next(line)) {
@@ -50,8 +80,9 @@ Kind detect(const std::string& bytes, const std::string& file_name) {
 DataFile read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
                  const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
   // Read everything first: standard input cannot be rewound after looking at the header.
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::istringstream body(bytes);
+  std::string bytes = read_all(in);
+  BytesBuffer buffer(bytes);
+  std::istream body(&buffer);
   switch (detect(bytes, file_name)) {
     case Kind::Time: return read_time_record_csv(body, file_name, known);
     case Kind::Frf: return read_frf_csv(body, file_name, known);
@@ -78,6 +109,8 @@ DataFile read_data(std::istream& in, const std::string& file_name, const std::op
 DataFile read_data_file(const std::string& path, const std::optional<ChannelNames>& known,
                        const std::optional<UffMapping>& uff_mapping) {
   if (path == "-") return read_data(std::cin, path, known, uff_mapping);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw DataError(path, 0, 0, "is a directory, not a data file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError(path, 0, 0, "cannot open file");
   return read_any(in, path, known, uff_mapping, path + ".map");

@@ -30,6 +30,7 @@ std::string fit_result_json(const FitResult& r) {
     p["prior"] = number(e.prior);
     p["unit"] = e.unit;
     if (!e.confounded_with.empty()) p["confounded_with"] = e.confounded_with;
+    if (!e.at_bound.empty()) p["at_bound"] = e.at_bound;
     params[e.name] = p;
   }
   j["parameters"] = params;
