@@ -172,6 +172,13 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
     fp.value = convert(fp.ir->value);
   }
   for (const FreeParameter& fp : free_) check_bounds(fp, overrides.count(fp.name) ? overrides.at(fp.name) : "");
+  // Every value, derived ones included, must be a real number at these values (sqrt(-1) as a mass is not).
+  const GiNaC::exmap at = values();
+  for (const ir::Parameter& p : model.parameters) {
+    const GiNaC::ex v = GiNaC::evalf(convert(ir::Expr::symbol(p.name, p.value.loc)).subs(at));
+    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
+      throw frontend::ModelError(model.file, p.value.loc, "the value of parameter `" + p.name + "` is not a real number");
+  }
 }
 
 void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& set_text) const {

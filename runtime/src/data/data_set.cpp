@@ -30,39 +30,37 @@ enum class Kind { Uff, Time, Frf };
 // An input stream over bytes already in memory, without copying them (std::istringstream would).
 class BytesBuffer : public std::streambuf {
  public:
-  // A UTF-8 byte order mark (as some programs write before the first line) is left out.
-  explicit BytesBuffer(std::string& bytes) {
-    char* start = bytes.data() + (bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0);
-    setg(start, start, bytes.data() + bytes.size());
+  explicit BytesBuffer(std::string& bytes) { setg(bytes.data(), bytes.data(), bytes.data() + bytes.size()); }
+
+ protected:
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
+    char* const from = dir == std::ios_base::beg ? eback() : dir == std::ios_base::cur ? gptr() : egptr();
+    if (off < eback() - from || off > egptr() - from) return pos_type(off_type(-1));
+    setg(eback(), from + off, egptr());
+    return pos_type(gptr() - eback());
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
+    return seekoff(off_type(pos), std::ios_base::beg, which);
   }
 };
 
-// All of a stream's bytes, in one allocation of the right size where the stream can tell its size (a file).
-std::string read_all(std::istream& in) {
-  std::string bytes;
+// Skips a UTF-8 byte order mark (as some programs write before the first line) at the stream's position.
+void skip_byte_order_mark(std::istream& in) {
   const std::streampos start = in.tellg();
-  if (start != std::streampos(-1) && in.seekg(0, std::ios::end)) {
-    const std::streampos end = in.tellg();
-    in.seekg(start);
-    if (end != std::streampos(-1) && end >= start) {
-      bytes.resize(static_cast<std::size_t>(end - start));
-      in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-      bytes.resize(static_cast<std::size_t>(in.gcount()));
-      return bytes;
-    }
-  }
+  char mark[3] = {};
+  if (in.read(mark, 3) && std::string_view(mark, 3) == "\xEF\xBB\xBF") return;
   in.clear();
-  bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return bytes;
+  in.seekg(start);
 }
 
-Kind detect(std::string& bytes, const std::string& file_name) {
+// The kind of data from the name and the first lines, read from the stream's position.
+Kind detect(std::istream& in, const std::string& file_name) {
   if (has_uff_extension(file_name)) return Kind::Uff;
-  BytesBuffer buffer(bytes);
-  std::istream in(&buffer);
   LineReader reader(in);
   std::string line;
+  bool any = false;
   while (reader.next(line)) {
+    any = true;
     const std::string_view text = trim(line);
     if (text.empty()) continue;
     if (text == "-1") return Kind::Uff;
@@ -74,16 +72,12 @@ Kind detect(std::string& bytes, const std::string& file_name) {
                     "cannot tell the kind of data: the header starts with '" + std::string(first) +
                         "', expected 't' (time record) or 'f_hz' (FRFs), or a UFF file (.uff, or '    -1' first)");
   }
-  throw DataError(file_name, 0, 0, bytes.empty() ? "empty file" : "no header row (only comments)");
+  throw DataError(file_name, 0, 0, any ? "no header row (only comments)" : "empty file");
 }
 
-DataFile read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
-                 const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
-  // Read everything first: standard input cannot be rewound after looking at the header.
-  std::string bytes = read_all(in);
-  BytesBuffer buffer(bytes);
-  std::istream body(&buffer);
-  switch (detect(bytes, file_name)) {
+DataFile parse(Kind kind, std::istream& body, const std::string& file_name, const std::optional<ChannelNames>& known,
+               const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
+  switch (kind) {
     case Kind::Time: return read_time_record_csv(body, file_name, known);
     case Kind::Frf: return read_frf_csv(body, file_name, known);
     case Kind::Uff: break;
@@ -97,6 +91,31 @@ DataFile read_any(std::istream& in, const std::string& file_name, const std::opt
   const auto set = uff_to_data_set(records, file_name, mapping, known);
   if (std::holds_alternative<TimeRecord>(set)) return std::get<TimeRecord>(set);
   return std::get<FrfData>(set);
+}
+
+DataFile read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
+                 const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
+  // A file is parsed from the stream itself after a look at its first lines, and so never held as text beside its
+  // numbers (docs/limits.md, "Memory of a time record"). Standard input cannot be rewound: it is read whole first.
+  const std::streampos start = in.tellg();
+  if (start != std::streampos(-1)) {
+    skip_byte_order_mark(in);
+    const std::streampos body = in.tellg();
+    const Kind kind = detect(in, file_name);
+    in.clear();
+    in.seekg(body);
+    return parse(kind, in, file_name, known, uff_mapping, sidecar);
+  }
+  in.clear();
+  std::string bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>{});
+  BytesBuffer buffer(bytes);
+  std::istream text(&buffer);
+  skip_byte_order_mark(text);
+  const std::streampos body = text.tellg();
+  const Kind kind = detect(text, file_name);
+  text.clear();
+  text.seekg(body);
+  return parse(kind, text, file_name, known, uff_mapping, sidecar);
 }
 
 }  // namespace
