@@ -38,3 +38,11 @@ expect_run(STATUS 0 ARGS fit one.mdl --data bom.csv --starts 1)
 string(ASCII 233 latin1)
 file(COPY_FILE "${WORK}/one_frf.csv" "${WORK}/d${latin1}.csv")
 expect_run(STATUS 0 STDOUT "\"d�.csv\"" ARGS fit one.mdl --data "d${latin1}.csv" --starts 1 --json -)
+
+# A valid model the numeric evaluator cannot run (a parameter in an exponent) is the model's limit, status 1 with the
+# file named; it was reported as a bare exception message.
+file(WRITE "${WORK}/power.mdl" "model power\nparam a = 2\nparam m1 = a^a\nground g\nbody b { mass m1; dof x }\n"
+           "spring s { from g; to b; along x; stiffness 1000 }\ninput F force on b along x\n"
+           "output y displacement of b along x\n")
+expect_run(STATUS 1 STDERR "^power.mdl: error: cannot fit or simulate this model: a power whose exponent depends"
+  ARGS fit power.mdl --data one_frf.csv --starts 1)
