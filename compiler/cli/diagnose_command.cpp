@@ -71,7 +71,8 @@ int run_diagnose(int argc, char** argv) {
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     options.set = parse_set_options(sets);
-    if (extended_path == "-") throw CLI::ValidationError("--extended", "the extended model and its C++ are files; name one");
+    if (extended_path == "-")
+      throw CLI::ValidationError("--extended", "the extended model and its C++ are files; name one");
     if (!extended_path.empty())
       if (const std::string problem = emit::include_name_problem(base_name(sibling(extended_path, "_model.hpp")));
           !problem.empty())

@@ -26,7 +26,8 @@ std::string summary(const FitResult& r) {
     const std::string note = !p.at_bound.empty() ? "at its " + p.at_bound + " bound: the data pull it beyond; no std"
                              : !p.identifiable ? "not identifiable: kept at the prior"
                                                : "";
-    std::snprintf(line, sizeof line, "%-12s %14.6g %14.6g %12.3g  %s\n", p.name.c_str(), p.prior, p.value, p.std, note.c_str());
+    std::snprintf(line, sizeof line, "%-12s %14.6g %14.6g %12.3g  %s\n", p.name.c_str(), p.prior, p.value, p.std,
+                  note.c_str());
     out += line;
   }
   std::snprintf(line, sizeof line, "\nnrmse %.4g   BIC %.6g   (%ld residuals, %s)\n", r.nrmse, r.bic, r.residual_count,

@@ -99,14 +99,16 @@ void require_writable_directory(const fs::path& destination) {
   const fs::path dir = parent_of(destination);
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) fail(destination, "cannot write: directory `" + dir.string() + "` does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) fail(destination, "cannot write: directory `" + dir.string() + "` is not writable");
+  if (::access(dir.c_str(), W_OK) != 0)
+    fail(destination, "cannot write: directory `" + dir.string() + "` is not writable");
 }
 
 // Every entry below `dir`, relative to it, directories with a trailing '/', sorted.
 std::vector<std::string> entries_below(const fs::path& dir) {
   std::vector<std::string> out;
   std::error_code ec;
-  for (fs::recursive_directory_iterator it(dir, fs::directory_options::none, ec), end; !ec && it != end; it.increment(ec)) {
+  fs::recursive_directory_iterator it(dir, fs::directory_options::none, ec), end;
+  for (; !ec && it != end; it.increment(ec)) {
     std::string rel = it->path().lexically_relative(dir).generic_string();
     if (it->is_directory(ec) && !it->is_symlink(ec)) rel += '/';
     out.push_back(rel);

@@ -15,7 +15,8 @@ std::map<std::string, std::string> parse_set_options(const std::vector<std::stri
     const std::string name = s.substr(0, eq), value = s.substr(eq + 1);
     if (!ir::is_identifier(name)) throw CLI::ValidationError("--set", "`" + name + "` is not a parameter name");
     if (!symbolic::is_decimal_literal(value))
-      throw CLI::ValidationError("--set", name + "=" + value + ": the value must be a decimal number such as 1.5, -2 or 60e6");
+      throw CLI::ValidationError("--set",
+                                 name + "=" + value + ": the value must be a decimal number such as 1.5, -2 or 60e6");
     if (const std::string problem = symbolic::decimal_limits_violation(value); !problem.empty())
       throw CLI::ValidationError("--set", name + "=" + value + ": out of range: " + problem);
     if (!out.emplace(name, value).second) throw CLI::ValidationError("--set", name + " is set twice");

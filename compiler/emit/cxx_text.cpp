@@ -108,7 +108,8 @@ std::string namespace_problem(std::string_view ns) {
   std::size_t start = 0;
   while (true) {
     const std::size_t sep = ns.find("::", start);
-    const std::string_view part = ns.substr(start, sep == std::string_view::npos ? std::string_view::npos : sep - start);
+    const std::size_t length = sep == std::string_view::npos ? std::string_view::npos : sep - start;
+    const std::string_view part = ns.substr(start, length);
     const std::string quoted = "`" + std::string(part) + "`";
     if (!ir::is_identifier(part))
       return part.empty() ? "a part of it is empty" : quoted + " is not an identifier (letters, digits and _)";
@@ -116,7 +117,8 @@ std::string namespace_problem(std::string_view ns) {
       if (part == k) return quoted + " is a C++ keyword or a predefined macro";
     for (std::string_view u : kUsedNamespaces)
       if (part == u) return quoted + " would hide the namespace " + quoted + " that the generated code uses";
-    if (part.find("__") != std::string_view::npos || (part.size() > 1 && part[0] == '_' && part[1] >= 'A' && part[1] <= 'Z'))
+    const bool underscore_capital = part.size() > 1 && part[0] == '_' && part[1] >= 'A' && part[1] <= 'Z';
+    if (part.find("__") != std::string_view::npos || underscore_capital)
       return quoted + " is reserved for the C++ implementation (`__`, or `_` and a capital letter)";
     if (sep == std::string_view::npos) return "";
     start = sep + 2;

@@ -32,7 +32,7 @@ TEST_CASE("header names that #include \"...\" cannot hold are named", "[emit][cx
   CHECK_FALSE(include_name_problem("").empty());
 }
 
-TEST_CASE("namespaces: identifiers that are not keywords, reserved names or namespaces the code uses", "[emit][cxx_text]") {
+TEST_CASE("namespaces: identifiers, not keywords, reserved names or namespaces the code uses", "[emit][cxx_text]") {
   CHECK(namespace_problem("mbgen_models::spindle").empty());
   CHECK(namespace_problem("a::b::c").empty());
   for (const char* bad : {"namespace", "int", "class::new", "mbgen_models::std", "Eigen", "mbgen", "a::mpfr",

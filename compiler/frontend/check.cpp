@@ -42,7 +42,8 @@ class Checker {
     const auto [it, fresh] = names_.emplace(name, Declared{what, loc});
     if (!fresh)
       fail(loc, "`" + name + "` is already declared at line " + std::to_string(it->second.loc.line) + ", column " +
-                    std::to_string(it->second.loc.column) + " (as " + it->second.what + "); each name is declared once");
+                    std::to_string(it->second.loc.column) + " (as " + it->second.what +
+                    "); each name is declared once");
   }
 
   void declare_all() {

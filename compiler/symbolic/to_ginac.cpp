@@ -177,7 +177,8 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
   for (const ir::Parameter& p : model.parameters) {
     const GiNaC::ex v = GiNaC::evalf(convert(ir::Expr::symbol(p.name, p.value.loc)).subs(at));
     if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
-      throw frontend::ModelError(model.file, p.value.loc, "the value of parameter `" + p.name + "` is not a real number");
+      throw frontend::ModelError(model.file, p.value.loc,
+                                 "the value of parameter `" + p.name + "` is not a real number");
   }
 }
 
@@ -203,7 +204,8 @@ void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& se
                                      "` is beyond the range of a double (about 1.8e308); write inf for an open end");
     return v;
   };
-  const GiNaC::ex lower = p.lower ? value_of(*p.lower) : GiNaC::ex(), upper = p.upper ? value_of(*p.upper) : GiNaC::ex();
+  const GiNaC::ex lower = p.lower ? value_of(*p.lower) : GiNaC::ex();
+  const GiNaC::ex upper = p.upper ? value_of(*p.upper) : GiNaC::ex();
   auto below = [](const GiNaC::ex& a, const GiNaC::ex& b) {  // a < b, for numbers
     return GiNaC::is_a<GiNaC::numeric>(a) && GiNaC::is_a<GiNaC::numeric>(b) &&
            GiNaC::ex_to<GiNaC::numeric>(a) < GiNaC::ex_to<GiNaC::numeric>(b);

@@ -22,7 +22,8 @@ inline constexpr long kMaxNumberBits = 100000;
 // True if `text` is a decimal literal: optional sign, digits with an optional point, optional exponent.
 bool is_decimal_literal(const std::string& text);
 // The exact rational a decimal literal denotes ("0.127" -> 127/1000, "1.5E-3" -> 3/2000). The digits are read as
-// arbitrary-precision integers, never through a double. Throws std::invalid_argument if not a decimal literal, std::out_of_range beyond the limits above.
+// arbitrary-precision integers, never through a double. Throws std::invalid_argument if not a decimal literal,
+// std::out_of_range beyond the limits above.
 GiNaC::numeric parse_decimal(const std::string& text);
 // Why a decimal literal lies beyond the limits above ("it has more than 1000 digits"), or "" when it does not.
 std::string decimal_limits_violation(const std::string& text);

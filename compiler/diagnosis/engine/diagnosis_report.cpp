@@ -31,7 +31,8 @@ std::string num(double x, int digits = 4) {
 std::string frf_script(const std::string& stem, const std::string& title, bool extended) {
   std::ostringstream gp;
   gp << "set terminal svg size 900,420 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set title " << gnuplot_string(title) << " noenhanced\nset logscale y\nset grid\nset xlabel 'f [Hz]'\nset ylabel '|H|'\n"
+     << "set title " << gnuplot_string(title) << " noenhanced\n"
+     << "set logscale y\nset grid\nset xlabel 'f [Hz]'\nset ylabel '|H|'\n"
      << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
      << "     '' using 1:3 with lines lc rgb '#1f77b4' dt 2 title 'nominal model'";
   if (extended) gp << ", \\\n     '' using 1:4 with lines lc rgb '#d62728' title 'extended model'";
@@ -42,7 +43,8 @@ std::string frf_script(const std::string& stem, const std::string& title, bool e
 std::string residual_script(const std::string& stem, const std::string& title, bool extended) {
   std::ostringstream gp;
   gp << "set terminal svg size 900,320 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set title " << gnuplot_string(title + " (1 = noise level)") << " noenhanced\nset logscale y\nset grid\nset xlabel 'f [Hz]'\n"
+     << "set title " << gnuplot_string(title + " (1 = noise level)") << " noenhanced\n"
+     << "set logscale y\nset grid\nset xlabel 'f [Hz]'\n"
      << "set ylabel '|residual|^2 / noise^2'\n"
      << "plot '" << stem << ".dat' using 1:2 with lines lc rgb '#1f77b4' title 'nominal'";
   if (extended) gp << ", \\\n     '' using 1:3 with lines lc rgb '#d62728' title 'extended'";
@@ -55,7 +57,9 @@ void parameter_table(std::ostringstream& md, const FitResult& fit) {
   for (const ParameterEstimate& p : fit.parameters)
     md << "| `" << p.name << "` | " << num(p.prior, 6) << " | " << num(p.value, 6) << " | "
        << (p.at_bound.empty() ? num(p.std, 3) : std::string("—")) << " | "
-       << (p.identifiable ? "yes" : !p.at_bound.empty() ? "**no**: at its " + p.at_bound + " bound" : "**no** (kept at prior)")
+       << (p.identifiable        ? "yes"
+           : p.at_bound.empty() ? "**no** (kept at prior)"
+                                : "**no**: at its " + p.at_bound + " bound")
        << " |\n";
   md << "\n";
 }
@@ -152,7 +156,8 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
     write_file(root / (res_stem + ".gp"), residual_script(res_stem, "normalized residual, " + label, final != nullptr));
     stems.push_back(frf_stem);
     stems.push_back(res_stem);
-    md << "### " << markdown_text(label) << "\n\n![" << markdown_text(label) << "](" << frf_stem << ".svg)\n\n![residual](" << res_stem << ".svg)\n\n";
+    md << "### " << markdown_text(label) << "\n\n![" << markdown_text(label) << "](" << frf_stem
+       << ".svg)\n\n![residual](" << res_stem << ".svg)\n\n";
   }
   md << render_gnuplot(root.string(), stems);
   write_file(root / "report.md", md.str());

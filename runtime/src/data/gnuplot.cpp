@@ -64,7 +64,8 @@ std::string render_gnuplot(const std::string& dir, const std::vector<std::string
     if (r == Run::Failed) rendered = false;
   }
   if (rendered) return "";
-  return std::string("**The plots were not rendered** (") + (installed ? "gnuplot failed" : "gnuplot is not installed") +
+  return std::string("**The plots were not rendered** (") +
+         (installed ? "gnuplot failed" : "gnuplot is not installed") +
          "): run `gnuplot NAME.gp` in this directory to draw them from the .dat files.\n";
 }
 

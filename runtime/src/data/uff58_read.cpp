@@ -201,7 +201,8 @@ void read_ascii_body(Cursor& c, const std::string& file, Uff58Record& r) {
       if (!v) throw DataError(file, c.line(), column, "UFF 58 data: " + shown(token) + " is not a number");
       if (!std::isfinite(*v))
         throw DataError(file, c.line(), column, "UFF 58 data: " + shown(token) + " is not finite");
-      if (std::abs(*v) > kMaxDataMagnitude) throw DataError(file, c.line(), column, "UFF 58 data: " + too_large_message(token));
+      if (std::abs(*v) > kMaxDataMagnitude)
+        throw DataError(file, c.line(), column, "UFF 58 data: " + too_large_message(token));
       if (static_cast<Eigen::Index>(values.size()) == expected)
         throw DataError(file, c.line(), column,
                         "UFF 58 data: more values than the " + std::to_string(expected) + " that record 7 declares (" +

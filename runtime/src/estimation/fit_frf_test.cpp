@@ -156,7 +156,7 @@ TEST_CASE("a parameter the data pull beyond its bound is reported at the bound, 
   }
 }
 
-TEST_CASE("bound_reached: on a bound only when pressed against it and not well determined away from it", "[fit][bounds]") {
+TEST_CASE("bound_reached: on a bound only when pressed against it, not when well determined", "[fit][bounds]") {
   ParameterInfo info;
   info.name = "c";
   info.lower = 0;

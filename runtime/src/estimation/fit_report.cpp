@@ -62,7 +62,8 @@ std::string frf_script(const std::string& stem, const std::string& title) {
      << "unset multiplot\n"
      << "set terminal svg size 900,400 dynamic font 'sans,11'\n"
      << "set output '" << stem << "_residual.svg'\n"
-     << "set title " << gnuplot_string(title + ": residual |H_model - H_data|") << " noenhanced\nset autoscale y\nset ytics auto\nset logscale y\n"
+     << "set title " << gnuplot_string(title + ": residual |H_model - H_data|") << " noenhanced\n"
+     << "set autoscale y\nset ytics auto\nset logscale y\n"
      << "set ylabel '|residual|'\n"
      << "plot '" << stem << ".dat' using 1:8 with lines lc rgb '#1f77b4' dt 2 title 'prior', \\\n"
      << "     '' using 1:9 with lines lc rgb '#d62728' title 'estimate'\n";
@@ -106,7 +107,9 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
     md << "| " << e.name << " | " << fmt(e.prior) << " | " << fmt(e.value) << " | "
        << (e.identifiable ? fmt(e.std, 3) : "—") << " | "
        << (e.identifiable && e.value != 0 ? fmt(100 * e.std / std::abs(e.value), 3) + " %" : "—") << " | "
-       << (e.identifiable ? "yes" : !e.at_bound.empty() ? "**no**: at its " + e.at_bound + " bound" : "**no** (kept at prior)");
+       << (e.identifiable        ? "yes"
+           : e.at_bound.empty() ? "**no** (kept at prior)"
+                                : "**no**: at its " + e.at_bound + " bound");
     if (!e.confounded_with.empty()) {
       md << "; confounded with";
       for (const auto& c : e.confounded_with) md << " " << c;

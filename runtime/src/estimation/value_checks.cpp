@@ -51,7 +51,8 @@ void check_data_set_values(const Model& model, const Eigen::VectorXd& prior, con
     int line = 0;
     for (const auto& [name, value] : d.set()) {
       const int idx = info.parameter_index(name);
-      if (idx < 0) throw DataError(d.file(), value.line, 0, "`# set " + name + "`: the model has no free parameter " + name);
+      if (idx < 0)
+        throw DataError(d.file(), value.line, 0, "`# set " + name + "`: the model has no free parameter " + name);
       values[idx] = value.value;
       line = std::max(line, value.line);
     }
@@ -67,7 +68,8 @@ void check_measured_signals(const Model& model, const std::vector<DataSet>& data
     if (d.is_frf()) {
       for (const FrfChannel& c : std::get<FrfData>(d.content).channels)
         if (zero(c.values))
-          throw DataError(d.file(), 0, 0, "FRF " + c.output + "/" + c.input + " is zero at every frequency: there is nothing to fit");
+          throw DataError(d.file(), 0, 0,
+                          "FRF " + c.output + "/" + c.input + " is zero at every frequency: there is nothing to fit");
       continue;
     }
     bool any_input = false;
