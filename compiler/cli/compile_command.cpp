@@ -4,6 +4,7 @@
 #include "cli/run_guarded.hpp"
 #include "cli/version.hpp"
 #include "emit/cpp_emitter.hpp"
+#include "emit/cxx_text.hpp"
 #include "frontend/parser.hpp"
 #include "symbolic/derive.hpp"
 
@@ -19,6 +20,8 @@ std::string default_header_for(const std::string& source) {
   return source.substr(0, dot) + ".hpp";
 }
 
+std::string base_name(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
+
 }  // namespace
 
 int run_compile(int argc, char** argv) {
@@ -30,9 +33,21 @@ int run_compile(int argc, char** argv) {
   app.add_option("-o,--output", source_path, "C++ source to write; - writes both files to standard output")->required();
   app.add_option("--header", header_path, "header to write (default: the source's name with .hpp)");
   app.add_option("--namespace", ns, "C++ namespace (default: mbgen_models::MODEL)");
-  app.set_version_flag("--version", std::string("mbgen ") + kVersion);
+  app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
+    const std::string header_option = header_path.empty() ? "-o (its header)" : "--header";
     if (header_path.empty()) header_path = source_path == "-" ? "-" : default_header_for(source_path);
+    if (!ns.empty())
+      if (const std::string problem = emit::namespace_problem(ns); !problem.empty())
+        throw CLI::ValidationError("--namespace", "`" + ns + "` cannot name the generated namespace: " + problem);
+    if (header_path != "-")
+      if (const std::string problem = emit::include_name_problem(base_name(header_path)); !problem.empty())
+        throw CLI::ValidationError(header_option, "the header " + header_path +
+                                                      " cannot be named in the source's #include line: " + problem);
+    OutputPlan plan;
+    plan.files = {{header_option, header_path}, {"-o", source_path}};
+    plan.inputs = {model_path};
+    plan.check();
     const ir::Model model = frontend::parse_file(model_path);
     const symbolic::SymbolicModel sym = symbolic::derive(model);
     emit::CppEmitOptions options;

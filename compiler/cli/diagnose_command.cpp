@@ -1,6 +1,5 @@
 // `mbgen diagnose MODEL.mdl --data FILE [--data FILE ...] [--json OUT.json] [--report DIR] [--extended OUT.mdl]`:
 // what the model gets wrong, which extension explains it, and the extended model with its generated code.
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -13,6 +12,7 @@
 #include "diagnosis/engine/diagnosis_json.hpp"
 #include "diagnosis/engine/diagnosis_report.hpp"
 #include "emit/cpp_emitter.hpp"
+#include "emit/cxx_text.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
 #include "frontend/parser.hpp"
@@ -20,14 +20,6 @@
 namespace mbgen::cli {
 
 namespace {
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw frontend::ModelError(path, {}, "cannot open the model file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::string summary(const diagnosis::DiagnosisResult& r) {
   std::ostringstream out;
@@ -41,6 +33,8 @@ std::string summary(const diagnosis::DiagnosisResult& r) {
   }
   return out.str();
 }
+
+std::string base_name(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
 
 // OUT.mdl -> OUT_model.cpp / OUT_model.hpp beside it.
 std::string sibling(const std::string& mdl, const std::string& suffix) {
@@ -58,7 +52,7 @@ int run_diagnose(int argc, char** argv) {
   std::string model_path, json_path, report_dir, extended_path, fit_band;
   std::vector<std::string> data_paths, sets;
   diagnosis::DiagnoseOptions options;
-  app.add_option("model", model_path, "model file (.mdl)")->required();
+  app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable")->required();
   app.add_option("--json", json_path, "write the result (schema mbgen-diagnosis/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with plots)");
@@ -74,14 +68,27 @@ int run_diagnose(int argc, char** argv) {
   app.add_option("--fit-band", fit_band,
                  "fit the models on the FRF lines within LO:HI Hz only (the band the model is meant to represent), "
                  "and judge them over all the data");
-  app.set_version_flag("--version", std::string("mbgen ") + kVersion);
+  app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     options.set = parse_set_options(sets);
-    OutputFiles::require_writable(json_path);
-    OutputFiles::require_writable(report_dir);
-    OutputFiles::require_writable(extended_path);
-    const ir::Model model = frontend::parse_file(model_path);
-    const std::string text = read_text(model_path);
+    if (extended_path == "-")
+      throw CLI::ValidationError("--extended", "the extended model and its C++ are files; name one");
+    if (!extended_path.empty())
+      if (const std::string problem = emit::include_name_problem(base_name(sibling(extended_path, "_model.hpp")));
+          !problem.empty())
+        throw CLI::ValidationError("--extended", "its C++ header cannot be named in an #include line: " + problem);
+    OutputPlan plan;
+    plan.files = {{"--json", json_path},
+                  {"--extended", extended_path},
+                  {"--extended (its C++ source)", extended_path.empty() ? "" : sibling(extended_path, "_model.cpp")},
+                  {"--extended (its C++ header)", extended_path.empty() ? "" : sibling(extended_path, "_model.hpp")}};
+    plan.report_dir = report_dir;
+    plan.inputs = data_paths;
+    plan.inputs.push_back(model_path);
+    plan.check();
+    // The text is read once (standard input cannot be read twice): the model is parsed from it.
+    const std::string text = frontend::read_model_text(model_path);
+    const ir::Model model = frontend::parse_string(text, model_path);
     symbolic::DeriveOptions derive;
     derive.set = options.set;
     const std::vector<DataSet> data = load_data(data_paths, evaluator::make_evaluator(model, derive)->info());

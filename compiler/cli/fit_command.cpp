@@ -23,8 +23,11 @@ std::string summary(const FitResult& r) {
   std::snprintf(line, sizeof line, "%-12s %14s %14s %12s  %s\n", "parameter", "prior", "estimate", "std", "");
   out += line;
   for (const ParameterEstimate& p : r.parameters) {
-    const char* note = !p.identifiable ? "not identifiable: kept at the prior" : "";
-    std::snprintf(line, sizeof line, "%-12s %14.6g %14.6g %12.3g  %s\n", p.name.c_str(), p.prior, p.value, p.std, note);
+    const std::string note = !p.at_bound.empty() ? "at its " + p.at_bound + " bound: the data pull it beyond; no std"
+                             : !p.identifiable ? "not identifiable: kept at the prior"
+                                               : "";
+    std::snprintf(line, sizeof line, "%-12s %14.6g %14.6g %12.3g  %s\n", p.name.c_str(), p.prior, p.value, p.std,
+                  note.c_str());
     out += line;
   }
   std::snprintf(line, sizeof line, "\nnrmse %.4g   BIC %.6g   (%ld residuals, %s)\n", r.nrmse, r.bic, r.residual_count,
@@ -48,7 +51,7 @@ int run_fit(int argc, char** argv) {
   std::string model_path, method = "auto", json_path, report_dir, band;
   std::vector<std::string> data_paths, sets;
   FitOptions options;
-  app.add_option("model", model_path, "model file (.mdl)")->required();
+  app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable, fitted jointly")->required();
   app.add_option("--method", method, "auto (by the data), frf-output-error or time-output-error")
       ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error"}));
@@ -58,12 +61,16 @@ int run_fit(int argc, char** argv) {
   app.add_option("--starts", options.starts, "number of starts of the global search (default 16)")->check(CLI::PositiveNumber);
   app.add_option("--seed", options.seed, "seed of the global search (default 1)");
   app.add_option("--band", band, "fit only the FRF lines within LO:HI Hz (the band the model is meant to represent)");
-  app.set_version_flag("--version", std::string("mbgen ") + kVersion);
+  app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(sets);
-    OutputFiles::require_writable(json_path);
-    OutputFiles::require_writable(report_dir);
+    OutputPlan plan;
+    plan.files = {{"--json", json_path}};
+    plan.report_dir = report_dir;
+    plan.inputs = data_paths;
+    plan.inputs.push_back(model_path);
+    plan.check();
     const ir::Model model = frontend::parse_file(model_path);
     const auto evaluator = evaluator::make_evaluator(model, derive);
     std::vector<DataSet> data = load_data(data_paths, evaluator->info());

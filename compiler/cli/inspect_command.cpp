@@ -21,10 +21,14 @@ int run_inspect(int argc, char** argv) {
       ->check(CLI::IsMember({"markdown", "latex", "json"}));
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("-o,--output", output, "file to write (default: standard output)");
-  app.set_version_flag("--version", std::string("mbgen ") + kVersion);
+  app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     symbolic::DeriveOptions options;
     options.set = parse_set_options(sets);
+    OutputPlan plan;
+    plan.files = {{"-o", output}};
+    plan.inputs = {model_path};
+    plan.check();
     const ir::Model model = frontend::parse_file(model_path);
     const symbolic::SymbolicModel sym = symbolic::derive(model, options);
     OutputFiles out;

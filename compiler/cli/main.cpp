@@ -1,5 +1,6 @@
 // mbgen: compile a model to C++ (`mbgen MODEL.mdl -o OUT.cpp`), or inspect, fit, diagnose it.
-// Exit status: 0 success, 1 bad input (model, data), 2 bad usage. Nothing is written on failure.
+// Exit status: 0 success, 1 bad input (model, data, an output that must not be written), 2 bad usage, 3 internal
+// error (docs/cli.md). Nothing is written on failure.
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -10,7 +11,7 @@
 namespace {
 
 void print_usage() {
-  std::cout << "mbgen " << mbgen::cli::kVersion << ": a symbolic-to-numeric model compiler for mechanical systems\n\n"
+  std::cout << mbgen::cli::version_text() << ": a symbolic-to-numeric model compiler for mechanical systems\n\n"
                "usage:\n"
                "  mbgen MODEL.mdl -o OUT.cpp [--header OUT.hpp] [--namespace NS]   compile to C++\n"
                "  mbgen inspect MODEL.mdl [--format markdown|latex|json]          symbolic matrices, TFs, modes\n"
@@ -33,7 +34,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (first == "--version") {
-    std::cout << "mbgen " << mbgen::cli::kVersion << "\n";
+    std::cout << mbgen::cli::version_text() << "\n";
     return 0;
   }
   if (first == "inspect") return mbgen::cli::run_inspect(argc - 1, argv + 1);

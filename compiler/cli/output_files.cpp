@@ -1,11 +1,17 @@
 #include "cli/output_files.hpp"
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <stdexcept>
+#include <set>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -15,30 +21,195 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string temp_name_for(const std::string& path) {
-  const fs::path p(path);
-  return (p.parent_path() / ("." + p.filename().string() + ".mbgen-tmp-" + std::to_string(::getpid()))).string();
+// `path` without `.` and `..` steps or a trailing separator ("old/" names the directory old).
+fs::path clean(const std::string& path) {
+  fs::path p = fs::path(path).lexically_normal();
+  if (p.filename().empty() && p.has_parent_path() && p != p.root_path()) p = p.parent_path();
+  return p;
 }
 
-void write_file(const std::string& path, const std::string& content, const std::string& shown_as) {
+fs::path parent_of(const fs::path& p) {
+  const fs::path parent = p.parent_path();
+  return parent.empty() ? fs::path(".") : parent;
+}
+
+// Absolute, with symbolic links resolved as far as the path exists.
+fs::path resolved(const fs::path& p) {
+  std::error_code ec;
+  const fs::path r = fs::weakly_canonical(fs::absolute(p, ec), ec);
+  return ec ? fs::absolute(p).lexically_normal() : r;
+}
+
+bool same_path(const fs::path& a, const fs::path& b) { return resolved(a) == resolved(b); }
+
+// True if `p` is `dir` or lies below it.
+bool within(const fs::path& p, const fs::path& dir) {
+  const fs::path rp = resolved(p), rd = resolved(dir);
+  auto pi = rp.begin();
+  for (auto di = rd.begin(); di != rd.end(); ++di, ++pi) {
+    if (di->empty()) continue;  // a trailing separator
+    if (pi == rp.end() || *pi != *di) return false;
+  }
+  return true;
+}
+
+// The host name as it may appear in a file name.
+std::string host_tag() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0) return "host";
+  std::string out;
+  for (const char* c = name; *c; ++c) out += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '_';
+  return out.empty() ? "host" : out;
+}
+
+// `.NAME.mbgen-KIND-HOST-`: the prefix of the temporaries (KIND "tmp") and set-aside directories (KIND "old")
+// of destination NAME; the process id follows.
+std::string temp_prefix(const fs::path& destination, const char* kind) {
+  return "." + destination.filename().string() + ".mbgen-" + kind + "-" + host_tag() + "-";
+}
+
+fs::path temp_for(const fs::path& destination, const char* kind) {
+  return parent_of(destination) / (temp_prefix(destination, kind) + std::to_string(::getpid()));
+}
+
+// Removes what a killed run of mbgen on this host left for `destination`: temporaries whose process is gone.
+void remove_stale_temporaries(const fs::path& destination) {
+  std::error_code ec;
+  for (const char* kind : {"tmp", "old"}) {
+    const std::string prefix = temp_prefix(destination, kind);
+    for (fs::directory_iterator it(parent_of(destination), ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string name = it->path().filename().string();
+      if (name.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string pid_text = name.substr(prefix.size());
+      if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos || pid_text.size() > 9)
+        continue;
+      const pid_t pid = static_cast<pid_t>(std::stol(pid_text));
+      if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+      std::error_code remove_ec;
+      fs::remove_all(it->path(), remove_ec);
+    }
+  }
+}
+
+[[noreturn]] void fail(const fs::path& path, const std::string& message) {
+  throw OutputError(path.string() + ": error: " + message);
+}
+
+void require_writable_directory(const fs::path& destination) {
+  const fs::path dir = parent_of(destination);
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) fail(destination, "cannot write: directory `" + dir.string() + "` does not exist");
+  if (::access(dir.c_str(), W_OK) != 0)
+    fail(destination, "cannot write: directory `" + dir.string() + "` is not writable");
+}
+
+// Every entry below `dir`, relative to it, directories with a trailing '/', sorted.
+std::vector<std::string> entries_below(const fs::path& dir) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  fs::recursive_directory_iterator it(dir, fs::directory_options::none, ec), end;
+  for (; !ec && it != end; it.increment(ec)) {
+    std::string rel = it->path().lexically_relative(dir).generic_string();
+    if (it->is_directory(ec) && !it->is_symlink(ec)) rel += '/';
+    out.push_back(rel);
+  }
+  if (ec) fail(dir, "cannot read the directory: " + ec.message());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+const char* const kMarkerHeading =
+    "This directory was written by mbgen. The next mbgen run that writes a report here replaces it whole, as long\n"
+    "as it holds nothing but these entries:\n";
+
+std::vector<std::string> marker_entries(const fs::path& dir) {
+  std::ifstream in(dir / kReportMarker, std::ios::binary);
+  std::vector<std::string> out;
+  std::string line;
+  for (int skip = 2; skip > 0 && std::getline(in, line); --skip) {
+  }
+  while (std::getline(in, line))
+    if (!line.empty()) out.push_back(line);
+  return out;
+}
+
+enum class ReportTarget { New, Empty, Mbgen };
+
+// What is at `dir` now, or OutputError when a report must not be written there.
+ReportTarget report_target(const fs::path& dir) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(dir, ec);
+  if (within(fs::current_path(ec), dir))
+    fail(dir, "cannot write a report here: it is the working directory or contains it; name a new directory");
+  if (!fs::exists(st)) {
+    require_writable_directory(dir);
+    return ReportTarget::New;
+  }
+  if (fs::is_symlink(st)) fail(dir, "cannot write a report here: it is a symbolic link; name the directory itself");
+  if (!fs::is_directory(st))
+    fail(dir, "cannot write a report here: it exists and is not a directory; name a new directory");
+  require_writable_directory(dir);  // it is renamed and replaced in its parent
+  const std::vector<std::string> present = entries_below(dir);
+  if (present.empty()) return ReportTarget::Empty;
+  if (!fs::is_regular_file(fs::symlink_status(dir / kReportMarker, ec)))
+    fail(dir, "cannot write a report here: the directory holds files that mbgen did not write (it has no " +
+                  std::string(kReportMarker) + " marker), and they would be lost; name a new or empty directory");
+  std::vector<std::string> written = marker_entries(dir);
+  written.push_back(kReportMarker);
+  std::sort(written.begin(), written.end());
+  for (const std::string& entry : present)
+    if (!std::binary_search(written.begin(), written.end(), entry))
+      fail(dir, "cannot write a report here: `" + entry +
+                    "` was not written by mbgen and would be lost when the report is replaced; move it, or name a "
+                    "new directory");
+  return ReportTarget::Mbgen;
+}
+
+void write_file(const fs::path& path, const std::string& content, const fs::path& shown_as) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw std::runtime_error(shown_as + ": error: cannot write: " + std::strerror(errno));
+  if (!out) fail(shown_as, std::string("cannot write: ") + std::strerror(errno));
   out << content;
   out.close();
-  if (!out) throw std::runtime_error(shown_as + ": error: writing failed: " + std::strerror(errno));
+  if (!out) fail(shown_as, std::string("writing failed: ") + std::strerror(errno));
+}
+
+void write_marker(const fs::path& staged) {
+  std::ostringstream text;
+  text << kMarkerHeading << "\n";
+  for (const std::string& entry : entries_below(staged)) text << entry << "\n";
+  write_file(staged / kReportMarker, text.str(), staged);
 }
 
 }  // namespace
 
-void OutputFiles::require_writable(const std::string& path) {
-  if (path.empty() || path == "-") return;
-  fs::path dir = fs::path(path).parent_path();
-  if (dir.empty()) dir = ".";
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    throw std::runtime_error(path + ": error: cannot write: directory `" + dir.string() + "` does not exist");
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw std::runtime_error(path + ": error: cannot write: directory `" + dir.string() + "` is not writable");
+void OutputPlan::check() const {
+  if (std::count(inputs.begin(), inputs.end(), "-") > 1)
+    throw CLI::ValidationError("input", "standard input (-) can be read only once: give the other inputs as files");
+  std::vector<std::pair<std::string, fs::path>> written;  // option, path
+  for (const File& f : files)
+    if (!f.path.empty() && f.path != "-") written.emplace_back(f.option, clean(f.path));
+  for (std::size_t i = 0; i < written.size(); ++i) {
+    const auto& [option, path] = written[i];
+    for (std::size_t k = 0; k < i; ++k)
+      if (same_path(path, written[k].second))
+        throw CLI::ValidationError(option, path.string() + " is also the output of " + written[k].first +
+                                               "; give each output its own name");
+    for (const std::string& input : inputs)
+      if (input != "-" && same_path(path, clean(input)))
+        throw CLI::ValidationError(option, path.string() + " is an input of this command; writing it would destroy it");
+    if (!report_dir.empty() && within(path, clean(report_dir)))
+      throw CLI::ValidationError(option, path.string() + " lies inside the report directory " + report_dir +
+                                             ", which is written whole; write it elsewhere");
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) fail(path, "cannot write: it is a directory");
+    require_writable_directory(path);
+  }
+  if (report_dir.empty()) return;
+  const fs::path dir = clean(report_dir);
+  report_target(dir);
+  for (const std::string& input : inputs)
+    if (input != "-" && within(clean(input), dir))
+      fail(dir, "cannot write a report here: it holds the input " + input + ", which replacing it would delete");
 }
 
 OutputFiles::~OutputFiles() {
@@ -52,26 +223,57 @@ void OutputFiles::add(const std::string& path, const std::string& content) {
     stdout_chunks_.push_back(content);
     return;
   }
-  const std::string temp = temp_name_for(path);
-  staged_.push_back({temp, path, false});
-  write_file(temp, content, path);
+  const fs::path destination = clean(path);
+  remove_stale_temporaries(destination);
+  const fs::path temp = temp_for(destination, "tmp");
+  staged_.push_back({temp.string(), destination.string(), false});
+  write_file(temp, content, destination);
 }
 
 std::string OutputFiles::stage_directory(const std::string& dir) {
-  const std::string temp = temp_name_for(fs::path(dir).lexically_normal().string());
+  const fs::path destination = clean(dir);
+  remove_stale_temporaries(destination);
+  const fs::path temp = temp_for(destination, "tmp");
   std::error_code ec;
   fs::remove_all(temp, ec);
-  staged_.push_back({temp, dir, true});
-  if (!fs::create_directories(temp, ec) && ec) throw std::runtime_error(dir + ": error: cannot create: " + ec.message());
-  return temp;
+  staged_.push_back({temp.string(), destination.string(), true});
+  if (!fs::create_directory(temp, ec)) fail(destination, "cannot create: " + ec.message());
+  return temp.string();
 }
 
 void OutputFiles::commit() {
+  // Everything that can be checked first is: a report directory (again: files may have appeared meanwhile), and
+  // that no file's destination has become a directory.
+  std::vector<ReportTarget> targets;
   for (const Staged& s : staged_) {
     std::error_code ec;
-    if (s.directory) fs::remove_all(s.path, ec);  // a report directory is replaced as a whole
-    fs::rename(s.temp, s.path, ec);
-    if (ec) throw std::runtime_error(s.path + ": error: cannot move the output into place: " + ec.message());
+    if (s.directory) {
+      write_marker(s.temp);
+      targets.push_back(report_target(s.path));
+    } else {
+      if (fs::is_directory(s.path, ec)) fail(s.path, "cannot write: it is a directory");
+      targets.push_back(ReportTarget::New);
+    }
+  }
+  for (std::size_t i = 0; i < staged_.size(); ++i) {
+    const Staged& s = staged_[i];
+    std::error_code ec;
+    if (s.directory && targets[i] == ReportTarget::Mbgen) {
+      // Set the old report aside, move the new one in, then delete the old one (or put it back on failure).
+      const fs::path old = temp_for(s.path, "old");
+      fs::rename(s.path, old, ec);
+      if (ec) fail(s.path, "cannot replace the old report: " + ec.message());
+      fs::rename(s.temp, s.path, ec);
+      if (ec) {
+        std::error_code back;
+        fs::rename(old, s.path, back);
+        fail(s.path, "cannot move the report into place: " + ec.message());
+      }
+      fs::remove_all(old, ec);
+      continue;
+    }
+    fs::rename(s.temp, s.path, ec);  // over an empty directory too (rename(2) replaces it)
+    if (ec) fail(s.path, "cannot move the output into place: " + ec.message());
   }
   for (const std::string& chunk : stdout_chunks_) std::cout << chunk;
   std::cout.flush();

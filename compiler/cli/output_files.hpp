@@ -1,11 +1,45 @@
-// Outputs appear whole or not at all: every file is written to a temporary beside its destination and renamed
-// into place only when all of a command's outputs are complete. "-" means standard output.
+// Outputs appear whole or not at all, and never at the cost of what the user had (docs/cli.md):
+//
+// - every file is written to a temporary beside its destination (`.NAME.mbgen-tmp-HOST-PID`) and renamed into
+//   place only when all of a command's outputs are complete; an uncommitted set removes its temporaries, and
+//   temporaries left by a killed run (same host, process gone) are removed by the next run writing there;
+// - a report directory is written only where nothing of the user's can be lost: a new directory, an empty one, or
+//   one that mbgen wrote before (it holds the marker file kReportMarker), which is then replaced whole;
+// - no output may be an input, lie inside the report directory, or be named twice.
+// "-" means standard output.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace mbgen::cli {
+
+// A destination that cannot or must not be written (exit status 1): missing or read-only directory, a report
+// directory holding files mbgen did not write, a failed write.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The file mbgen writes into every report directory; its presence allows the next run to replace the directory.
+inline constexpr const char* kReportMarker = ".mbgen-report";
+
+// A command's output destinations, checked before any long work.
+struct OutputPlan {
+  struct File {
+    std::string option;  // "-o", "--json", ... (for messages)
+    std::string path;    // "" = not requested, "-" = standard output
+  };
+  std::vector<File> files;
+  std::string report_dir;           // "" = no report
+  std::vector<std::string> inputs;  // the model and data files ("-" = standard input)
+
+  // Throws CLI::ValidationError (usage, exit 2) for outputs that collide with each other, an input or the report
+  // directory, and OutputError (exit 1) for a destination that cannot be written or a report directory that is
+  // not mbgen's to replace.
+  void check() const;
+};
 
 class OutputFiles {
  public:
@@ -14,14 +48,13 @@ class OutputFiles {
   OutputFiles& operator=(const OutputFiles&) = delete;
   ~OutputFiles();  // removes temporaries of an uncommitted set
 
-  // Fails early (before long work) when `path` could not be written: its directory is missing or read-only.
-  static void require_writable(const std::string& path);
-
   // Stages `content` for `path`. Nothing is visible at `path` until commit().
   void add(const std::string& path, const std::string& content);
-  // Stages a directory that the caller fills (e.g. a report writer): returns the temporary path to write into.
+  // Stages a report directory that the caller fills: returns the temporary path to write into (it already holds
+  // the marker file).
   std::string stage_directory(const std::string& dir);
-  // Renames every staged file into place; throws std::runtime_error on failure.
+  // Renames every staged file into place (a report directory replaces the empty or mbgen-written directory there,
+  // checked again now); throws OutputError on failure.
   void commit();
 
  private:

@@ -1,13 +1,27 @@
-// Runs a command body, turning exceptions into messages and exit statuses: bad input (a model or data error,
-// any std::exception from the pipeline) is status 1; usage errors (CLI11) are status 2.
+// Runs a command body, turning exceptions into messages and exit statuses (docs/cli.md):
+//   1  bad input: a model, data or output error (their messages name the file, and line and column where known),
+//      or not enough memory for the input;
+//   2  bad usage (CLI11, and option values checked after parsing);
+//   3  an internal error: any other exception is a bug in mbgen, reported as such.
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <mbgen/data_error.hpp>
+#include <mbgen/dynamics_error.hpp>
+#include <mbgen/fit.hpp>
 
 #include <exception>
 #include <iostream>
+#include <new>
+
+#include "cli/output_files.hpp"
+#include "frontend/diagnostics.hpp"
 
 namespace mbgen::cli {
+
+inline constexpr int kExitBadInput = 1;
+inline constexpr int kExitUsage = 2;
+inline constexpr int kExitInternal = 3;
 
 template <typename Body>
 int run_guarded(CLI::App& app, int argc, char** argv, Body body) {
@@ -21,17 +35,32 @@ int run_guarded(CLI::App& app, int argc, char** argv, Body body) {
     return 0;
   } catch (const CLI::ParseError& e) {
     std::cerr << "mbgen: " << e.what() << "\nRun with --help for usage.\n";
-    return 2;
+    return kExitUsage;
   }
   try {
     return body();
   } catch (const CLI::ParseError& e) {  // usage problems found after parsing (e.g. a malformed --set)
     std::cerr << "mbgen: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
+    return kExitUsage;
+  } catch (const frontend::ModelError& e) {
     std::cerr << e.what() << "\n";
-    return 1;
+  } catch (const DataError& e) {
+    std::cerr << e.what() << "\n";
+  } catch (const FitError& e) {
+    std::cerr << e.what() << "\n";
+  } catch (const DynamicsError& e) {
+    std::cerr << e.what() << "\n";
+  } catch (const OutputError& e) {
+    std::cerr << e.what() << "\n";
+  } catch (const std::bad_alloc&) {
+    std::cerr << "mbgen: error: out of memory: the input is too large for this machine (docs/limits.md)\n";
+  } catch (const std::exception& e) {
+    std::cerr << "mbgen: internal error: " << e.what()
+              << "\nThis is a bug in mbgen, not a problem with the input; please report it with the command line and "
+                 "its input files.\n";
+    return kExitInternal;
   }
+  return kExitBadInput;
 }
 
 }  // namespace mbgen::cli

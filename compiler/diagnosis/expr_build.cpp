@@ -6,10 +6,10 @@ using K = ir::Expr::Kind;
 
 bool is_zero_literal(const ir::Expr& e) {
   if (e.kind == K::Neg) return is_zero_literal(e.args[0]);
-  return e.is_number() && std::stod(e.text) == 0.0;
+  return e.is_number() && ir::is_zero_literal(e.text);
 }
 
-bool is_one_literal(const ir::Expr& e) { return e.is_number() && std::stod(e.text) == 1.0; }
+bool is_one_literal(const ir::Expr& e) { return e.is_number() && ir::literal_value(e.text) == 1.0; }
 
 bool same_expr(const ir::Expr& a, const ir::Expr& b) { return ir::to_string(a) == ir::to_string(b); }
 

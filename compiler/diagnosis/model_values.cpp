@@ -19,11 +19,19 @@ double ModelValues::of_parameter(const std::string& name) const {
 double ModelValues::of(const ir::Expr& e) const {
   using K = ir::Expr::Kind;
   switch (e.kind) {
-    case K::Number: return std::stod(e.text);
+    case K::Number: return ir::literal_value(e.text);
     case K::Symbol: return e.text == "pi" ? std::acos(-1.0) : of_parameter(e.text);
-    case K::Add: return of(e.args[0]) + of(e.args[1]);
+    case K::Add: {
+      double sum = 0;
+      for (const ir::Expr& term : e.args) sum += of(term);
+      return sum;
+    }
     case K::Sub: return of(e.args[0]) - of(e.args[1]);
-    case K::Mul: return of(e.args[0]) * of(e.args[1]);
+    case K::Mul: {
+      double product = 1;
+      for (const ir::Expr& factor : e.args) product *= of(factor);
+      return product;
+    }
     case K::Div: return of(e.args[0]) / of(e.args[1]);
     case K::Pow: return std::pow(of(e.args[0]), of(e.args[1]));
     case K::Neg: return -of(e.args[0]);

@@ -7,8 +7,11 @@
 #include <stdexcept>
 
 #include "emit/cxx_printer.hpp"
+#include "emit/cxx_text.hpp"
 #include "emit/infix_printer.hpp"
 #include "emit/template_engine.hpp"
+#include "frontend/diagnostics.hpp"
+#include "ir/identifier.hpp"
 #include "symbolic/to_ginac.hpp"
 
 #ifndef MBGEN_VERSION
@@ -25,39 +28,6 @@ using symbolic::SymbolicModel;
 std::string base_name(const std::string& path) {
   const auto slash = path.find_last_of("/\\");
   return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-// A C++ identifier made from a model name (letters, digits, underscores; no leading digit).
-std::string identifier(const std::string& name) {
-  std::string out;
-  for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_') ? c : '_';
-  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out = "_" + out;
-  return out;
-}
-
-void check_namespace(const std::string& ns) {
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t sep = ns.find("::", start);
-    const std::string part = ns.substr(start, sep == std::string::npos ? std::string::npos : sep - start);
-    if (part.empty() || identifier(part) != part)
-      throw std::invalid_argument("invalid C++ namespace '" + ns + "'");
-    if (sep == std::string::npos) return;
-    start = sep + 2;
-  }
-}
-
-std::string string_literal(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
 }
 
 std::string join(const std::vector<std::string>& items, const std::string& sep = ", ") {
@@ -96,7 +66,7 @@ const char* role_text(ir::Role r) {
 class FunctionContext {
  public:
   explicit FunctionContext(const SymbolicModel& sm) : sm_(sm) {
-    for (const auto& p : sm.parameters) names_.emplace(p.sym, "p_" + identifier(p.name));
+    for (const auto& p : sm.parameters) names_.emplace(p.sym, "p_" + ir::to_identifier(p.name));
   }
   const SymbolNames& names() const { return names_; }
 
@@ -265,10 +235,20 @@ CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
     if (!sm.model) throw std::invalid_argument("emit_cpp: no model name");
     model_name = sm.model->name;
   }
-  std::string ns = options.namespace_name.empty() ? "mbgen_models::" + identifier(model_name) : options.namespace_name;
-  check_namespace(ns);
+  std::string ns = options.namespace_name;
+  if (ns.empty()) {
+    ns = "mbgen_models::" + ir::to_identifier(model_name);
+    // The model's own name: a problem with the model (the command line checks --namespace before).
+    if (const std::string problem = namespace_problem(ns); !problem.empty())
+      throw frontend::ModelError(sm.model ? sm.model->file : "", sm.model ? sm.model->name_loc : ir::SourceLoc{},
+                                 "the model's name `" + model_name + "` cannot name its C++ namespace " + ns + ": " +
+                                     problem + "; rename the model (`model NAME`) or give mbgen --namespace");
+  }
+  if (const std::string problem = namespace_problem(ns); !problem.empty())
+    throw std::invalid_argument("emit_cpp: invalid C++ namespace `" + ns + "`: " + problem);
   const std::string header_file = base_name(options.header_file), source_file = base_name(options.source_file);
-  if (header_file.empty()) throw std::invalid_argument("emit_cpp: no header file name");
+  if (const std::string problem = include_name_problem(header_file); !problem.empty())
+    throw std::invalid_argument("emit_cpp: header name `" + header_file + "` cannot be #included: " + problem);
 
   std::vector<std::string> inputs, outputs, coordinates;
   if (sm.model) {
@@ -298,26 +278,27 @@ CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
   std::vector<std::string> names, roles, units, lower, upper;
   for (const auto& p : sm.parameters) {
     parameters.push_back({{"name", p.name}, {"value", double_literal(to_double(p.value))}, {"exact", infix_text(p.value)}});
-    names.push_back(string_literal(p.name));
+    names.push_back(cxx_string_literal(p.name));
     roles.push_back(role_text(p.ir ? p.ir->role : ir::Role::Known));
-    units.push_back(string_literal(p.ir ? p.ir->unit : ""));
+    units.push_back(cxx_string_literal(p.ir ? p.ir->unit : ""));
     const auto [lo, hi] = bounds_of(sm, p);
     lower.push_back(double_literal(lo));
     upper.push_back(double_literal(hi));
   }
   auto quoted = [](const std::vector<std::string>& v) {
     std::vector<std::string> q;
-    for (const auto& s : v) q.push_back(string_literal(s));
+    for (const auto& s : v) q.push_back(cxx_string_literal(s));
     return join(q);
   };
 
   const TemplateDict values = {
       {"version", MBGEN_VERSION},
-      {"model_file", base_name(options.model_file)},
-      {"model_name", model_name},
+      {"model_file", cxx_comment_text(base_name(options.model_file))},
+      {"model_name", cxx_comment_text(model_name)},
       {"namespace", ns},
       {"header_file", header_file},
-      {"source_file", source_file},
+      {"header_file_comment", cxx_comment_text(header_file)},
+      {"source_file", cxx_comment_text(source_file)},
       {"num_parameters", std::to_string(sm.parameters.size())},
       {"num_coordinates", std::to_string(sm.coordinates.size())},
       {"num_inputs", std::to_string(inputs.size())},

@@ -24,10 +24,11 @@ struct CppEmitResult {
   std::string header, source;
 };
 
-// Throws std::invalid_argument for options that cannot make valid C++ (e.g. a malformed namespace).
+// Throws frontend::ModelError when the model's name cannot name its namespace, std::invalid_argument for options
+// that cannot make valid C++ (a namespace or header name the caller should have checked: cxx_text.hpp).
 CppEmitResult emit_cpp(const symbolic::SymbolicModel& sm, const CppEmitOptions& options);
 
-// The version named in banners.
+// The version of mbgen (the project's), named in banners and by `mbgen --version`.
 const char* mbgen_version();
 
 }  // namespace mbgen::emit

@@ -68,7 +68,8 @@ std::string emit_inspect_json(const symbolic::SymbolicModel& sm) {
     modes.push_back(e);
   }
   j["modes"] = modes;
-  return j.dump(2) + "\n";
+  // Invalid UTF-8 (a file name in another encoding) cannot be JSON text: such bytes become U+FFFD.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace mbgen::emit

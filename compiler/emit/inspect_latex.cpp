@@ -8,11 +8,18 @@ namespace mbgen::emit {
 
 namespace {
 
+// User text (a unit string, names) as literal LaTeX text: no character of it can start a command.
 std::string escape_text(const std::string& s) {
   std::string out;
   for (char c : s) {
-    if (c == '_' || c == '%' || c == '&' || c == '#' || c == '$' || c == '{' || c == '}') out += '\\';
-    out += c;
+    if (c == '\\') out += "\\textbackslash{}";
+    else if (c == '~') out += "\\textasciitilde{}";
+    else if (c == '^') out += "\\textasciicircum{}";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) out += ' ';
+    else {
+      if (c == '_' || c == '%' || c == '&' || c == '#' || c == '$' || c == '{' || c == '}') out += '\\';
+      out += c;
+    }
   }
   return out;
 }

@@ -1,6 +1,8 @@
 // Markdown inspection: tables of parameters and modes, matrices as tables of infix expressions.
 #include <sstream>
 
+#include <mbgen/markdown.hpp>
+
 #include "emit/infix_printer.hpp"
 #include "emit/inspect.hpp"
 #include "emit/inspect_common.hpp"
@@ -9,7 +11,7 @@ namespace mbgen::emit {
 
 namespace {
 
-// `|` would break a table cell; infix text never contains it, names cannot.
+// `|` would break a table cell; infix text never contains it, names cannot (a unit can: markdown_text).
 void matrix_table(std::ostringstream& os, const std::string& title, const GiNaC::matrix& m,
                   const std::vector<std::string>& row_names, const std::vector<std::string>& col_names) {
   os << "### " << title << "\n\n|  |";
@@ -43,7 +45,7 @@ std::string emit_inspect_markdown(const symbolic::SymbolicModel& sm) {
   os << "## Parameters\n\n| name | value | exact | role | unit |\n|---|---|---|---|---|\n";
   for (const auto& p : sm.parameters)
     os << "| `" << p.name << "` | " << detail::short_number(detail::value_as_double(p.value)) << " | `"
-       << infix_text(p.value) << "` | " << detail::role_name(p) << " | " << detail::unit_of(p) << " |\n";
+       << infix_text(p.value) << "` | " << detail::role_name(p) << " | " << markdown_text(detail::unit_of(p)) << " |\n";
   os << "\n";
   name_list(os, "Coordinates", n.coordinates);
   name_list(os, "Inputs", n.inputs);

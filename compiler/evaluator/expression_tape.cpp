@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "emit/cse.hpp"
+#include "emit/ginac_text.hpp"
 
 namespace mbgen::evaluator {
 
@@ -74,7 +75,8 @@ int ExpressionTape::compile(const GiNaC::ex& e) {
       if (n == numeric(-1, 2)) return emit(Op::Div, emit(Op::Const, -1, -1, 1.0), emit(Op::Sqrt, base));
       return emit(Op::PowReal, base, -1, n.to_double());
     }
-    throw std::runtime_error("evaluator: symbolic exponents are not supported");
+    throw UnsupportedExpression("a power whose exponent depends on a parameter (`" + emit::ginac_text(e) +
+                                "`); the numeric evaluator needs numeric exponents");
   }
   if (is_a<function>(e)) {
     const std::string name = ex_to<function>(e).get_name();

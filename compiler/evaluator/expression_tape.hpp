@@ -8,12 +8,19 @@
 #include <ginac/ginac.h>
 
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "emit/sign_free_key.hpp"
 
 namespace mbgen::evaluator {
+
+// A valid expression the tape cannot compute (a parameter in an exponent): a limit of the evaluator, not a bug.
+class UnsupportedExpression : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 class ExpressionTape {
  public:

@@ -1,5 +1,7 @@
 #include "evaluator/symbolic_evaluator.hpp"
 
+#include "frontend/diagnostics.hpp"
+
 #include <stdexcept>
 
 #include "symbolic/to_ginac.hpp"
@@ -118,7 +120,12 @@ std::unique_ptr<mbgen::Model> make_evaluator(const ir::Model& model, const symbo
   symbolic::DeriveOptions o = options;
   o.transfer_functions = false;  // the runtime computes responses numerically
   const symbolic::SymbolicModel sym = symbolic::derive(model, o);
-  return std::make_unique<SymbolicEvaluator>(sym);
+  try {
+    return std::make_unique<SymbolicEvaluator>(sym);
+  } catch (const UnsupportedExpression& e) {
+    // A valid model the numeric evaluator cannot run (a parameter in an exponent): the model's limit, not a bug.
+    throw frontend::ModelError(model.file, {}, std::string("cannot fit or simulate this model: ") + e.what());
+  }
 }
 
 }  // namespace mbgen::evaluator

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <vector>
 
 #include "frontend/diagnostics.hpp"
 
@@ -35,28 +36,28 @@ class Checker {
  private:
   [[noreturn]] void fail(ir::SourceLoc loc, const std::string& msg) const { throw ModelError(m_.file, loc, msg); }
 
-  // Names live in four spaces: parameters, frames (grounds and bodies), elements, signals (inputs and outputs,
-  // which share one space because they name the columns of a data file).
-  void declare(std::map<std::string, ir::SourceLoc>& space, const std::string& what, const std::string& name,
-               ir::SourceLoc loc) {
-    const auto [it, fresh] = space.emplace(name, loc);
+  // Every name is declared once, whatever it names (docs/language.md): a parameter, a frame (ground or body), an
+  // element and a signal (input or output) called alike would be confusing in messages, data and generated code.
+  void declare(const std::string& what, const std::string& name, ir::SourceLoc loc) {
+    const auto [it, fresh] = names_.emplace(name, Declared{what, loc});
     if (!fresh)
-      fail(loc, what + " `" + name + "` is already declared at line " + std::to_string(it->second.line) + ", column " +
-                    std::to_string(it->second.column));
+      fail(loc, "`" + name + "` is already declared at line " + std::to_string(it->second.loc.line) + ", column " +
+                    std::to_string(it->second.loc.column) + " (as " + it->second.what +
+                    "); each name is declared once");
   }
 
   void declare_all() {
     for (const ir::Parameter& p : m_.parameters) {
       if (p.name == "pi" || p.name == "inf") fail(p.loc, "`" + p.name + "` is reserved and cannot name a parameter");
-      declare(params_, "parameter", p.name, p.loc);
+      declare("a parameter", p.name, p.loc);
+      params_.insert(p.name);
     }
-    for (const ir::Ground& g : m_.grounds) declare(frames_, "a frame named", g.name, g.loc);
-    for (const ir::Body& b : m_.bodies) declare(frames_, "a frame named", b.name, b.loc);
-    for (const ir::Element& e : m_.elements) declare(elements_, "element", e.name, e.loc);
-    for (const ir::Input& in : m_.inputs) declare(signals_, "a signal named", in.name, in.loc);
-    for (const ir::Output& out : m_.outputs) declare(signals_, "a signal named", out.name, out.loc);
-    // Filters share the elements' names: both are parts between a frame or a sensor and what is recorded.
-    for (const ir::Filter& f : m_.filters) declare(elements_, "an element or filter named", f.name, f.loc);
+    for (const ir::Ground& g : m_.grounds) declare("a ground", g.name, g.loc);
+    for (const ir::Body& b : m_.bodies) declare("a body", b.name, b.loc);
+    for (const ir::Element& e : m_.elements) declare("an element", e.name, e.loc);
+    for (const ir::Input& in : m_.inputs) declare("an input", in.name, in.loc);
+    for (const ir::Output& out : m_.outputs) declare("an output", out.name, out.loc);
+    for (const ir::Filter& f : m_.filters) declare("a filter", f.name, f.loc);
   }
 
   void check_expr(const ir::Expr& e) const {
@@ -80,18 +81,39 @@ class Checker {
       if (p.lower) check_expr(*p.lower);
       if (p.upper) check_expr(*p.upper);
     }
-    // Cycles among derived parameters: depth-first search with colours.
-    std::map<std::string, int> state;  // 0 unvisited, 1 on the stack, 2 done
-    for (const ir::Parameter& p : m_.parameters) visit(p, state);
+    // Cycles among derived parameters, and how deeply each nests with the parameters it uses written out (the
+    // symbolic stage substitutes them): depth-first, memoized, and the recursion itself bounded by that depth.
+    for (const ir::Parameter& p : m_.parameters) expanded_depth(p, 0);
   }
 
-  void visit(const ir::Parameter& p, std::map<std::string, int>& state) {
-    int& s = state[p.name];
-    if (s == 2) return;
-    if (s == 1) fail(p.loc, "parameter `" + p.name + "` is defined in terms of itself");
-    s = 1;
-    for (const std::string& n : ir::symbols_of(p.value)) visit(*m_.find_parameter(n), state);
-    state[p.name] = 2;
+  // Depth of `p`'s value with the derived parameters it uses written out (each substitution adds a level).
+  // `above`: levels above it in the expansion being computed; past the limit the top parameter is too deep.
+  int expanded_depth(const ir::Parameter& p, int above) {
+    if (const auto done = depth_.find(p.name); done != depth_.end()) return done->second;
+    if (std::find(expanding_.begin(), expanding_.end(), &p) != expanding_.end())
+      fail(p.loc, "parameter `" + p.name + "` is defined in terms of itself");
+    expanding_.push_back(&p);
+    const int depth = value_depth(p.value, above);
+    expanding_.pop_back();
+    if (depth > ir::kMaxExpressionDepth) fail(p.loc, too_deep(p));
+    depth_[p.name] = depth;
+    return depth;
+  }
+
+  int value_depth(const ir::Expr& e, int above) {
+    if (above >= ir::kMaxExpressionDepth) fail(expanding_.front()->loc, too_deep(*expanding_.front()));
+    if (e.kind == ir::Expr::Kind::Symbol) {
+      const ir::Parameter* q = m_.find_parameter(e.text);
+      return q && q->derived ? 1 + expanded_depth(*q, above + 1) : 1;
+    }
+    int deepest = 0;
+    for (const ir::Expr& a : e.args) deepest = std::max(deepest, value_depth(a, above + 1));
+    return deepest + 1;
+  }
+
+  std::string too_deep(const ir::Parameter& p) const {
+    return "parameter `" + p.name + "` nests too deeply: with the derived parameters it uses written out, its value "
+           "has more than " + std::to_string(ir::kMaxExpressionDepth) + " levels of operators and parameters";
   }
 
   void check_body(ir::Body& b) {
@@ -115,7 +137,7 @@ class Checker {
   void check_direction(const ir::Direction& d) const {
     check_vec(d.vector);
     bool all_zero = true;
-    for (const ir::Expr& e : d.vector) all_zero = all_zero && e.is_number() && std::stod(e.text) == 0.0;
+    for (const ir::Expr& e : d.vector) all_zero = all_zero && e.is_number() && ir::is_zero_literal(e.text);
     if (all_zero) fail(d.loc, "a direction must not be the zero vector");
   }
 
@@ -162,8 +184,15 @@ class Checker {
         fail(b.loc, "body `" + b.name + "` is not connected: no spring, spring3 or torsion element attaches to it");
   }
 
+  struct Declared {
+    std::string what;
+    ir::SourceLoc loc;
+  };
   ir::Model& m_;
-  std::map<std::string, ir::SourceLoc> params_, frames_, elements_, signals_;
+  std::map<std::string, Declared> names_;
+  std::set<std::string> params_;
+  std::map<std::string, int> depth_;                // expanded depth of each parameter visited
+  std::vector<const ir::Parameter*> expanding_;   // the chain being expanded (cycle check)
   std::set<std::string> spinning_;
 };
 

@@ -22,7 +22,9 @@ namespace {
 
 class Lexer {
  public:
-  Lexer(const std::string& text, const std::string& file) : text_(text), file_(file) {}
+  Lexer(const std::string& text, const std::string& file) : text_(text), file_(file) {
+    if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;  // a UTF-8 byte order mark, as some editors write
+  }
 
   std::vector<Token> run() {
     while (pos_ < text_.size()) {

@@ -54,7 +54,8 @@ std::string parameter_line(const ir::Parameter& p, const ParamColumns& w) {
 }
 
 bool all_zero_literals(const ir::Vec3& v) {
-  return std::all_of(v.begin(), v.end(), [](const ir::Expr& e) { return e.is_number() && std::stod(e.text) == 0.0; });
+  return std::all_of(v.begin(), v.end(),
+                     [](const ir::Expr& e) { return e.is_number() && ir::is_zero_literal(e.text); });
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "frontend/parser.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -8,6 +10,7 @@
 #include "frontend/check.hpp"
 #include "frontend/diagnostics.hpp"
 #include "frontend/lexer.hpp"
+#include "ir/identifier.hpp"
 
 namespace mbgen::frontend {
 
@@ -90,7 +93,9 @@ class Parser {
   void model_statement() {
     const Token kw = next();
     if (!model_.name.empty()) fail_at(kw.loc, "a second `model` statement: the model is already named `" + model_.name + "`");
-    model_.name = expect_name("the model's name").text;
+    const Token name = expect_name("the model's name");
+    model_.name = name.text;
+    model_.name_loc = name.loc;
     end_statement();
   }
 
@@ -438,61 +443,135 @@ class Parser {
   }
 
   // ---- expressions ---------------------------------------------------------------------------------
-  Expr expr() {
-    Expr left = term();
+  // Each level returns its expression with the expression's depth (a leaf is 1). Sums and products are n-ary
+  // nodes (`a - b` is a term Neg(b) of a sum), so a long sum or product is flat; nesting (parentheses, unary
+  // minus, powers, calls, divisions) is limited to ir::kMaxExpressionDepth, which keeps every recursive pass
+  // over an expression (here, the checks, GiNaC) far from the end of the stack.
+  struct Parsed {
+    Expr e;
+    int depth = 1;
+  };
+
+  Parsed limited(Parsed p, SourceLoc loc) const {
+    if (p.depth > ir::kMaxExpressionDepth) fail_at(loc, too_deep());
+    return p;
+  }
+  static std::string too_deep() {
+    return "expression nested too deeply: at most " + std::to_string(ir::kMaxExpressionDepth) +
+           " levels of parentheses, operators and function calls";
+  }
+
+  Expr expr() { return sum().e; }
+
+  Parsed sum() {
+    Parsed first = product();
+    if (!at_punct("+") && !at_punct("-")) return first;
+    const SourceLoc loc = peek().loc;
+    Expr node = Expr::sum({}, loc);
+    int depth = first.depth;
+    node.args.push_back(std::move(first.e));
     while (at_punct("+") || at_punct("-")) {
       const Token op = next();
-      left = Expr::binary(op.text == "+" ? Expr::Kind::Add : Expr::Kind::Sub, std::move(left), term(), op.loc);
+      Parsed term = product();
+      if (op.text == "-") {
+        term.e = Expr::negate(std::move(term.e), op.loc);
+        ++term.depth;
+      }
+      depth = std::max(depth, term.depth);
+      node.args.push_back(std::move(term.e));
     }
-    return left;
+    return limited({std::move(node), depth + 1}, loc);
   }
 
-  Expr term() {
-    Expr left = unary();
+  // Runs of `*` make one product; a `/` divides everything to its left: a*b/c*d is ((a*b)/c)*d.
+  Parsed product() {
+    Parsed left = unary();
+    std::vector<Parsed> factors;  // multiplied onto `left`
+    SourceLoc times_loc;
+    auto close_product = [&] {
+      if (factors.empty()) return;
+      Expr node = Expr::product({}, times_loc);
+      int depth = left.depth;
+      node.args.push_back(std::move(left.e));
+      for (Parsed& f : factors) {
+        depth = std::max(depth, f.depth);
+        node.args.push_back(std::move(f.e));
+      }
+      factors.clear();
+      left = limited({std::move(node), depth + 1}, times_loc);
+    };
     while (at_punct("*") || at_punct("/")) {
       const Token op = next();
-      left = Expr::binary(op.text == "*" ? Expr::Kind::Mul : Expr::Kind::Div, std::move(left), unary(), op.loc);
+      Parsed right = unary();
+      if (op.text == "*") {
+        if (factors.empty()) times_loc = op.loc;
+        factors.push_back(std::move(right));
+        continue;
+      }
+      close_product();
+      const int depth = std::max(left.depth, right.depth) + 1;
+      left = limited({Expr::binary(Expr::Kind::Div, std::move(left.e), std::move(right.e), op.loc), depth}, op.loc);
     }
+    close_product();
     return left;
   }
 
-  Expr unary() {
+  // Every recursion of the expression grammar passes here, so the nesting count bounds the parser's own stack.
+  Parsed unary() {
+    if (++nesting_ > ir::kMaxExpressionDepth) fail_at(peek().loc, too_deep());
+    Parsed out;
     if (at_punct("-")) {
       const Token op = next();
-      return Expr::negate(unary(), op.loc);
+      Parsed operand = unary();
+      out = limited({Expr::negate(std::move(operand.e), op.loc), operand.depth + 1}, op.loc);
+    } else {
+      out = power();
     }
-    return power();
+    --nesting_;
+    return out;
   }
 
-  Expr power() {
-    Expr base = primary();
+  Parsed power() {
+    Parsed base = primary();
     if (at_punct("^")) {
       const Token op = next();
-      return Expr::binary(Expr::Kind::Pow, std::move(base), unary(), op.loc);
+      Parsed exponent = unary();
+      const int depth = std::max(base.depth, exponent.depth) + 1;
+      return limited({Expr::binary(Expr::Kind::Pow, std::move(base.e), std::move(exponent.e), op.loc), depth}, op.loc);
     }
     return base;
   }
 
-  Expr primary() {
+  Parsed primary() {
     const Token& t = peek();
     if (t.kind == TokenKind::Number) {
       next();
-      return Expr::number(t.text, t.loc);
+      return {Expr::number(t.text, t.loc), 1};
     }
     if (t.kind == TokenKind::Name) {
       const Token name = next();
-      if (!at_punct("(")) return Expr::symbol(name.text, name.loc);
+      if (!at_punct("(")) return {Expr::symbol(name.text, name.loc), 1};
       if (name.text != "sqrt" && name.text != "sin" && name.text != "cos")
         fail_at(name.loc, "unknown function `" + name.text + "`: the functions are sqrt, sin and cos");
       next();
-      std::vector<Expr> args = expr_list();
+      Parsed arg = sum();
+      if (at_punct(",")) {
+        std::size_t count = 1;
+        while (at_punct(",")) {
+          next();
+          sum();
+          ++count;
+        }
+        fail_at(name.loc, "`" + name.text + "` takes one argument, found " + std::to_string(count));
+      }
       expect_punct(")");
-      if (args.size() != 1) fail_at(name.loc, "`" + name.text + "` takes one argument, found " + std::to_string(args.size()));
-      return Expr::call(name.text, std::move(args), name.loc);
+      std::vector<Expr> args;
+      args.push_back(std::move(arg.e));
+      return limited({Expr::call(name.text, std::move(args), name.loc), arg.depth + 1}, name.loc);
     }
     if (at_punct("(")) {
       next();
-      Expr inner = expr();
+      Parsed inner = sum();
       expect_punct(")");
       return inner;
     }
@@ -502,6 +581,7 @@ class Parser {
   std::vector<Token> tokens_;
   std::string file_;
   std::size_t i_ = 0;
+  int nesting_ = 0;  // recursion depth of unary()
   ir::Model model_;
 };
 
@@ -510,10 +590,7 @@ std::string stem_of(const std::string& path) {
   std::string base = path.substr(path.find_last_of('/') + 1);
   const std::size_t dot = base.find_last_of('.');
   if (dot != std::string::npos && dot != 0) base = base.substr(0, dot);
-  for (char& c : base)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  if (base.empty() || std::isdigit(static_cast<unsigned char>(base[0]))) base = "m_" + base;
-  return base;
+  return ir::to_identifier(base);
 }
 
 }  // namespace
@@ -525,16 +602,21 @@ ir::Model parse_string(const std::string& text, const std::string& file_name) {
   return model;
 }
 
-ir::Model parse_file(const std::string& path) {
+std::string read_model_text(const std::string& path) {
   std::ostringstream text;
   if (path == "-") {
     text << std::cin.rdbuf();
   } else {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw ModelError(path, {}, "is a directory, not a model file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw ModelError(path, {}, "cannot open the model file");
     text << in.rdbuf();
+    if (in.bad()) throw ModelError(path, {}, "cannot read the model file");
   }
-  return parse_string(text.str(), path);
+  return text.str();
 }
+
+ir::Model parse_file(const std::string& path) { return parse_string(read_model_text(path), path); }
 
 }  // namespace mbgen::frontend

@@ -7,6 +7,9 @@
 
 namespace mbgen::frontend {
 
+// The text of a model file ("-" reads standard input). Throws ModelError when it cannot be read (or is a directory).
+std::string read_model_text(const std::string& path);
+
 // Reads and parses a model file ("-" reads standard input). Throws ModelError naming file, line and column.
 ir::Model parse_file(const std::string& path);
 

@@ -63,12 +63,16 @@ TEST_CASE("implicit points are the centre of mass or the ground origin", "[parse
 
 TEST_CASE("expressions print with the fewest parentheses and re-parse to the same text", "[parser]") {
   for (const char* text : {"a - (b - c)", "a - b - c", "a/(b*c)", "-a^2", "(-a)^2", "a^b^c", "(a^b)^c", "a*-b",
-                           "sqrt(a + b)/2", "2*pi*n", "a + -b", "-(-a)", "(a + b)*(c - d)/e"}) {
+                           "sqrt(a + b)/2", "2*pi*n", "-(-a)", "(a + b)*(c - d)/e", "a - b + c - d",
+                           "(a + b) + c", "a*(b*c)", "a*b/c*d", "a*(b/c)", "-a*b - c"}) {
     const std::string model = std::string("param a = 1\nparam b = 2\nparam c = 3\nparam d = 4\nparam e = 5\n"
                                           "param n = 6\nparam r = ") + text + "\n";
     const ir::Model m = frontend::parse_string(model, "t.mdl");
     CHECK(ir::to_string(m.find_parameter("r")->value) == text);
   }
+  // A sum is one node whose subtracted terms are negations: `a + -b` and `a - b` are the same tree.
+  const ir::Model m = frontend::parse_string("param a = 1\nparam b = 2\nparam r = a + -b\n", "t.mdl");
+  CHECK(ir::to_string(m.find_parameter("r")->value) == "a - b");
 }
 
 TEST_CASE("statements continue across lines inside brackets and after operators", "[parser]") {
@@ -103,7 +107,8 @@ TEST_CASE("syntax errors name line, column and what was expected", "[parser][err
 TEST_CASE("semantic errors name the offending declaration", "[parser][errors]") {
   CHECK(error_of("param a = b\n") == "t.mdl:1:11: error: unknown parameter `b`: declare it with `param b = VALUE`");
   CHECK(error_of("param a = b\nparam b = a\n") == "t.mdl:1:7: error: parameter `a` is defined in terms of itself");
-  CHECK(error_of("param a = 1\nparam a = 2\n") == "t.mdl:2:7: error: parameter `a` is already declared at line 1, column 7");
+  CHECK(error_of("param a = 1\nparam a = 2\n") ==
+        "t.mdl:2:7: error: `a` is already declared at line 1, column 7 (as a parameter); each name is declared once");
   CHECK(error_of("param a = 1\nparam b = a estimate\n") ==
         "t.mdl:2:13: error: parameter `b` is derived (an expression of other parameters) and cannot be `estimate`; estimate the parameters it is built from");
   CHECK(error_of("ground g\nbody b { mass 1; dof x }\n") ==

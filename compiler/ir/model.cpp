@@ -1,8 +1,34 @@
 #include "ir/model.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <limits>
 
 namespace mbgen::ir {
+
+double literal_value(const std::string& literal) {
+  double value = 0;
+  const char* end = literal.data() + literal.size();
+  const auto [ptr, ec] = std::from_chars(literal.data(), end, value);  // locale independent, unlike strtod
+  if (ec == std::errc::result_out_of_range) {
+    // Too large or too small for a double: which one, from the exponent's sign.
+    const std::size_t e = literal.find_first_of("eE");
+    const bool tiny = e != std::string::npos && e + 1 < literal.size() && literal[e + 1] == '-';
+    return tiny ? 0.0 : std::numeric_limits<double>::infinity();
+  }
+  if (ec != std::errc() || ptr != end) return std::numeric_limits<double>::quiet_NaN();
+  return value;
+}
+
+bool is_zero_literal(const std::string& literal) {
+  for (char c : literal) {
+    if (c == 'e' || c == 'E') break;
+    if (std::isdigit(static_cast<unsigned char>(c)) && c != '0') return false;
+  }
+  return true;
+}
 
 Expr Expr::number(std::string literal, SourceLoc l) {
   Expr e;
@@ -24,6 +50,22 @@ Expr Expr::binary(Kind k, Expr a, Expr b, SourceLoc l) {
   Expr e;
   e.kind = k;
   e.args = {std::move(a), std::move(b)};
+  e.loc = l;
+  return e;
+}
+
+Expr Expr::sum(std::vector<Expr> terms, SourceLoc l) {
+  Expr e;
+  e.kind = Kind::Add;
+  e.args = std::move(terms);
+  e.loc = l;
+  return e;
+}
+
+Expr Expr::product(std::vector<Expr> factors, SourceLoc l) {
+  Expr e;
+  e.kind = Kind::Mul;
+  e.args = std::move(factors);
   e.loc = l;
   return e;
 }
@@ -93,11 +135,32 @@ void print(const Expr& e, std::string& out) {
       out += '^';
       print_child(e.args[1], precedence(e.args[1]) < 3, out);
       return;
+    case K::Add:
+      // A term that is itself a sum is parenthesized (it re-parses as one node); a negated term is written `- x`.
+      for (std::size_t i = 0; i < e.args.size(); ++i) {
+        const Expr& t = e.args[i];
+        if (i > 0 && t.kind == K::Neg) {
+          out += " - ";
+          print_child(t.args[0], precedence(t.args[0]) <= 1, out);
+          continue;
+        }
+        if (i > 0) out += " + ";
+        print_child(t, precedence(t) <= 1, out);
+      }
+      return;
+    case K::Mul:
+      // The first factor may be a quotient (a/b*c reads ((a/b)*c)); the others must bind tighter.
+      for (std::size_t i = 0; i < e.args.size(); ++i) {
+        const Expr& f = e.args[i];
+        if (i > 0) out += '*';
+        print_child(f, i == 0 ? precedence(f) < 2 || f.kind == K::Mul : precedence(f) <= 2, out);
+      }
+      return;
     default: break;
   }
   // Left-associative binary operators: the right operand must bind strictly tighter to keep the tree.
   const int p = precedence(e);
-  const char* op = e.kind == K::Add ? " + " : e.kind == K::Sub ? " - " : e.kind == K::Mul ? "*" : "/";
+  const char* op = e.kind == K::Sub ? " - " : "/";
   print_child(e.args[0], precedence(e.args[0]) < p, out);
   out += op;
   print_child(e.args[1], precedence(e.args[1]) <= p, out);

@@ -22,9 +22,9 @@ struct Expr {
   enum class Kind {
     Number,  // text = literal as written ("0.127", "60e6", "3")
     Symbol,  // text = parameter name, or the constant "pi"
-    Add,     // args[0] + args[1]
-    Sub,     // args[0] - args[1]
-    Mul,     // args[0] * args[1]
+    Add,     // args[0] + args[1] + ... (two or more terms; the parser writes `a - b` as a term Neg(b))
+    Sub,     // args[0] - args[1] (built by code; the parser does not make it)
+    Mul,     // args[0] * args[1] * ... (two or more factors)
     Div,     // args[0] / args[1]
     Pow,     // args[0] ^ args[1]
     Neg,     // -args[0]
@@ -38,12 +38,24 @@ struct Expr {
   static Expr number(std::string literal, SourceLoc l = {});
   static Expr symbol(std::string name, SourceLoc l = {});
   static Expr binary(Kind k, Expr a, Expr b, SourceLoc l = {});
+  static Expr sum(std::vector<Expr> terms, SourceLoc l = {});
+  static Expr product(std::vector<Expr> factors, SourceLoc l = {});
   static Expr negate(Expr a, SourceLoc l = {});
   static Expr call(std::string fn, std::vector<Expr> a, SourceLoc l = {});
 
   bool is_number() const { return kind == Kind::Number; }
   bool is_symbol() const { return kind == Kind::Symbol; }
 };
+
+// A number literal's value as the nearest double (±infinity or 0 beyond the double range), and whether it is
+// exactly zero (every digit of its mantissa is 0). Neither throws for a literal the lexer accepted.
+double literal_value(const std::string& literal);
+bool is_zero_literal(const std::string& literal);
+
+// How deeply an expression may nest (levels of operators, parentheses and calls, with the derived parameters it
+// uses written out): the parser and the checks reject deeper ones, so that recursive passes over expressions
+// (checks, GiNaC, printers) stay far from the end of the stack. Flat sums and products do not count per term.
+inline constexpr int kMaxExpressionDepth = 256;
 
 // Infix text with the fewest parentheses that keep the meaning; re-parses to an equal tree.
 std::string to_string(const Expr& e);
@@ -170,6 +182,7 @@ struct Filter {
 
 struct Model {
   std::string name;  // from `model NAME`
+  SourceLoc name_loc;  // of NAME in the `model` statement (none when the name comes from the file name)
   std::string file;  // path it was read from ("-" for stdin, empty if built in code)
   std::vector<Parameter> parameters;
   std::vector<Ground> grounds;

@@ -15,6 +15,13 @@ bool row_is_zero(const GiNaC::matrix& mat, int i) {
 
 bool is_rotation(ir::Dof d) { return static_cast<int>(d) >= 3; }
 
+// A constant expression (numbers, pi, roots) that is below zero.
+bool negative(const GiNaC::ex& e) {
+  const GiNaC::ex v = GiNaC::evalf(e);
+  return GiNaC::is_a<GiNaC::numeric>(v) && GiNaC::ex_to<GiNaC::numeric>(v).is_real() &&
+         GiNaC::ex_to<GiNaC::numeric>(v).is_negative();
+}
+
 }  // namespace
 
 void check_every_coordinate_is_held(const Mechanism& m, const SymbolicModel& sm) {
@@ -49,6 +56,28 @@ void check_mass_matrix(const Mechanism& m, const SymbolicModel& sm) {
                                      b.body->name + "` a non-zero " +
                                      (is_rotation(dof) ? "inertia (inertia XX, YY, ZZ)" : "mass") +
                                      ", or remove " + ir::to_string(dof) + " from its dof list");
+    }
+    // Kinetic energy must be positive: a negative mass or inertia gives modes with negative damping ratios that
+    // mean nothing. Sylvester's criterion, on the exact minors evaluated to their sign.
+    for (unsigned k = 0; k < n; ++k) {
+      if (!negative(block(k, k))) continue;
+      const ir::Dof dof = b.body->dofs[k];
+      throw frontend::ModelError(m.model->file, b.body->loc,
+                                 "coordinate " + sm.coordinates[b.coordinate[k]].name() + " has a negative " +
+                                     (is_rotation(dof) ? std::string("inertia about ") + ir::to_string(dof)[1]
+                                                       : std::string("mass")) +
+                                     " at the current parameter values; masses and inertias must be positive");
+    }
+    for (unsigned k = 2; k <= n; ++k) {
+      GiNaC::matrix leading(k, k);
+      for (unsigned r = 0; r < k; ++r)
+        for (unsigned c = 0; c < k; ++c) leading(r, c) = block(r, c);
+      const GiNaC::ex minor = tidy(leading.determinant());
+      if (negative(minor) || (k < n && minor.is_zero()))  // a zero full determinant has its own message below
+        throw frontend::ModelError(m.model->file, b.body->loc,
+                                   "the mass matrix of body `" + b.body->name +
+                                       "` is not positive definite at the current parameter values (its inertia "
+                                       "tensor is not physical: check its inertia values)");
     }
     if (tidy(block.determinant()).is_zero())
       throw frontend::ModelError(m.model->file, b.body->loc,

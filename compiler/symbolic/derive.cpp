@@ -1,5 +1,6 @@
 #include "symbolic/derive.hpp"
 
+#include "frontend/diagnostics.hpp"
 #include "symbolic/blocks.hpp"
 #include "symbolic/checks.hpp"
 #include "symbolic/geometry.hpp"
@@ -21,6 +22,10 @@ void tidy_all(GiNaC::matrix& mat) {
 }  // namespace
 
 SymbolicModel derive(const ir::Model& model, const DeriveOptions& options) {
+  if (model.bodies.empty())
+    throw frontend::ModelError(model.file, {},
+                               "the model has no bodies, so there are no equations of motion to derive (is the file "
+                               "empty, or only comments?)");
   const ParameterTable params(model, options.set);
   const Mechanism mech = make_mechanism(model, params);
   SymbolicModel sm;

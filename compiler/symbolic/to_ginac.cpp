@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "frontend/diagnostics.hpp"
 
@@ -55,18 +57,75 @@ bool is_decimal_literal(const std::string& text) {
   return split_decimal(text, negative, digits, fraction_digits, exponent);
 }
 
+std::string decimal_limits_violation(const std::string& text) {
+  bool negative;
+  std::string digits, exponent;
+  long fraction_digits;
+  if (!split_decimal(text, negative, digits, fraction_digits, exponent)) return "it is not a decimal number";
+  if (digits.size() > static_cast<std::size_t>(kMaxLiteralDigits))
+    return "it has more than " + std::to_string(kMaxLiteralDigits) + " digits";
+  // Compared as text first: the exponent may have more digits than any integer type holds.
+  std::string magnitude = exponent[0] == '+' || exponent[0] == '-' ? exponent.substr(1) : exponent;
+  magnitude.erase(0, std::min(magnitude.find_first_not_of('0'), magnitude.size()));
+  if (magnitude.size() > 6 || std::stol(magnitude.empty() ? "0" : magnitude) > kMaxDecimalExponent)
+    return "its exponent lies outside -" + std::to_string(kMaxDecimalExponent) + " to " +
+           std::to_string(kMaxDecimalExponent);
+  return "";
+}
+
 GiNaC::numeric parse_decimal(const std::string& text) {
   bool negative;
   std::string digits, exponent;
   long fraction_digits;
   if (!split_decimal(text, negative, digits, fraction_digits, exponent))
     throw std::invalid_argument("not a decimal literal: `" + text + "`");
+  const std::string violation = decimal_limits_violation(text);
+  if (!violation.empty()) throw std::out_of_range("`" + text + "` is out of range: " + violation);
   // Integers given as digit strings are parsed exactly by CLN.
   const GiNaC::numeric mantissa(digits.c_str());
   const std::string exp_text = exponent[0] == '+' ? exponent.substr(1) : exponent;
   const GiNaC::numeric power = GiNaC::numeric(exp_text.c_str()) - GiNaC::numeric(fraction_digits);
   GiNaC::numeric value = mantissa * GiNaC::pow(GiNaC::numeric(10), power);
   return negative ? -value : value;
+}
+
+namespace {
+
+// Bits of an exact rational: the larger of its numerator's and denominator's.
+long rational_bits(const GiNaC::numeric& n) {
+  return std::max(GiNaC::numer(n).int_length(), GiNaC::denom(n).int_length());
+}
+
+}  // namespace
+
+void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const {
+  if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
+  const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(exponent);
+  // A large exponent is computed exactly when the base is a number (2^(2^64) would fill the memory), and gives
+  // no useful double otherwise.
+  if (!n.is_rational() || GiNaC::abs(n) > kMaxExponent)
+    throw frontend::ModelError(model_.file, e.loc,
+                               "`" + ir::to_string(e) + "`: the exponent must be a number within -" +
+                                   std::to_string(kMaxExponent) + " to " + std::to_string(kMaxExponent));
+  if (!GiNaC::is_a<GiNaC::numeric>(base)) return;
+  const GiNaC::numeric& b = GiNaC::ex_to<GiNaC::numeric>(base);
+  if (!b.is_rational()) return;
+  const long bits = rational_bits(b) * GiNaC::abs(GiNaC::numer(n)).to_long();
+  if (bits > kMaxNumberBits)
+    throw frontend::ModelError(model_.file, e.loc, "`" + ir::to_string(e) + "` is too large an exact number: " +
+                                                       too_large_text());
+}
+
+GiNaC::ex ParameterTable::bounded(const ir::Expr& e, const GiNaC::ex& value) const {
+  if (GiNaC::is_a<GiNaC::numeric>(value) && GiNaC::ex_to<GiNaC::numeric>(value).is_rational() &&
+      rational_bits(GiNaC::ex_to<GiNaC::numeric>(value)) > kMaxNumberBits)
+    throw frontend::ModelError(model_.file, e.loc, "`" + ir::to_string(e) + "` is too large an exact number: " +
+                                                       too_large_text());
+  return value;
+}
+
+std::string ParameterTable::too_large_text() {
+  return "its numerator or denominator would have more than " + std::to_string(kMaxNumberBits) + " bits";
 }
 
 ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::string, std::string>& overrides)
@@ -86,6 +145,8 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
       throw frontend::ModelError(model.file, {},
                                  "--set " + name + "=" + value + ": the value must be a decimal number such as "
                                  "1.5, -2 or 60e6");
+    if (const std::string violation = decimal_limits_violation(value); !violation.empty())
+      throw frontend::ModelError(model.file, {}, "--set " + name + "=" + value + ": out of range: " + violation);
   }
   for (const ir::Parameter& p : model.parameters) {
     if (p.derived) continue;
@@ -109,6 +170,58 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
                                  "the value of free parameter `" + fp.name + "` uses parameter `" + uses.front() +
                                      "`; a free parameter needs a constant value");
     fp.value = convert(fp.ir->value);
+  }
+  for (const FreeParameter& fp : free_) check_bounds(fp, overrides.count(fp.name) ? overrides.at(fp.name) : "");
+  // Every value, derived ones included, must be a real number at these values (sqrt(-1) as a mass is not).
+  const GiNaC::exmap at = values();
+  for (const ir::Parameter& p : model.parameters) {
+    const GiNaC::ex v = GiNaC::evalf(convert(ir::Expr::symbol(p.name, p.value.loc)).subs(at));
+    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
+      throw frontend::ModelError(model.file, p.value.loc,
+                                 "the value of parameter `" + p.name + "` is not a real number");
+  }
+}
+
+void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& set_text) const {
+  const ir::Parameter& p = *fp.ir;
+  // Values and bounds become doubles in generated code and fits: beyond the double range they would be infinite.
+  const GiNaC::numeric largest(std::numeric_limits<double>::max());
+  auto beyond_doubles = [&](const GiNaC::ex& v) {
+    return GiNaC::is_a<GiNaC::numeric>(v) && GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v)) > largest;
+  };
+  const GiNaC::ex value = GiNaC::evalf(fp.value);
+  if (beyond_doubles(value))
+    throw frontend::ModelError(model_.file, set_text.empty() ? p.value.loc : p.loc,
+                               (set_text.empty() ? "" : "--set " + p.name + "=" + set_text + ": ") + "the value of `" +
+                                   p.name + "` is beyond the range of a double (about 1.8e308)");
+  if (!p.lower && !p.upper) return;
+  const GiNaC::exmap at = values();
+  auto value_of = [&](const ir::Expr& bound) {
+    const GiNaC::ex v = GiNaC::evalf(convert(bound).subs(at));
+    if (beyond_doubles(v))
+      throw frontend::ModelError(model_.file, bound.loc,
+                                 "the bound `" + ir::to_string(bound) + "` of `" + p.name +
+                                     "` is beyond the range of a double (about 1.8e308); write inf for an open end");
+    return v;
+  };
+  const GiNaC::ex lower = p.lower ? value_of(*p.lower) : GiNaC::ex();
+  const GiNaC::ex upper = p.upper ? value_of(*p.upper) : GiNaC::ex();
+  auto below = [](const GiNaC::ex& a, const GiNaC::ex& b) {  // a < b, for numbers
+    return GiNaC::is_a<GiNaC::numeric>(a) && GiNaC::is_a<GiNaC::numeric>(b) &&
+           GiNaC::ex_to<GiNaC::numeric>(a) < GiNaC::ex_to<GiNaC::numeric>(b);
+  };
+  const std::string range = "[" + (p.lower ? ir::to_string(*p.lower) : std::string("-inf")) + ", " +
+                            (p.upper ? ir::to_string(*p.upper) : std::string("inf")) + "]";
+  if (p.lower && p.upper && below(upper, lower))
+    throw frontend::ModelError(model_.file, p.upper->loc,
+                               "parameter `" + p.name + "`: the upper bound lies below the lower bound in " + range);
+  if ((p.lower && below(value, lower)) || (p.upper && below(upper, value))) {
+    if (!set_text.empty())
+      throw frontend::ModelError(model_.file, p.loc,
+                                 "--set " + p.name + "=" + set_text + ": outside the bounds " + range +
+                                     " declared for `" + p.name + "`");
+    throw frontend::ModelError(model_.file, p.value.loc,
+                               "the value of parameter `" + p.name + "` lies outside its bounds " + range);
   }
 }
 
@@ -143,11 +256,14 @@ GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
     throw frontend::ModelError(model_.file, e.loc, message);
   };
   switch (e.kind) {
-    case K::Number:
+    case K::Number: {
       if (!is_decimal_literal(e.text) || e.text[0] == '-' || e.text[0] == '+')
         return fail("`" + e.text + "` is not a number; write digits with an optional point and exponent, e.g. 0.127 "
                     "or 60e6");
+      const std::string violation = decimal_limits_violation(e.text);
+      if (!violation.empty()) return fail("number `" + e.text + "` is out of range: " + violation);
       return parse_decimal(e.text);
+    }
     case K::Symbol: {
       const auto free = symbol_of_.find(e.text);
       if (free != symbol_of_.end()) return free->second;
@@ -155,15 +271,41 @@ GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
       if (e.text == "pi") return GiNaC::Pi;
       return fail("unknown parameter `" + e.text + "`: declare it with `param " + e.text + " = VALUE`");
     }
-    case K::Add: return convert(e.args.at(0)) + convert(e.args.at(1));
+    case K::Add:
+    case K::Mul: {
+      // One GiNaC node for all terms (factors): adding them one at a time would rebuild the sum each time. Numbers
+      // are combined here, one at a time, so that an exact result growing past the limit stops the work early.
+      const bool sum = e.kind == K::Add;
+      GiNaC::exvector operands;
+      operands.reserve(e.args.size());
+      GiNaC::numeric constant = sum ? 0 : 1;
+      for (const ir::Expr& a : e.args) {
+        const GiNaC::ex x = convert(a);
+        if (!GiNaC::is_a<GiNaC::numeric>(x)) {
+          operands.push_back(x);
+          continue;
+        }
+        constant = sum ? constant + GiNaC::ex_to<GiNaC::numeric>(x) : constant * GiNaC::ex_to<GiNaC::numeric>(x);
+        bounded(e, constant);
+      }
+      operands.push_back(constant);
+      return bounded(e, sum ? GiNaC::ex(GiNaC::add(operands)) : GiNaC::ex(GiNaC::mul(operands)));
+    }
     case K::Sub: return convert(e.args.at(0)) - convert(e.args.at(1));
-    case K::Mul: return convert(e.args.at(0)) * convert(e.args.at(1));
     case K::Div: {
       const GiNaC::ex denominator = convert(e.args.at(1));
       if (denominator.is_zero()) return fail("division by zero in `" + ir::to_string(e) + "`");
-      return convert(e.args.at(0)) / denominator;
+      return bounded(e, convert(e.args.at(0)) / denominator);
     }
-    case K::Pow: return GiNaC::pow(convert(e.args.at(0)), convert(e.args.at(1)));
+    case K::Pow: {
+      const GiNaC::ex base = convert(e.args.at(0)), exponent = convert(e.args.at(1));
+      if (base.is_zero() && !exponent.is_zero() && GiNaC::is_a<GiNaC::numeric>(exponent) &&
+          !GiNaC::ex_to<GiNaC::numeric>(exponent).is_positive())
+        return fail("`" + ir::to_string(e) + "`: zero to a power that is not positive");
+      if (base.is_zero() && exponent.is_zero()) return fail("`" + ir::to_string(e) + "`: 0^0 is undefined");
+      check_power(e, base, exponent);
+      return bounded(e, GiNaC::pow(base, exponent));
+    }
     case K::Neg: return -convert(e.args.at(0));
     case K::Call: {
       if (e.args.size() != 1)

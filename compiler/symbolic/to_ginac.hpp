@@ -12,11 +12,21 @@
 
 namespace mbgen::symbolic {
 
+// Limits on exact numbers, so that no input can make the exact arithmetic grow without bound (docs/limits.md):
+// a literal's digits and exponent, a numeric exponent of `^`, and the size of an exact rational in an expression.
+inline constexpr int kMaxLiteralDigits = 1000;
+inline constexpr long kMaxDecimalExponent = 1000;
+inline constexpr long kMaxExponent = 1000;
+inline constexpr long kMaxNumberBits = 100000;
+
 // True if `text` is a decimal literal: optional sign, digits with an optional point, optional exponent.
 bool is_decimal_literal(const std::string& text);
 // The exact rational a decimal literal denotes ("0.127" -> 127/1000, "1.5E-3" -> 3/2000). The digits are read as
-// arbitrary-precision integers, never through a double. Throws std::invalid_argument if not a decimal literal.
+// arbitrary-precision integers, never through a double. Throws std::invalid_argument if not a decimal literal,
+// std::out_of_range beyond the limits above.
 GiNaC::numeric parse_decimal(const std::string& text);
+// Why a decimal literal lies beyond the limits above ("it has more than 1000 digits"), or "" when it does not.
+std::string decimal_limits_violation(const std::string& text);
 
 // The parameters of a model as GiNaC objects. Free parameters become symbols (with their exact values, after
 // `--set` overrides); derived parameters are substituted by their definitions, recursively.
@@ -35,6 +45,13 @@ class ParameterTable {
 
  private:
   GiNaC::ex derived_value(const ir::Parameter& p) const;
+  // Throws ModelError when a free parameter's value (`set_text`: as given by --set, else empty) lies outside its
+  // declared bounds, or the bounds are reversed.
+  void check_bounds(const FreeParameter& fp, const std::string& set_text) const;
+  // Throw ModelError at `e` when a power or an exact number exceeds the limits above.
+  void check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const;
+  GiNaC::ex bounded(const ir::Expr& e, const GiNaC::ex& value) const;
+  static std::string too_large_text();
 
   const ir::Model& model_;
   std::vector<FreeParameter> free_;

@@ -97,8 +97,10 @@ TEST_CASE("a derived-parameter cycle and an unknown name are located at the IR n
   ir::Model cyclic = two_params;
   cyclic.parameters[1].value = ir::Expr::binary(ir::Expr::Kind::Mul, ir::Expr::symbol("c", {3, 11}),
                                                 ir::Expr::number("2", {3, 13}), {3, 12});
+  // The table evaluates every parameter when it is made (their values must be real), in declaration order: the
+  // cycle is met at b.
   CHECK(error_of([&] { ParameterTable(cyclic).convert(ir::Expr::symbol("c")); }) ==
-        "p.mdl:4:7: error: parameter `c` is defined in terms of itself (c -> b -> c); give one of these "
+        "p.mdl:3:7: error: parameter `b` is defined in terms of itself (b -> c -> b); give one of these "
         "parameters a numeric value");
   ir::Model unknown = two_params;
   unknown.parameters[2].value = ir::Expr::symbol("nope", {4, 11});

@@ -137,10 +137,11 @@ std::optional<Cancellation> find_cancellation(const SymbolicModel& sm, const Tra
   for (const GiNaC::ex& c : tf.denominator) den.push_back(tidy(c.subs(values)));
   GiNaC::ex numerator = polynomial(num, sm.s), denominator = polynomial(den, sm.s);
   if (numerator.is_zero() || denominator.degree(sm.s) == 0) return std::nullopt;
-  // gcd works over the rationals: stand-in symbols for pi, square roots etc., shared by both polynomials.
+  // gcd works on polynomials over the rationals: stand-in symbols for pi, square roots etc., shared by both
+  // polynomials, and the constant denominators (1/pi, say, from a mass of pi) multiplied out; neither moves a root.
   GiNaC::exmap stand_ins;
-  numerator = numerator.to_rational(stand_ins);
-  denominator = denominator.to_rational(stand_ins);
+  numerator = numerator.to_rational(stand_ins).numer();
+  denominator = denominator.to_rational(stand_ins).numer();
   GiNaC::ex common = GiNaC::gcd(GiNaC::expand(numerator), GiNaC::expand(denominator));
   if (common.degree(sm.s) <= 0) return std::nullopt;
   common = GiNaC::expand(common.subs(stand_ins));  // stand_ins maps each stand-in symbol to what it replaced

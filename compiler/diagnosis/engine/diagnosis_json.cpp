@@ -18,7 +18,12 @@ ordered_json fit_summary(const FitResult& fit, double validation) {
 }
 
 ordered_json parameter(const ParameterEstimate& p) {
-  return {{"value", number(p.value)}, {"std", number(p.std)}, {"identifiable", p.identifiable}};
+  // A parameter at a bound has no std (fit.hpp); the bound it sits on is named.
+  ordered_json out = {{"value", number(p.value)},
+                      {"std", p.at_bound.empty() ? number(p.std) : ordered_json(nullptr)},
+                      {"identifiable", p.identifiable}};
+  if (!p.at_bound.empty()) out["at_bound"] = p.at_bound;
+  return out;
 }
 
 ordered_json discrepancies(const ResidualSummary& r) {
@@ -95,7 +100,8 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
                      {"mean_normalized_residual", number(result.final.residual.mean_z)},
                      {"remaining_discrepancies", discrepancies(result.final.residual)}};
   }
-  return j.dump(2) + "\n";
+  // Invalid UTF-8 (a file name in another encoding) cannot be JSON text: such bytes become U+FFFD.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace mbgen::diagnosis

@@ -1,6 +1,7 @@
 #include "diagnosis/engine/diagnosis_report.hpp"
 
 #include <mbgen/gnuplot.hpp>
+#include <mbgen/markdown.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -30,7 +31,8 @@ std::string num(double x, int digits = 4) {
 std::string frf_script(const std::string& stem, const std::string& title, bool extended) {
   std::ostringstream gp;
   gp << "set terminal svg size 900,420 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set title '" << title << "' noenhanced\nset logscale y\nset grid\nset xlabel 'f [Hz]'\nset ylabel '|H|'\n"
+     << "set title " << gnuplot_string(title) << " noenhanced\n"
+     << "set logscale y\nset grid\nset xlabel 'f [Hz]'\nset ylabel '|H|'\n"
      << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
      << "     '' using 1:3 with lines lc rgb '#1f77b4' dt 2 title 'nominal model'";
   if (extended) gp << ", \\\n     '' using 1:4 with lines lc rgb '#d62728' title 'extended model'";
@@ -41,7 +43,8 @@ std::string frf_script(const std::string& stem, const std::string& title, bool e
 std::string residual_script(const std::string& stem, const std::string& title, bool extended) {
   std::ostringstream gp;
   gp << "set terminal svg size 900,320 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set title '" << title << " (1 = noise level)' noenhanced\nset logscale y\nset grid\nset xlabel 'f [Hz]'\n"
+     << "set title " << gnuplot_string(title + " (1 = noise level)") << " noenhanced\n"
+     << "set logscale y\nset grid\nset xlabel 'f [Hz]'\n"
      << "set ylabel '|residual|^2 / noise^2'\n"
      << "plot '" << stem << ".dat' using 1:2 with lines lc rgb '#1f77b4' title 'nominal'";
   if (extended) gp << ", \\\n     '' using 1:3 with lines lc rgb '#d62728' title 'extended'";
@@ -52,8 +55,12 @@ std::string residual_script(const std::string& stem, const std::string& title, b
 void parameter_table(std::ostringstream& md, const FitResult& fit) {
   md << "| parameter | prior | estimate | std | identifiable |\n|---|---|---|---|---|\n";
   for (const ParameterEstimate& p : fit.parameters)
-    md << "| `" << p.name << "` | " << num(p.prior, 6) << " | " << num(p.value, 6) << " | " << num(p.std, 3) << " | "
-       << (p.identifiable ? "yes" : "**no** (kept at prior)") << " |\n";
+    md << "| `" << p.name << "` | " << num(p.prior, 6) << " | " << num(p.value, 6) << " | "
+       << (p.at_bound.empty() ? num(p.std, 3) : std::string("—")) << " | "
+       << (p.identifiable        ? "yes"
+           : p.at_bound.empty() ? "**no** (kept at prior)"
+                                : "**no**: at its " + p.at_bound + " bound")
+       << " |\n";
   md << "\n";
 }
 
@@ -64,9 +71,9 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
   fs::create_directories(root);
   const bool extended = r.verdict == "extended";
   std::ostringstream md;
-  md << "# Diagnosis of `" << r.model_file << "`\n\n";
+  md << "# Diagnosis of " << markdown_code(r.model_file) << "\n\n";
   md << "Data: ";
-  for (std::size_t i = 0; i < r.data.size(); ++i) md << (i ? ", " : "") << "`" << r.data[i] << "`";
+  for (std::size_t i = 0; i < r.data.size(); ++i) md << (i ? ", " : "") << markdown_code(r.data[i]);
   md << "\n\n## Verdict: " << r.verdict << "\n\n";
   if (extended) {
     md << "Selected: ";
@@ -98,7 +105,7 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
   for (const CandidateOutcome& c : r.candidates) {
     md << "| " << c.round << " | `" << c.id << "` | ";
     if (!c.error.empty()) {
-      md << "failed | | | | " << c.error << " |\n";
+      md << "failed | | | | " << markdown_text(c.error) << " |\n";
       continue;
     }
     if (!c.fully_fitted) {
@@ -149,7 +156,8 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
     write_file(root / (res_stem + ".gp"), residual_script(res_stem, "normalized residual, " + label, final != nullptr));
     stems.push_back(frf_stem);
     stems.push_back(res_stem);
-    md << "### " << label << "\n\n![" << label << "](" << frf_stem << ".svg)\n\n![residual](" << res_stem << ".svg)\n\n";
+    md << "### " << markdown_text(label) << "\n\n![" << markdown_text(label) << "](" << frf_stem
+       << ".svg)\n\n![residual](" << res_stem << ".svg)\n\n";
   }
   md << render_gnuplot(root.string(), stems);
   write_file(root / "report.md", md.str());

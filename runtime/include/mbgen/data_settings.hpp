@@ -14,6 +14,7 @@ namespace mbgen {
 struct SetValue {
   std::string text;
   double value = 0;
+  int line = 0;  // of the `# set` line in its file (0: not from a file)
 };
 using SetMap = std::map<std::string, SetValue>;
 

@@ -114,7 +114,10 @@ struct ParameterEstimate {
   double value = 0;
   double std = 0;             // standard deviation in physical units; 0 when not estimated
   bool estimated = false;     // a candidate that was fitted
-  bool identifiable = true;   // false: kept at the prior because the data cannot determine it
+  bool identifiable = true;   // false: kept at the prior because the data cannot determine it, or at a bound
+  // "lower" or "upper" when the optimum lies on that bound (the data pull the parameter beyond it): the value is the
+  // bound, there is no std (a linearisation at a bound means nothing) and identifiable is false. Empty otherwise.
+  std::string at_bound;
   std::vector<std::string> confounded_with;  // parameters it is not separable from (if any)
   // How much the fit would gain by moving this parameter alone beyond where it stands, in units of the residual
   // variance (chi-square): (r . J_p)^2 / (|J_p|^2 s^2) at the estimate. An interior optimum has zero gradient, so
@@ -131,7 +134,9 @@ struct FitResult {
   std::vector<ParameterEstimate> parameters;  // the candidates for estimation, in model order
   Eigen::VectorXd prior_values;               // all model parameters
   Eigen::VectorXd values;                     // all model parameters at the estimate
-  std::vector<std::string> estimated;         // names of the identifiable, fitted ones: order of the matrices
+  // Names of the identifiable, fitted ones not at a bound: the order of the matrices. The covariance treats
+  // parameters at a bound as fixed there (an active constraint).
+  std::vector<std::string> estimated;
   Eigen::MatrixXd covariance;                 // of `estimated`, physical units
   Eigen::MatrixXd correlation;
   Eigen::VectorXd singular_values;  // of the unit-column-scaled Jacobian of all candidates at the estimate
@@ -141,7 +146,7 @@ struct FitResult {
   double initial_cost = 0;     // at the prior
   double residual_variance = 0;  // RSS / (n - k)
   double nrmse = 0;            // sqrt(RSS / sum of squared weighted measurements)
-  double bic = 0;              // n log(RSS / n) + k log n, k = estimated.size()
+  double bic = 0;              // n log(RSS / n) + k log n, k = the fitted parameters (those at a bound included)
 
   std::vector<Mode> modes;  // of the model at the estimate (without per-data-set values)
 

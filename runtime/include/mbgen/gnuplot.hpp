@@ -3,14 +3,17 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mbgen {
 
-bool gnuplot_available();
-
-// Runs `gnuplot STEM.gp` in `dir` for each stem. Returns an empty string when every plot was drawn, else a
-// Markdown note saying why not and how to draw them.
+// Runs `gnuplot STEM.gp` in `dir` for each stem (directly, not through a shell). Returns an empty string when
+// every plot was drawn, else a Markdown note saying why not (gnuplot missing or failing) and how to draw them.
 std::string render_gnuplot(const std::string& dir, const std::vector<std::string>& stems);
+
+// `s` as a single-quoted gnuplot string (for titles): quotes doubled, control characters as blanks. Use it with
+// `noenhanced`, so that `_` and `^` in names are not read as sub- and superscripts.
+std::string gnuplot_string(std::string_view s);
 
 }  // namespace mbgen

@@ -15,6 +15,8 @@
 
 #include "mbgen/model.hpp"
 
+#include <string>
+
 namespace mbgen {
 
 enum class BoundKind { None, Lower, Upper, Interval };
@@ -32,6 +34,13 @@ struct ParameterTransform {
 };
 
 constexpr double kBoundaryOffset = 1e-6;
+
+// "lower" or "upper" when an estimate `value` with standard deviation `std` lies on that bound of `t`, else "": within
+// kAtBoundTolerance of the transform's scale of it (the optimiser drove theta towards infinity: the data pull the
+// parameter beyond the bound) and no farther from it than its std (a well-determined small value near a bound stays
+// an interior estimate). A linearised std means nothing there: the cost is not stationary at a bound.
+constexpr double kAtBoundTolerance = 1e-6;
+std::string bound_reached(const ParameterTransform& t, double value, double std);
 
 // The transform for a parameter with the bounds of `info`, scaled by `nominal` (its prior value).
 // Throws std::invalid_argument if lower > upper or the nominal lies outside the bounds.

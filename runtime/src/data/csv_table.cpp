@@ -65,6 +65,8 @@ CsvTable read_csv_table(std::istream& in, const std::string& file) {
       if (!std::isfinite(*value))
         throw DataError(file, at, column_of(c),
                         "'" + std::string(fields[c]) + "' is not finite (NaN or infinity)" + where);
+      if (std::abs(*value) > kMaxDataMagnitude)
+        throw DataError(file, at, column_of(c), too_large_message(fields[c]) + where);
       table.columns[c].push_back(*value);
     }
     table.row_lines.push_back(at);

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
-#include <sstream>
+#include <streambuf>
 
 #include "mbgen/csv.hpp"
 #include "mbgen/data_error.hpp"
@@ -27,12 +27,40 @@ bool has_uff_extension(const std::string& name) {
 
 enum class Kind { Uff, Time, Frf };
 
-Kind detect(const std::string& bytes, const std::string& file_name) {
+// An input stream over bytes already in memory, without copying them (std::istringstream would).
+class BytesBuffer : public std::streambuf {
+ public:
+  explicit BytesBuffer(std::string& bytes) { setg(bytes.data(), bytes.data(), bytes.data() + bytes.size()); }
+
+ protected:
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
+    char* const from = dir == std::ios_base::beg ? eback() : dir == std::ios_base::cur ? gptr() : egptr();
+    if (off < eback() - from || off > egptr() - from) return pos_type(off_type(-1));
+    setg(eback(), from + off, egptr());
+    return pos_type(gptr() - eback());
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
+    return seekoff(off_type(pos), std::ios_base::beg, which);
+  }
+};
+
+// Skips a UTF-8 byte order mark (as some programs write before the first line) at the stream's position.
+void skip_byte_order_mark(std::istream& in) {
+  const std::streampos start = in.tellg();
+  char mark[3] = {};
+  if (in.read(mark, 3) && std::string_view(mark, 3) == "\xEF\xBB\xBF") return;
+  in.clear();
+  in.seekg(start);
+}
+
+// The kind of data from the name and the first lines, read from the stream's position.
+Kind detect(std::istream& in, const std::string& file_name) {
   if (has_uff_extension(file_name)) return Kind::Uff;
-  std::istringstream in(bytes);
   LineReader reader(in);
   std::string line;
+  bool any = false;
   while (reader.next(line)) {
+    any = true;
     const std::string_view text = trim(line);
     if (text.empty()) continue;
     if (text == "-1") return Kind::Uff;
@@ -44,15 +72,12 @@ Kind detect(const std::string& bytes, const std::string& file_name) {
                     "cannot tell the kind of data: the header starts with '" + std::string(first) +
                         "', expected 't' (time record) or 'f_hz' (FRFs), or a UFF file (.uff, or '    -1' first)");
   }
-  throw DataError(file_name, 0, 0, bytes.empty() ? "empty file" : "no header row (only comments)");
+  throw DataError(file_name, 0, 0, any ? "no header row (only comments)" : "empty file");
 }
 
-DataFile read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
-                 const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
-  // Read everything first: standard input cannot be rewound after looking at the header.
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::istringstream body(bytes);
-  switch (detect(bytes, file_name)) {
+DataFile parse(Kind kind, std::istream& body, const std::string& file_name, const std::optional<ChannelNames>& known,
+               const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
+  switch (kind) {
     case Kind::Time: return read_time_record_csv(body, file_name, known);
     case Kind::Frf: return read_frf_csv(body, file_name, known);
     case Kind::Uff: break;
@@ -68,6 +93,31 @@ DataFile read_any(std::istream& in, const std::string& file_name, const std::opt
   return std::get<FrfData>(set);
 }
 
+DataFile read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
+                 const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
+  // A file is parsed from the stream itself after a look at its first lines, and so never held as text beside its
+  // numbers (docs/limits.md, "Memory of a time record"). Standard input cannot be rewound: it is read whole first.
+  const std::streampos start = in.tellg();
+  if (start != std::streampos(-1)) {
+    skip_byte_order_mark(in);
+    const std::streampos body = in.tellg();
+    const Kind kind = detect(in, file_name);
+    in.clear();
+    in.seekg(body);
+    return parse(kind, in, file_name, known, uff_mapping, sidecar);
+  }
+  in.clear();
+  std::string bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>{});
+  BytesBuffer buffer(bytes);
+  std::istream text(&buffer);
+  skip_byte_order_mark(text);
+  const std::streampos body = text.tellg();
+  const Kind kind = detect(text, file_name);
+  text.clear();
+  text.seekg(body);
+  return parse(kind, text, file_name, known, uff_mapping, sidecar);
+}
+
 }  // namespace
 
 DataFile read_data(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
@@ -78,6 +128,8 @@ DataFile read_data(std::istream& in, const std::string& file_name, const std::op
 DataFile read_data_file(const std::string& path, const std::optional<ChannelNames>& known,
                        const std::optional<UffMapping>& uff_mapping) {
   if (path == "-") return read_data(std::cin, path, known, uff_mapping);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw DataError(path, 0, 0, "is a directory, not a data file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError(path, 0, 0, "cannot open file");
   return read_any(in, path, known, uff_mapping, path + ".map");

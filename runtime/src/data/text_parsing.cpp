@@ -55,6 +55,10 @@ std::optional<double> parse_number(std::string_view text, bool fortran_exponent)
   return value;
 }
 
+std::string too_large_message(std::string_view text) {
+  return "'" + std::string(text) + "' is too large: magnitudes above 1e150 are rejected (their squares overflow)";
+}
+
 bool is_identifier(std::string_view s) {
   if (s.empty()) return false;
   auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
@@ -87,7 +91,7 @@ bool parse_config_comment(std::string_view body, const std::string& file, int li
                           "' is not a finite decimal number");
     if (config.set.count(std::string(name)))
       throw DataError(file, line, 0, "parameter '" + std::string(name) + "' is set twice");
-    config.set[std::string(name)] = SetValue{std::string(value_text), *value};
+    config.set[std::string(name)] = SetValue{std::string(value_text), *value, line};
     return true;
   }
   const auto eq = text.find('=');

@@ -33,6 +33,12 @@ std::vector<std::string_view> split_fields(std::string_view line);
 // exponent letter). Returns nullopt when it is not one; the value may be non-finite ("nan", "inf").
 std::optional<double> parse_number(std::string_view text, bool fortran_exponent = false);
 
+// Measured values larger than this in magnitude are rejected: their squares (spectra, sums of squares in a fit)
+// would overflow a double and give NaN results. No physical measurement comes near it.
+constexpr double kMaxDataMagnitude = 1e150;
+// The message for such a value, e.g. "'1e300' is too large (...)".
+std::string too_large_message(std::string_view text);
+
 // True for a C-like identifier: a letter or '_' followed by letters, digits or '_'.
 bool is_identifier(std::string_view s);
 

@@ -60,12 +60,17 @@ TimeRecord read_time_record_csv(std::istream& in, const std::string& file_name,
   record.file = file_name;
   record.set = std::move(table.config.set);
   record.hold = table.config.hold.value_or(HoldMode::ZeroOrder);
-  record.t = Eigen::Map<const Eigen::VectorXd>(table.columns[0].data(),
-                                               static_cast<Eigen::Index>(table.columns[0].size()));
-  for (std::size_t c = 1; c < table.header.size(); ++c)
-    record.signals.push_back(Signal{table.header[c], Eigen::Map<const Eigen::VectorXd>(
-                                                         table.columns[c].data(),
-                                                         static_cast<Eigen::Index>(table.columns[c].size()))});
+  // Each column is copied into its vector and released at once, so that a long record is held about once, not
+  // twice (docs/limits.md, "Memory of a time record").
+  auto take = [&](std::size_t c) {
+    const Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(table.columns[c].data(),
+                                                                static_cast<Eigen::Index>(table.columns[c].size()));
+    std::vector<double>().swap(table.columns[c]);
+    return v;
+  };
+  std::vector<int>().swap(table.row_lines);
+  record.t = take(0);
+  for (std::size_t c = 1; c < table.header.size(); ++c) record.signals.push_back(Signal{table.header[c], take(c)});
   return record;
 }
 

@@ -201,6 +201,8 @@ void read_ascii_body(Cursor& c, const std::string& file, Uff58Record& r) {
       if (!v) throw DataError(file, c.line(), column, "UFF 58 data: " + shown(token) + " is not a number");
       if (!std::isfinite(*v))
         throw DataError(file, c.line(), column, "UFF 58 data: " + shown(token) + " is not finite");
+      if (std::abs(*v) > kMaxDataMagnitude)
+        throw DataError(file, c.line(), column, "UFF 58 data: " + too_large_message(token));
       if (static_cast<Eigen::Index>(values.size()) == expected)
         throw DataError(file, c.line(), column,
                         "UFF 58 data: more values than the " + std::to_string(expected) + " that record 7 declares (" +
@@ -246,6 +248,9 @@ void read_binary_body(Cursor& c, const std::string& file, Uff58Record& r, bool l
     }
     if (!std::isfinite(values[i]))
       throw DataError(file, r.line, 0, "UFF dataset 58b: value " + std::to_string(i + 1) + " is not finite");
+    if (std::abs(values[i]) > kMaxDataMagnitude)
+      throw DataError(file, r.line, 0, "UFF dataset 58b: value " + std::to_string(i + 1) + " is too large: magnitudes "
+                                       "above 1e150 are rejected (their squares overflow)");
   }
   fill_points(r, values);
   std::string_view line;

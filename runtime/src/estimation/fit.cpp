@@ -3,6 +3,7 @@
 #include "levenberg_marquardt.hpp"
 #include "multistart.hpp"
 #include "output_error.hpp"
+#include "value_checks.hpp"
 #include "mbgen/spectral_companion.hpp"
 
 #include "mbgen/identifiability.hpp"
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <optional>
 
@@ -117,6 +119,9 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
     if (idx < 0) throw FitError("fit: --set " + name + ": the model has no parameter " + name);
     prior[idx] = value;
   }
+  estimation::check_parameter_values(model, prior, options.values.empty() ? "the model's values" : "the values set");
+  estimation::check_data_set_values(model, prior, data);
+  estimation::check_measured_signals(model, data);
   const std::vector<int> candidates = candidate_parameters(info, options);
   std::vector<ParameterTransform> transforms(info.parameters.size());
   for (int i : candidates) {
@@ -265,12 +270,11 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
   result.iterations = best.iterations;
   result.converged = best.converged;
   result.stop_reason = best.stop_reason;
-  result.values = values;
 
   // Uncertainty from the linearisation at the estimate: cov = s^2 (J^T J)^-1, s^2 = RSS / (n - k).
   Eigen::VectorXd r;
   Eigen::VectorXd scale;
-  const Eigen::MatrixXd Js = estimator.scaled_jacobian(free, values, &scale, &r);
+  Eigen::MatrixXd Js = estimator.scaled_jacobian(free, values, &scale, &r);
   const double n = double(problem.residual_count());
   const double k = double(free.size());
   result.cost = r.squaredNorm();
@@ -278,15 +282,39 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
   result.nrmse = problem.measured_sum_squares() > 0 ? std::sqrt(result.cost / problem.measured_sum_squares())
                                                     : std::numeric_limits<double>::quiet_NaN();
   result.bic = n * std::log(std::max(result.cost, std::numeric_limits<double>::min()) / n) + k * std::log(n);
-  for (int i : free) result.estimated.push_back(info.parameters[static_cast<std::size_t>(i)].name);
-  if (!free.empty()) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js, Eigen::ComputeThinV);
+  auto covariance_of = [&](const Eigen::MatrixXd& J, const Eigen::VectorXd& column_scale) {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
     const Eigen::VectorXd s = svd.singularValues();
     Eigen::VectorXd inv2 = Eigen::VectorXd::Zero(s.size());
     for (Eigen::Index i = 0; i < s.size(); ++i)
       if (s[i] > s[0] * 1e-14) inv2[i] = 1 / (s[i] * s[i]);
     const Eigen::MatrixXd cov_scaled = svd.matrixV() * inv2.asDiagonal() * svd.matrixV().transpose();
-    result.covariance = result.residual_variance * scale.asDiagonal() * cov_scaled * scale.asDiagonal();
+    return Eigen::MatrixXd(result.residual_variance * column_scale.asDiagonal() * cov_scaled *
+                           column_scale.asDiagonal());
+  };
+  const Eigen::MatrixXd J_free = Js;  // of every fitted parameter at the estimate: their pulls (below)
+  // Parameters the optimum pressed against a bound (bound_reached, parameterization.hpp): reported at the bound,
+  // without a std, and held there for the others' covariance.
+  std::map<int, std::string> at_bound;
+  if (!free.empty()) {
+    const Eigen::VectorXd sd = covariance_of(Js, scale).diagonal().cwiseMax(0).cwiseSqrt();
+    for (std::size_t j = 0; j < free.size(); ++j) {
+      const int i = free[j];
+      const ParameterTransform& t = transforms[static_cast<std::size_t>(i)];
+      const std::string side = bound_reached(t, values[i], sd[static_cast<Eigen::Index>(j)]);
+      if (side.empty()) continue;
+      at_bound[i] = side;
+      values[i] = side == "lower" ? t.lower : t.upper;
+    }
+  }
+  std::vector<int> interior;
+  for (int i : free)
+    if (!at_bound.count(i)) interior.push_back(i);
+  if (interior.size() != free.size() && !interior.empty()) Js = estimator.scaled_jacobian(interior, values, &scale);
+  result.values = values;
+  for (int i : interior) result.estimated.push_back(info.parameters[static_cast<std::size_t>(i)].name);
+  if (!interior.empty()) {
+    result.covariance = covariance_of(Js, scale);
     const Eigen::VectorXd sd = result.covariance.diagonal().cwiseMax(0).cwiseSqrt();
     result.correlation = result.covariance.cwiseQuotient(sd * sd.transpose());
   }
@@ -305,14 +333,18 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
     e.prior = prior[i];
     e.value = values[i];
     e.estimated = identifiable[c];
-    e.identifiable = identifiable[c];
-    const auto it = std::find(free.begin(), free.end(), i);
-    if (it != free.end()) {
-      const Eigen::Index j = it - free.begin();
+    e.identifiable = identifiable[c] && !at_bound.count(i);
+    if (at_bound.count(i)) e.at_bound = at_bound[i];
+    if (const auto it = std::find(interior.begin(), interior.end(), i); it != interior.end()) {
+      const Eigen::Index j = it - interior.begin();
       e.std = std::sqrt(std::max(result.covariance(j, j), 0.0));
+    }
+    if (const auto it = std::find(free.begin(), free.end(), i); it != free.end()) {
+      const Eigen::Index j = it - free.begin();
       // The one-parameter Newton step from the estimate: cost C = |r|^2 drops by (r . J_j)^2 / |J_j|^2 moving
       // along column j of the Jacobian (physical units: Js's columns are J's times the scale, which cancels).
-      const double along = r.dot(Js.col(j)), norm2 = Js.col(j).squaredNorm();
+      // Parameters at a bound included: there the pull is what holds them.
+      const double along = r.dot(J_free.col(j)), norm2 = J_free.col(j).squaredNorm();
       if (norm2 > 0 && result.residual_variance > 0) {
         e.pull_chi2 = along * along / (norm2 * result.residual_variance);
         // r is model minus measured: the cost falls for a step -along/norm2 in the scaled parameter.

@@ -3,9 +3,11 @@
 #include "test_support.hpp"
 
 #include "mbgen/fit.hpp"
+#include "mbgen/parameterization.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace mbgen;
@@ -119,4 +121,54 @@ TEST_CASE("also_start_at is start 1 of the search", "[fit][frf][global]") {
   CHECK(r.start_costs[2] == random.start_costs[1]);  // the random starts follow, drawn as before
   o.also_start_at = {{"no_such_parameter", 1.0}};
   CHECK_THROWS_AS(fit(model, {DataSet(data)}, o), FitError);
+}
+
+TEST_CASE("a parameter the data pull beyond its bound is reported at the bound, without a std", "[fit][frf][bounds]") {
+  // The truth's k11 lies above the bound: the optimum presses k11 against it. (The spindle demo reported such a
+  // mount stiffness as 1e10 +- 3e10, "identifiable".)
+  const test::Mdof2Values truth;
+  std::mt19937 rng(5);
+  const FrfData data = test::mdof2_frf_data(truth, Eigen::VectorXd::LinSpaced(561, 20, 300), 0.01, rng);
+  test::LinearModel model = test::mdof2_model(truth, true);
+  const double k11_max = 0.8 * truth.k11;
+  model.set_bounds(2, 0, k11_max);
+  test::Mdof2Values prior = truth;
+  prior.k11 = 0.7 * truth.k11;
+  FitOptions options;
+  options.starts = 2;
+  options.values = {{"k11", prior.k11}};
+  const FitResult r = fit(model, {DataSet(data)}, options);
+  const ParameterEstimate& k11 = r.parameters[2];
+  REQUIRE(k11.name == "k11");
+  CHECK(k11.at_bound == "upper");
+  CHECK(k11.value == k11_max);
+  CHECK_FALSE(k11.identifiable);
+  CHECK(k11.std == 0);
+  CHECK(std::find(r.estimated.begin(), r.estimated.end(), "k11") == r.estimated.end());
+  CHECK(r.covariance.rows() == static_cast<Eigen::Index>(r.estimated.size()));
+  // The others are ordinary estimates; c22 (0.47 in [0, 1e4], well determined) is near its lower bound, not at it.
+  for (const ParameterEstimate& e : r.parameters) {
+    if (e.name == "k11" || !e.estimated) continue;
+    INFO(e.name << " = " << e.value << " +- " << e.std);
+    CHECK(e.at_bound.empty());
+    CHECK(e.identifiable);
+    CHECK(e.std > 0);
+  }
+}
+
+TEST_CASE("bound_reached: on a bound only when pressed against it, not when well determined", "[fit][bounds]") {
+  ParameterInfo info;
+  info.name = "c";
+  info.lower = 0;
+  info.upper = 1e4;
+  const ParameterTransform t = make_parameter_transform(info, 10);
+  CHECK(bound_reached(t, 1e4, 1e3) == "upper");
+  CHECK(bound_reached(t, 1e4 - 1e-3, 1.0) == "upper");
+  CHECK(bound_reached(t, 1e-3, 1.0) == "lower");
+  CHECK(bound_reached(t, 1e-3, 1e-4) == "");        // well determined: an interior estimate
+  CHECK(bound_reached(t, 0.47, 1.0) == "");         // farther than 1e-6 of the interval from the bound
+  CHECK(bound_reached(t, 5000, 1e9) == "");
+  ParameterInfo free_info;
+  free_info.name = "x";
+  CHECK(bound_reached(make_parameter_transform(free_info, 1), 0, 1) == "");  // no bounds
 }

@@ -30,6 +30,7 @@ std::string fit_result_json(const FitResult& r) {
     p["prior"] = number(e.prior);
     p["unit"] = e.unit;
     if (!e.confounded_with.empty()) p["confounded_with"] = e.confounded_with;
+    if (!e.at_bound.empty()) p["at_bound"] = e.at_bound;
     params[e.name] = p;
   }
   j["parameters"] = params;
@@ -62,7 +63,8 @@ std::string fit_result_json(const FitResult& r) {
   nlohmann::json history = nlohmann::json::array();
   for (double c : r.cost_history) history.push_back(number(c));
   j["cost_history"] = history;
-  return j.dump(2) + "\n";
+  // Invalid UTF-8 (a file name in another encoding) cannot be JSON text: such bytes become U+FFFD.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 void write_fit_json(std::ostream& out, const FitResult& result) { out << fit_result_json(result); }

@@ -1,10 +1,12 @@
 // The report directory: report.md with tables and SVG plots drawn by gnuplot from .dat files and .gp scripts.
 #include "mbgen/fit_report.hpp"
 
+#include "mbgen/gnuplot.hpp"
+#include "mbgen/markdown.hpp"
+
 #include <cmath>
 #include <complex>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -44,13 +46,11 @@ std::string fmt(double x, int digits = 6) {
 
 double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
 
-bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
-
 std::string frf_script(const std::string& stem, const std::string& title) {
   std::ostringstream gp;
   gp << "set terminal svg size 900,700 dynamic font 'sans,11'\n"
      << "set output '" << stem << ".svg'\n"
-     << "set multiplot layout 2,1 title '" << title << "'\n"
+     << "set multiplot layout 2,1 title " << gnuplot_string(title) << " noenhanced\n"
      << "set logscale y\nset format y '%.0e'\nset grid\nset ylabel '|H|'\nset key top right\n"
      << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
      << "     '' using 1:4 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
@@ -62,7 +62,8 @@ std::string frf_script(const std::string& stem, const std::string& title) {
      << "unset multiplot\n"
      << "set terminal svg size 900,400 dynamic font 'sans,11'\n"
      << "set output '" << stem << "_residual.svg'\n"
-     << "set title '" << title << ": residual |H_model - H_data|'\nset autoscale y\nset ytics auto\nset logscale y\n"
+     << "set title " << gnuplot_string(title + ": residual |H_model - H_data|") << " noenhanced\n"
+     << "set autoscale y\nset ytics auto\nset logscale y\n"
      << "set ylabel '|residual|'\n"
      << "plot '" << stem << ".dat' using 1:8 with lines lc rgb '#1f77b4' dt 2 title 'prior', \\\n"
      << "     '' using 1:9 with lines lc rgb '#d62728' title 'estimate'\n";
@@ -73,7 +74,7 @@ std::string time_script(const std::string& stem, const std::string& title) {
   std::ostringstream gp;
   gp << "set terminal svg size 900,700 dynamic font 'sans,11'\n"
      << "set output '" << stem << ".svg'\n"
-     << "set multiplot layout 2,1 title '" << title << "'\nset grid\nset key top right\n"
+     << "set multiplot layout 2,1 title " << gnuplot_string(title) << " noenhanced\nset grid\nset key top right\n"
      << "set ylabel 'output'\n"
      << "plot '" << stem << ".dat' using 1:2 with lines lc rgb '#555555' title 'data', \\\n"
      << "     '' using 1:3 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
@@ -95,24 +96,25 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   if (ec) throw FitError("cannot create report directory " + dir + ": " + ec.message());
   const Prediction before = predict(model, data, result.prior_values);
   const Prediction after = predict(model, data, result.values);
-  const bool gnuplot = gnuplot_available();
 
   std::ostringstream md;
-  md << "# Fit report: " << result.model << "\n\n";
+  md << "# Fit report: " << markdown_code(result.model) << "\n\n";
   md << "Method: `" << result.method << "`. Data:";
-  for (const auto& d : result.data) md << " `" << d << "`";
+  for (const auto& d : result.data) md << " " << markdown_code(d);
   md << ".\n\n## Parameters\n\n| parameter | prior | estimate | std | relative std | identifiable | unit |\n"
      << "|---|---|---|---|---|---|---|\n";
   for (const auto& e : result.parameters) {
     md << "| " << e.name << " | " << fmt(e.prior) << " | " << fmt(e.value) << " | "
        << (e.identifiable ? fmt(e.std, 3) : "—") << " | "
        << (e.identifiable && e.value != 0 ? fmt(100 * e.std / std::abs(e.value), 3) + " %" : "—") << " | "
-       << (e.identifiable ? "yes" : "**no** (kept at prior)");
+       << (e.identifiable        ? "yes"
+           : e.at_bound.empty() ? "**no** (kept at prior)"
+                                : "**no**: at its " + e.at_bound + " bound");
     if (!e.confounded_with.empty()) {
       md << "; confounded with";
       for (const auto& c : e.confounded_with) md << " " << c;
     }
-    md << " | " << e.unit << " |\n";
+    md << " | " << markdown_text(e.unit) << " |\n";
   }
   md << "\n## Fit\n\n"
      << "- residuals n = " << result.residual_count << ", estimated parameters k = " << result.estimated.size() << "\n"
@@ -144,7 +146,7 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
 
   std::vector<std::string> scripts;
   for (std::size_t d = 0; d < data.size(); ++d) {
-    md << "### Data set " << d + 1 << ": `" << data[d].file() << "`\n\n";
+    md << "### Data set " << d + 1 << ": " << markdown_code(data[d].file()) << "\n\n";
     for (const auto& [name, value] : data[d].set()) md << "- set " << name << " = " << value.text << "\n";
     for (std::size_t c = 0; c < before.channels[d].size(); ++c) {
       const std::string label = before.channel_names[d][c];
@@ -173,20 +175,11 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
       }
       write_file(root / (stem + ".dat"), dat.str());
       scripts.push_back(stem);
-      md << "#### " << label << "\n\n![" << label << "](" << stem << ".svg)\n\n";
-      if (data[d].is_frf()) md << "![" << label << " residual](" << stem << "_residual.svg)\n\n";
+      md << "#### " << markdown_text(label) << "\n\n![" << markdown_text(label) << "](" << stem << ".svg)\n\n";
+      if (data[d].is_frf()) md << "![" << markdown_text(label) << " residual](" << stem << "_residual.svg)\n\n";
     }
   }
-  bool rendered = gnuplot;
-  if (gnuplot) {
-    for (const auto& stem : scripts) {
-      const std::string cmd = "cd '" + root.string() + "' && gnuplot '" + stem + ".gp' > /dev/null 2>&1";
-      if (std::system(cmd.c_str()) != 0) rendered = false;
-    }
-  }
-  if (!rendered)
-    md << "**The plots were not rendered** (" << (gnuplot ? "gnuplot failed" : "gnuplot is not installed")
-       << "): run `gnuplot NAME.gp` in this directory to draw them from the .dat files.\n";
+  md << render_gnuplot(root.string(), scripts);
   write_file(root / "report.md", md.str());
 }
 

@@ -32,6 +32,16 @@ ParameterTransform make_parameter_transform(const ParameterInfo& info, double no
   return t;
 }
 
+std::string bound_reached(const ParameterTransform& t, double value, double std) {
+  const bool lower = t.kind == BoundKind::Lower || t.kind == BoundKind::Interval;
+  const bool upper = t.kind == BoundKind::Upper || t.kind == BoundKind::Interval;
+  const double reach = kAtBoundTolerance * t.scale;
+  auto on = [&](double distance) { return distance <= reach && !(distance > std); };  // a NaN std counts as wide
+  if (lower && on(value - t.lower)) return "lower";
+  if (upper && on(t.upper - value)) return "upper";
+  return "";
+}
+
 double ParameterTransform::to_physical(double theta) const {
   switch (kind) {
     case BoundKind::None: return scale * theta;

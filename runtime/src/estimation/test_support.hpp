@@ -46,6 +46,10 @@ class LinearModel : public Model {
     info_.parameters.push_back(p);
     return static_cast<int>(info_.parameters.size()) - 1;
   }
+  void set_bounds(int param, double lower, double upper) {
+    info_.parameters[static_cast<std::size_t>(param)].lower = lower;
+    info_.parameters[static_cast<std::size_t>(param)].upper = upper;
+  }
   void constant(Matrix m, int row, int col, double v) { member(base_, m)(row, col) += v; }
   void linear(Matrix m, int param, int row, int col, double coefficient) {
     list(slope_, m).push_back({param, row, col, coefficient});

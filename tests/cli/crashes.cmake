@@ -1,0 +1,40 @@
+# Inputs that crashed mbgen (SIGSEGV) get a clear message and exit status 1: an empty model, comments only, a
+# directory, and nesting deeper than the limit (docs/limits.md) in parentheses, unary minus and derived parameters.
+include(${CMAKE_CURRENT_LIST_DIR}/cli_support.cmake)
+
+file(WRITE "${WORK}/empty.mdl" "")
+file(WRITE "${WORK}/comments.mdl" "# only\n# comments\n")
+file(MAKE_DIRECTORY "${WORK}/adir")
+foreach(command "inspect" "")
+  expect_run(STATUS 1 STDERR "^empty.mdl: error: the model has no bodies" ARGS ${command} empty.mdl -o x.cpp)
+  expect_run(STATUS 1 STDERR "^comments.mdl: error: the model has no bodies" ARGS ${command} comments.mdl -o x.cpp)
+  expect_run(STATUS 1 STDERR "^adir: error: is a directory, not a model file" ARGS ${command} adir -o x.cpp)
+endforeach()
+expect_no_temporaries("${WORK}")
+if(EXISTS "${WORK}/x.cpp" OR EXISTS "${WORK}/x.hpp")
+  message(SEND_ERROR "output written for a model that failed")
+endif()
+
+set(tail "\nground g\nbody b { mass 1; dof x }\nspring s { from g; to b; along x; stiffness 1 }\n")
+string(REPEAT "(" 10000 open)
+string(REPEAT ")" 10000 close)
+file(WRITE "${WORK}/parens.mdl" "model m\nparam a = ${open}1${close}${tail}")
+expect_run(STATUS 1 STDERR "^parens.mdl:2:267: error: expression nested too deeply" ARGS inspect parens.mdl)
+
+string(REPEAT "-" 100000 minus)
+file(WRITE "${WORK}/minus.mdl" "model m\nparam a = ${minus}1${tail}")
+expect_run(STATUS 1 STDERR "^minus.mdl:2:267: error: expression nested too deeply" ARGS inspect minus.mdl)
+
+# A chain of 20 000 derived parameters, built in blocks (appending line by line to one string takes quadratic time).
+set(chain "model m\nparam p0 = 1\n")
+set(previous p0)
+foreach(block RANGE 0 99)
+  set(part "")
+  foreach(i RANGE 1 200)
+    string(APPEND part "param p${block}_${i} = ${previous}\n")
+    set(previous "p${block}_${i}")
+  endforeach()
+  string(APPEND chain "${part}")
+endforeach()
+file(WRITE "${WORK}/chain.mdl" "${chain}${tail}")
+expect_run(STATUS 1 STDERR "^chain.mdl:[0-9]+:7: error: parameter `p[0-9_]+` nests too deeply" ARGS inspect chain.mdl)

@@ -1,0 +1,48 @@
+# Exit statuses (docs/cli.md): usage errors 2, bad input 1 with the file (and line and column) named; `diagnose -`
+# reads the model from standard input; a byte order mark is not an error; JSON output stays valid UTF-8.
+include(${CMAKE_CURRENT_LIST_DIR}/cli_support.cmake)
+write_model(m)
+
+expect_run(STATUS 2 STDERR "--set: m1=abc: the value must be a decimal number" ARGS inspect m.mdl --set m1=abc)
+expect_run(STATUS 2 STDERR "--set: m1=abc" ARGS ${FAST_FIT} --set m1=abc)
+
+write_model(zz "param z = 0^0")
+expect_run(STATUS 1 STDERR "^zz.mdl:9:12: error: `0\\^0`: 0\\^0 is undefined" ARGS inspect zz.mdl)
+string(REPEAT "0" 309 zeros)
+write_model(range "param r = 1 in [0, 1${zeros}]")
+expect_run(STATUS 1 STDERR "^range.mdl:9:20: error: the bound `1${zeros}` of `r` is beyond the range of a double"
+  ARGS inspect range.mdl)
+
+file(MAKE_DIRECTORY "${WORK}/adir")
+expect_run(STATUS 1 STDERR "^adir: error: is a directory, not a data file" ARGS fit one.mdl --data adir --starts 1)
+
+# `diagnose -`: the model comes from standard input (it used to fail opening a file named `-`); here the data is
+# bad, so the run stops at reading it, after the model was read.
+file(WRITE "${WORK}/bad.csv" "f_hz,d1/F1.re\n10,x\n")
+execute_process(COMMAND "${MBGEN}" diagnose - --data bad.csv WORKING_DIRECTORY "${WORK}" INPUT_FILE "${MDOF2}"
+  RESULT_VARIABLE status ERROR_VARIABLE err OUTPUT_QUIET TIMEOUT 60)
+if(NOT status EQUAL 1 OR NOT err MATCHES "^bad.csv:2:2: error: 'x' is not a number")
+  message(SEND_ERROR "diagnose - with bad data: status ${status}, stderr: ${err}")
+endif()
+
+# A UTF-8 byte order mark before a model or a data file is skipped.
+string(ASCII 239 187 191 bom)
+file(READ "${WORK}/m.mdl" text)
+file(WRITE "${WORK}/bom.mdl" "${bom}${text}")
+expect_run(STATUS 0 ARGS inspect bom.mdl)
+file(READ "${WORK}/one_frf.csv" frf)
+file(WRITE "${WORK}/bom.csv" "${bom}${frf}")
+expect_run(STATUS 0 ARGS fit one.mdl --data bom.csv --starts 1)
+
+# A data file name that is not UTF-8 (Latin-1 "é"): the JSON result is still valid UTF-8, the name with U+FFFD.
+string(ASCII 233 latin1)
+file(COPY_FILE "${WORK}/one_frf.csv" "${WORK}/d${latin1}.csv")
+expect_run(STATUS 0 STDOUT "\"d�.csv\"" ARGS fit one.mdl --data "d${latin1}.csv" --starts 1 --json -)
+
+# A valid model the numeric evaluator cannot run (a parameter in an exponent) is the model's limit, status 1 with the
+# file named; it was reported as a bare exception message.
+file(WRITE "${WORK}/power.mdl" "model power\nparam a = 2\nparam m1 = a^a\nground g\nbody b { mass m1; dof x }\n"
+           "spring s { from g; to b; along x; stiffness 1000 }\ninput F force on b along x\n"
+           "output y displacement of b along x\n")
+expect_run(STATUS 1 STDERR "^power.mdl: error: cannot fit or simulate this model: a power whose exponent depends"
+  ARGS fit power.mdl --data one_frf.csv --starts 1)

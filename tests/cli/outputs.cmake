@@ -1,0 +1,48 @@
+# Outputs appear whole or not at all (docs/cli.md): colliding outputs are refused before any work, a failed run
+# leaves nothing, and temporaries left by a killed run are removed by the next one.
+include(${CMAKE_CURRENT_LIST_DIR}/cli_support.cmake)
+write_model(m)
+
+# `-o x.hpp`: the default header would be x.hpp too. Refused (usage), nothing written.
+tree_state(before "${WORK}")
+expect_run(STATUS 2 STDERR "x.hpp is also the output of" ARGS m.mdl -o x.hpp)
+expect_unchanged("${before}" "${WORK}" "-o x.hpp")
+
+# An output that is an input.
+expect_run(STATUS 2 STDERR "is an input of this command" ARGS m.mdl -o m.mdl --header m.hpp)
+expect_unchanged("${before}" "${WORK}" "-o m.mdl")
+
+# A destination that is a directory, or in a directory that does not exist: bad output (1), nothing written.
+file(MAKE_DIRECTORY "${WORK}/d.cpp")
+tree_state(before "${WORK}")
+expect_run(STATUS 1 STDERR "d.cpp: error: cannot write: it is a directory" ARGS m.mdl -o d.cpp --header d.hpp)
+expect_run(STATUS 1 STDERR "missing/m.[ch]pp: error: cannot write: directory `missing` does not exist" ARGS m.mdl -o missing/m.cpp)
+expect_unchanged("${before}" "${WORK}" "unwritable destinations")
+
+# A failure late in the run (the model is bad only as C++: its name is a keyword) leaves nothing.
+file(WRITE "${WORK}/kw.mdl" "model int\nground g\nbody b { mass 1; dof x }\nspring s { from g; to b; along x; stiffness 1 }\n")
+tree_state(before "${WORK}")
+expect_run(STATUS 1 STDERR "kw.mdl:1:7: error: the model's name `int` cannot name its C\\+\\+ namespace" ARGS kw.mdl -o kw.cpp)
+expect_unchanged("${before}" "${WORK}" "a failed compile")
+
+# Temporaries of a killed run (this host, a process that no longer exists) are removed by the next run writing the
+# same destination; one of a live process (pid 1) is left alone.
+cmake_host_system_information(RESULT host QUERY HOSTNAME)
+string(REGEX REPLACE "[^A-Za-z0-9-]" "_" host "${host}")
+file(WRITE "${WORK}/.out.cpp.mbgen-tmp-${host}-99999999" "half-written\n")
+file(WRITE "${WORK}/.out.cpp.mbgen-tmp-${host}-1" "someone else's\n")
+expect_run(STATUS 0 ARGS m.mdl -o out.cpp)
+if(EXISTS "${WORK}/.out.cpp.mbgen-tmp-${host}-99999999")
+  message(SEND_ERROR "the stale temporary of a dead process was not removed")
+endif()
+if(NOT EXISTS "${WORK}/.out.cpp.mbgen-tmp-${host}-1")
+  message(SEND_ERROR "the temporary of a live process was removed")
+endif()
+file(REMOVE "${WORK}/.out.cpp.mbgen-tmp-${host}-1")
+expect_no_temporaries("${WORK}")
+if(NOT EXISTS "${WORK}/out.cpp" OR NOT EXISTS "${WORK}/out.hpp")
+  message(SEND_ERROR "the outputs are missing")
+endif()
+
+# Standard input may be read once.
+expect_run(STATUS 2 STDERR "standard input \\(-\\) can be read only once" ARGS fit - --data - --starts 1)

@@ -1,0 +1,55 @@
+# Inputs that gave wrong results with exit status 0 are refused with status 1 (or 2 for a malformed option):
+# negative mass, --set or `# set` values outside the bounds or with a singular mass matrix, data that is zero or too
+# large to square, a name declared twice across kinds, and model names or namespaces that are not valid C++.
+include(${CMAKE_CURRENT_LIST_DIR}/cli_support.cmake)
+
+file(WRITE "${WORK}/neg.mdl" "model neg\nparam m1 = -2\nground g\nbody b { mass m1; dof x }\n"
+           "spring s { from g; to b; along x; stiffness 1000 }\n")
+expect_run(STATUS 1 STDERR "^neg.mdl:4:6: error: coordinate b.x has a negative mass" ARGS inspect neg.mdl)
+
+write_model(m)
+expect_run(STATUS 1 STDERR "^m.mdl:2:7: error: --set m1=20: outside the bounds \\[0.5, 10\\]" ARGS inspect m.mdl --set m1=20)
+write_model(outside "param v = 3 in [0, 1]")
+expect_run(STATUS 1 STDERR "^outside.mdl:9:11: error: the value of parameter `v` lies outside its bounds" ARGS inspect outside.mdl)
+
+# Data: `# set m1=0.000` (the mass matrix singular, as --set m1=0 is refused), all-zero and 1e300 values.
+file(STRINGS "${MDOF2_FRF}" lines)
+list(GET lines 1 header)
+list(SUBLIST lines 2 -1 rows)
+set(zero "${header}\n")
+set(huge "${header}\n")
+set(set0 "# set m1=0.000\n${header}\n")
+foreach(row IN LISTS rows)
+  string(REGEX MATCH "^[^,]+" f "${row}")
+  string(APPEND zero "${f},0,0,0.9,0,0,0.9\n")
+  string(APPEND huge "${f},1e300,-1e300,0.9,1e300,1e300,0.9\n")
+  string(APPEND set0 "${row}\n")
+endforeach()
+file(WRITE "${WORK}/zero.csv" "${zero}")
+file(WRITE "${WORK}/huge.csv" "${huge}")
+file(WRITE "${WORK}/set0.csv" "${set0}")
+expect_run(STATUS 1 STDERR "^set0.csv:1: error: the values of its `# set` lines are not admissible: the mass matrix"
+  ARGS fit ${MDOF2} --data set0.csv --starts 1)
+expect_run(STATUS 1 STDERR "^zero.csv: error: FRF d1/F1 is zero at every frequency" ARGS fit ${MDOF2} --data zero.csv --starts 1)
+expect_run(STATUS 1 STDERR "^huge.csv:2:2: error: '1e300' is too large" ARGS fit ${MDOF2} --data huge.csv --starts 1)
+
+# One name for a parameter, a spring and an input.
+file(WRITE "${WORK}/twice.mdl" "model twice\nparam F = 1000\nground g\nbody b { mass 1; dof x }\n"
+           "spring F { from g; to b; along x; stiffness F }\ninput F force on b along x\n")
+expect_run(STATUS 1 STDERR "^twice.mdl:5:8: error: `F` is already declared at line 2, column 7 \\(as a parameter\\)"
+  ARGS inspect twice.mdl)
+
+# Model names that cannot name a C++ namespace, and such --namespace values.
+foreach(name namespace int std mbgen Eigen)
+  file(WRITE "${WORK}/${name}.mdl" "model ${name}\nground g\nbody b { mass 1; dof x }\n"
+             "spring s { from g; to b; along x; stiffness 1 }\n")
+  expect_run(STATUS 1 STDERR "^${name}.mdl:1:7: error: the model's name `${name}` cannot name its C\\+\\+ namespace"
+    ARGS ${name}.mdl -o ${name}.cpp)
+endforeach()
+expect_run(STATUS 2 STDERR "--namespace: `class::new` cannot name the generated namespace: `class` is a C\\+\\+ keyword"
+  ARGS m.mdl -o m.cpp --namespace class::new)
+expect_run(STATUS 2 STDERR "--namespace: `a b` cannot name" ARGS m.mdl -o m.cpp --namespace "a b")
+file(GLOB written "${WORK}/*.cpp" "${WORK}/*.hpp")
+if(written)
+  message(SEND_ERROR "C++ written for a refused model or namespace: ${written}")
+endif()
