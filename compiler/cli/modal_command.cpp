@@ -55,23 +55,6 @@ bool is_uff_path(const std::string& path) {
   return path != "-" && (ext == ".uff" || ext == ".unv");
 }
 
-// The quantity a UFF file's FRF records declare (record 9's ordinate type), when they all agree.
-FrfQuantity uff_quantity(const std::string& path) {
-  FrfQuantity q = FrfQuantity::Unknown;
-  bool first = true;
-  for (const Uff58Record& r : read_uff58(path)) {
-    if (r.function_type != 4) continue;
-    const FrfQuantity here = r.ordinate_type == 8    ? FrfQuantity::Receptance
-                             : r.ordinate_type == 11 ? FrfQuantity::Mobility
-                             : r.ordinate_type == 12 ? FrfQuantity::Accelerance
-                                                     : FrfQuantity::Unknown;
-    if (!first && here != q) return FrfQuantity::Unknown;
-    q = here;
-    first = false;
-  }
-  return q;
-}
-
 }  // namespace
 
 int run_modal(int argc, char** argv) {
@@ -119,7 +102,7 @@ int run_modal(int argc, char** argv) {
       if (std::holds_alternative<TimeRecord>(file))
         throw DataError(path, 0, 0, "modal analysis needs FRFs, but this is a time record");
       frfs.push_back(std::get<FrfData>(std::move(file)));
-      const FrfQuantity here = is_uff_path(path) ? uff_quantity(path) : FrfQuantity::Unknown;
+      const FrfQuantity here = is_uff_path(path) ? uff_frf_quantity(read_uff58(path)) : FrfQuantity::Unknown;
       quantity = d == 0 || here == quantity ? here : FrfQuantity::Unknown;
     }
     if (quantity != FrfQuantity::Unknown) quantity_source = "from the UFF ordinate type";

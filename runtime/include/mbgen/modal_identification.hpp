@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "mbgen/frf_data.hpp"
+#include "mbgen/uff.hpp"
 
 namespace mbgen {
 
@@ -51,6 +52,10 @@ struct ModalData {
   Eigen::MatrixXcd H;  // lines x channels
   FrfQuantity quantity = FrfQuantity::Unknown;
 };
+
+// The quantity a UFF file's FRF records (function type 4) declare by their ordinate's specific data type
+// (record 9: 8 displacement, 11 velocity, 12 acceleration), when they all agree; else Unknown.
+FrfQuantity uff_frf_quantity(const std::vector<Uff58Record>& records);
 
 struct FrequencyBand {
   double lo_hz = 0;
@@ -165,9 +170,9 @@ LsfdResult lsfd(const ModalData& data, const std::vector<std::complex<double>>& 
 // LSCF's poles are biased in noise (its linearized cost weights the data by the denominator); the refinement
 // moves them to minimize the LSFD misfit itself, residues and residual terms eliminated (variable projection,
 // Kaufman's Jacobian, Levenberg-Marquardt), each channel weighted by 1 / its RMS: the maximum-likelihood poles
-// when every channel's noise is white with a level proportional to its RMS. Rejected (the poles returned
-// unchanged) when a pole would move more than max_shift in frequency or leave 0 < zeta <= max_zeta.
-// Standard deviations of f and zeta follow from the Jacobian at the returned poles and the misfit.
+// when every channel's noise is white with a level proportional to its RMS. A pole that would move more than
+// max_shift in frequency or leave 0 < zeta <= max_zeta is held at its given value and the others are refined
+// again. Standard deviations of f and zeta of the refined poles follow from the Jacobian and the misfit.
 struct RefineOptions {
   int max_iterations = 50;
   double max_shift = 0.02;
@@ -176,11 +181,11 @@ struct RefineOptions {
 
 struct RefinedPoles {
   std::vector<std::complex<double>> poles;
-  std::vector<double> f_std_hz, zeta_std;  // NaN where the misfit leaves no degrees of freedom
-  bool refined = false;                    // false: rejected or nothing to refine; poles as given
-  int iterations = 0;
-  double initial_cost = 0, cost = 0;  // weighted sums of squares
-  std::string note;                   // why the refinement was rejected
+  std::vector<bool> refined;               // per pole: false when held at its given value
+  std::vector<double> f_std_hz, zeta_std;  // NaN for poles not refined
+  int iterations = 0;                      // of the last minimization
+  double initial_cost = 0, cost = 0;       // weighted sums of squares
+  std::vector<std::string> notes;          // per pole: why it was held (empty when refined)
 };
 
 RefinedPoles refine_poles(const ModalData& data, const std::vector<std::complex<double>>& poles,
@@ -206,7 +211,8 @@ struct ModalOptions {
 
 struct IdentifiedMode {
   double f_hz = 0, zeta = 0;
-  double f_std_hz = 0, zeta_std = 0;  // from the refinement's Jacobian (NaN when unknown)
+  double f_std_hz = 0, zeta_std = 0;  // from the refinement's Jacobian (NaN when not refined)
+  bool refined = false;
   double lscf_f_hz = 0, lscf_zeta = 0;  // the selected cluster's median, before refinement
   std::complex<double> lambda;
   Eigen::VectorXcd residues;  // per channel (LsfdResult::residues row)
@@ -215,11 +221,18 @@ struct IdentifiedMode {
   bool user_selected = false;
 };
 
+// An automatically selected pole that the refinement could not hold (docs/modal.md), with the reason.
+struct RejectedPole {
+  SelectedPole pole;
+  std::string reason;
+};
+
 struct ModalIdentification {
   std::string method;  // "plscf-lsfd" (several references) or "lscf-lsfd"
   StabilizationDiagram diagram;
   std::vector<IdentifiedMode> modes;  // sorted by frequency
   RefinedPoles refinement;
+  std::vector<RejectedPole> rejected;
   LsfdResult fit;
   Eigen::MatrixXd auto_mac;  // modes x modes, over the residue vectors
 };

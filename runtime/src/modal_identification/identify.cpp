@@ -3,6 +3,7 @@
 #include "mbgen/modal_identification.hpp"
 #include "shape_metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -13,8 +14,8 @@ ModalIdentification identify_modes(const ModalData& data, const ModalOptions& op
   out.diagram = lscf(data, options.lscf);
   out.method = out.diagram.references > 1 ? "plscf-lsfd" : "lscf-lsfd";
   label_stability(out.diagram, options.selection.criteria);
-  const std::vector<SelectedPole> poles = options.select_hz.empty()
-                                              ? select_physical_poles(out.diagram, options.selection)
+  const bool automatic = options.select_hz.empty();
+  std::vector<SelectedPole> poles = automatic ? select_physical_poles(out.diagram, options.selection)
                                               : select_poles_near(out.diagram, options.select_hz, options.selection);
   std::vector<std::complex<double>> lambdas;
   for (const SelectedPole& p : poles) lambdas.push_back(p.lambda);
@@ -22,8 +23,25 @@ ModalIdentification identify_modes(const ModalData& data, const ModalOptions& op
     RefineOptions refine = options.refinement;
     refine.max_zeta = options.selection.criteria.max_zeta;
     out.refinement = refine_poles(data, lambdas, options.lsfd, refine);
+    // An automatically selected pole that the refinement cannot hold is no resonance of the data (the misfit has
+    // no minimum near it): it is dropped, and the others refined again without it. Poles the user selected stay.
+    while (automatic && std::find(out.refinement.refined.begin(), out.refinement.refined.end(), false) !=
+                            out.refinement.refined.end()) {
+      std::vector<SelectedPole> kept;
+      for (std::size_t r = 0; r < poles.size(); ++r)
+        if (out.refinement.refined[r])
+          kept.push_back(poles[r]);
+        else
+          out.rejected.push_back({poles[r], out.refinement.notes[r]});
+      poles = kept;
+      lambdas.clear();
+      for (const SelectedPole& p : poles) lambdas.push_back(p.lambda);
+      out.refinement = refine_poles(data, lambdas, options.lsfd, refine);
+    }
   } else {
     out.refinement.poles = lambdas;
+    out.refinement.refined.assign(lambdas.size(), false);
+    out.refinement.notes.assign(lambdas.size(), "");
     out.refinement.f_std_hz.assign(lambdas.size(), std::numeric_limits<double>::quiet_NaN());
     out.refinement.zeta_std = out.refinement.f_std_hz;
   }
@@ -39,6 +57,7 @@ ModalIdentification identify_modes(const ModalData& data, const ModalOptions& op
     mode.zeta = -lambda.real() / std::abs(lambda);
     mode.f_std_hz = out.refinement.f_std_hz[static_cast<std::size_t>(r)];
     mode.zeta_std = out.refinement.zeta_std[static_cast<std::size_t>(r)];
+    mode.refined = out.refinement.refined[static_cast<std::size_t>(r)];
     mode.lscf_f_hz = p.f_hz;
     mode.lscf_zeta = p.zeta;
     mode.residues = out.fit.residues.row(r).transpose();

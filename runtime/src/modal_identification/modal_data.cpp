@@ -53,6 +53,22 @@ int frf_quantity_power(FrfQuantity q) {
   }
 }
 
+FrfQuantity uff_frf_quantity(const std::vector<Uff58Record>& records) {
+  FrfQuantity q = FrfQuantity::Unknown;
+  bool first = true;
+  for (const Uff58Record& r : records) {
+    if (r.function_type != 4) continue;
+    const FrfQuantity here = r.ordinate_type == 8    ? FrfQuantity::Receptance
+                             : r.ordinate_type == 11 ? FrfQuantity::Mobility
+                             : r.ordinate_type == 12 ? FrfQuantity::Accelerance
+                                                     : FrfQuantity::Unknown;
+    if (!first && here != q) return FrfQuantity::Unknown;
+    q = here;
+    first = false;
+  }
+  return q;
+}
+
 ModalData modal_data(const std::vector<FrfData>& files, const FrequencyBand& band, FrfQuantity quantity) {
   if (files.empty()) throw DataError("modal analysis: no FRF data given");
   ModalData out;

@@ -78,7 +78,7 @@ TEST_CASE("identify_modes finds close, weak and strong modes in noise-free FRFs"
   spec.modes.pop_back();
   const ModalIdentification id = identify_modes(modal_data({test::synthetic_frf(spec)}, {}, FrfQuantity::Receptance));
   CHECK(id.method == "lscf-lsfd");
-  CHECK(id.refinement.refined);
+  for (const IdentifiedMode& m : id.modes) CHECK(m.refined);
   check_modes(id, spec, {1e-6, 1e-4, 1e-8}, {1e-6, 1e-4, 1e-8});
   CHECK(id.fit.channel_error.maxCoeff() < 1e-6);
   CHECK(id.auto_mac.rows() == 5);

@@ -52,6 +52,10 @@ std::string modal_result_json(const ModalReportInput& in) {
                   {"mpc", number(mode.mpc)},
                   {"mpd_deg", number(mode.mpd_deg)},
                   {"shape", shape},
+                  {"refined", mode.refined},
+                  {"f_std_hz", number(mode.f_std_hz)},
+                  {"zeta_std", number(mode.zeta_std)},
+                  {"lscf", {{"f_hz", number(mode.lscf_f_hz)}, {"zeta", number(mode.lscf_zeta)}}},
                   {"pole", complex_number(mode.lambda)},
                   {"stable_orders", mode.support},
                   {"selected_by", mode.user_selected ? "user" : "automatic"}};
@@ -81,6 +85,19 @@ std::string modal_result_json(const ModalReportInput& in) {
                              {"shape", number(c.shape)},
                              {"max_zeta", number(c.max_zeta)}};
   j["selection"] = in.options.select_hz.empty() ? "automatic" : "user";
+  json held = json::array();  // user-selected poles the refinement could not move to a minimum
+  for (const std::string& note : r.refinement.notes)
+    if (!note.empty()) held.push_back(note);
+  json rejected = json::array();
+  for (const RejectedPole& p : r.rejected)
+    rejected.push_back({{"f_hz", number(p.pole.f_hz)}, {"zeta", number(p.pole.zeta)}, {"stable_orders", p.pole.support},
+                        {"reason", p.reason}});
+  j["rejected_poles"] = rejected;
+  j["refinement"] = {{"enabled", in.options.refine},
+                     {"iterations", r.refinement.iterations},
+                     {"initial_cost", number(r.refinement.initial_cost)},
+                     {"cost", number(r.refinement.cost)},
+                     {"held", held}};
   j["residual_terms"] = {{"lower", per_channel(data, r.fit.lower)}, {"upper", per_channel(data, r.fit.upper)}};
   j["channel_error"] = per_channel(data, r.fit.channel_error);
   j["auto_mac"] = matrix(r.auto_mac);

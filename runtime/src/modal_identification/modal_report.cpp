@@ -142,13 +142,13 @@ std::string modal_summary(const ModalReportInput& in) {
       << num(in.data.f_hz[in.data.f_hz.size() - 1], 6) << " Hz (" << frf_quantity_name(in.data.quantity) << "), "
       << r.method << ", orders 1.." << (r.diagram.orders.empty() ? 0 : r.diagram.orders.back()) << "\n";
   char line[256];
-  std::snprintf(line, sizeof line, "%4s %12s %10s %7s %9s %7s%s\n", "mode", "f [Hz]", "zeta [%]", "MPC", "MPD [deg]",
-                "orders", in.model ? "   model mode (f [Hz], MAC)" : "");
+  std::snprintf(line, sizeof line, "%4s %12s %9s %10s %9s %7s %9s %7s%s\n", "mode", "f [Hz]", "std", "zeta [%]", "std",
+                "MPC", "MPD [deg]", "orders", in.model ? "   model mode (f [Hz], MAC)" : "");
   out << line;
   for (std::size_t m = 0; m < r.modes.size(); ++m) {
     const IdentifiedMode& mode = r.modes[m];
-    std::snprintf(line, sizeof line, "%4zu %12.4f %10.4f %7.4f %9.2f %7d", m + 1, mode.f_hz, 100 * mode.zeta, mode.mpc,
-                  mode.mpd_deg, mode.support);
+    std::snprintf(line, sizeof line, "%4zu %12.4f %9.2g %10.4f %9.2g %7.4f %9.2f %7d", m + 1, mode.f_hz, mode.f_std_hz,
+                  100 * mode.zeta, 100 * mode.zeta_std, mode.mpc, mode.mpd_deg, mode.support);
     out << line;
     if (in.model && in.model->pairing.model_mode[m] >= 0) {
       const int k = in.model->pairing.model_mode[m];
@@ -156,7 +156,11 @@ std::string modal_summary(const ModalReportInput& in) {
                     in.model->pairing.best_mac[m]);
       out << line;
     }
-    out << (mode.user_selected ? "  (selected by frequency)" : "") << "\n";
+    out << (mode.user_selected ? "  (selected by frequency)" : "") << (mode.refined ? "" : "  (not refined)") << "\n";
+  }
+  for (const RejectedPole& p : r.rejected) {
+    std::snprintf(line, sizeof line, "dropped: a pole at %.4f Hz (%d orders): ", p.pole.f_hz, p.pole.support);
+    out << line << p.reason << "\n";
   }
   return out.str();
 }
@@ -190,15 +194,19 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
      << "\n- residues: LSFD" << (in.options.lsfd.lower_residual ? ", lower residual" : "")
      << (in.options.lsfd.upper_residual ? ", upper residual" : "") << "\n\n";
 
-  md << "## Modes\n\nResidues (the `shape` in the JSON) are those of the measured FRF. MPC is 1 for a real (normal) "
-        "mode shape; MPD is the mean phase deviation from a straight line. *Orders* counts the model orders at which "
-        "the mode is stable.\n\n| mode | f [Hz] | zeta [%] | MPC | MPD [deg] | orders |";
+  md << "## Modes\n\nf and zeta after the refinement (their standard deviations from its Jacobian and misfit; "
+        "before it, the LSCF cluster's median). Residues (the `shape` in the JSON) are those of the measured FRF. MPC is "
+        "1 for a real (normal) mode shape; MPD is the mean phase deviation from a straight line. *Orders* counts the "
+        "model orders whose pole joined the mode's cluster.\n\n"
+        "| mode | f [Hz] | std f [Hz] | zeta [%] | std zeta [%] | LSCF f [Hz] | LSCF zeta [%] | MPC | MPD [deg] | orders |";
   if (in.model) md << " model mode | model f [Hz] | model zeta [%] | MAC |";
-  md << "\n|---|---|---|---|---|---|" << (in.model ? "---|---|---|---|" : "") << "\n";
+  md << "\n|---|---|---|---|---|---|---|---|---|---|" << (in.model ? "---|---|---|---|" : "") << "\n";
   for (std::size_t m = 0; m < r.modes.size(); ++m) {
     const IdentifiedMode& mode = r.modes[m];
-    md << "| " << m + 1 << " | " << fixed(mode.f_hz, 3) << " | " << num(100 * mode.zeta, 4) << " | " << fixed(mode.mpc, 3)
-       << " | " << fixed(mode.mpd_deg, 1) << " | " << mode.support << (mode.user_selected ? " (selected)" : "") << " |";
+    md << "| " << m + 1 << " | " << fixed(mode.f_hz, 3) << " | " << (mode.refined ? num(mode.f_std_hz, 2) : "not refined")
+       << " | " << num(100 * mode.zeta, 4) << " | " << (mode.refined ? num(100 * mode.zeta_std, 2) : "") << " | "
+       << fixed(mode.lscf_f_hz, 3) << " | " << num(100 * mode.lscf_zeta, 4) << " | " << fixed(mode.mpc, 3) << " | "
+       << fixed(mode.mpd_deg, 1) << " | " << mode.support << (mode.user_selected ? " (selected)" : "") << " |";
     if (in.model) {
       const int k = in.model->pairing.model_mode[m];
       if (k >= 0)
@@ -209,6 +217,18 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
         md << " — | | | |";
     }
     md << "\n";
+  }
+  if (in.options.refine)
+    md << "\nRefinement (variable projection on the LSFD misfit, channels weighted by 1/RMS): weighted misfit "
+       << num(r.refinement.initial_cost) << " at the LSCF poles, " << num(r.refinement.cost) << " after.\n";
+  for (std::size_t m = 0; m < r.refinement.notes.size(); ++m)
+    if (!r.refinement.notes[m].empty()) md << "\n- held at its LSCF value: " << r.refinement.notes[m] << "\n";
+  if (!r.rejected.empty()) {
+    md << "\nCandidates dropped because the refinement could not hold them (the misfit has no minimum near them: no "
+          "resonance of the data):\n\n";
+    for (const RejectedPole& p : r.rejected)
+      md << "- " << fixed(p.pole.f_hz, 3) << " Hz, zeta " << num(100 * p.pole.zeta, 3) << " %, " << p.pole.support
+         << " orders: " << p.reason << "\n";
   }
   if (r.modes.empty()) md << "\nNo physical pole was found: see the stabilization diagram, and select poles by frequency.\n";
 

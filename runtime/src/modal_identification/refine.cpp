@@ -20,22 +20,37 @@ using modal_detail::stack_real;
 
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 
-// theta = (sigma_0, omega_0, sigma_1, ...), lambda = -sigma + i omega.
-std::vector<std::complex<double>> poles_of(const Eigen::VectorXd& theta) {
+// The poles being refined, as theta = (sigma, omega) of each active pole (lambda = -sigma + i omega), beside the
+// poles held fixed.
+struct PoleSet {
   std::vector<std::complex<double>> poles;
-  for (Eigen::Index r = 0; 2 * r < theta.size(); ++r) poles.emplace_back(-theta[2 * r], theta[2 * r + 1]);
-  return poles;
-}
+  std::vector<std::size_t> active;
+
+  Eigen::VectorXd theta() const {
+    Eigen::VectorXd t(2 * static_cast<Eigen::Index>(active.size()));
+    for (std::size_t a = 0; a < active.size(); ++a) {
+      t[2 * static_cast<Eigen::Index>(a)] = -poles[active[a]].real();
+      t[2 * static_cast<Eigen::Index>(a) + 1] = poles[active[a]].imag();
+    }
+    return t;
+  }
+  std::vector<std::complex<double>> with(const Eigen::VectorXd& theta) const {
+    std::vector<std::complex<double>> out = poles;
+    for (std::size_t a = 0; a < active.size(); ++a)
+      out[active[a]] = {-theta[2 * static_cast<Eigen::Index>(a)], theta[2 * static_cast<Eigen::Index>(a) + 1]};
+    return out;
+  }
+};
 
 struct Evaluation {
   double cost = 0;
   Eigen::VectorXd residual;  // stacked real and imaginary parts, channel after channel
-  Eigen::MatrixXd jacobian;
+  Eigen::MatrixXd jacobian;  // with respect to the active poles' theta
 };
 
-Evaluation evaluate(const ModalData& data, const Eigen::MatrixXcd& hw, const Eigen::VectorXd& theta,
+Evaluation evaluate(const ModalData& data, const Eigen::MatrixXcd& hw, const PoleSet& set, const Eigen::VectorXd& theta,
                     const LsfdOptions& lsfd_options, bool with_jacobian) {
-  const std::vector<std::complex<double>> poles = poles_of(theta);
+  const std::vector<std::complex<double>> poles = set.with(theta);
   const LsfdSystem system(data, poles, lsfd_options);
   const Eigen::MatrixXd x = system.solve(hw);
   const Eigen::MatrixXcd r = hw - system.basis() * x.cast<std::complex<double>>();
@@ -45,31 +60,68 @@ Evaluation evaluate(const ModalData& data, const Eigen::MatrixXcd& hw, const Eig
   e.cost = e.residual.squaredNorm();
   if (!with_jacobian) return e;
 
-  const Eigen::Index lines = data.f_hz.size(), channels = hw.cols(), modes = static_cast<Eigen::Index>(poles.size());
+  const Eigen::Index lines = data.f_hz.size(), channels = hw.cols();
+  const Eigen::Index active = static_cast<Eigen::Index>(set.active.size());
   const int power = frf_quantity_power(data.quantity);
-  // dModel/dtheta for every parameter and channel, side by side: column (2 r + {0 sigma, 1 omega}) * channels + c.
-  Eigen::MatrixXcd d(lines, 2 * modes * channels);
+  // dModel/dtheta for every parameter and channel, side by side: column (2 a + {0 sigma, 1 omega}) * channels + c.
+  Eigen::MatrixXcd d(lines, 2 * active * channels);
   for (Eigen::Index k = 0; k < lines; ++k) {
     const std::complex<double> s(0, kTwoPi * data.f_hz[k]);
     const std::complex<double> sp = std::pow(s, power);
-    for (Eigen::Index m = 0; m < modes; ++m) {
+    for (Eigen::Index a = 0; a < active; ++a) {
+      const Eigen::Index m = static_cast<Eigen::Index>(set.active[static_cast<std::size_t>(a)]);
       const std::complex<double> lambda = poles[static_cast<std::size_t>(m)];
       const std::complex<double> dphi = sp / ((s - lambda) * (s - lambda));
       const std::complex<double> dphi_conj = sp / ((s - std::conj(lambda)) * (s - std::conj(lambda)));
       for (Eigen::Index c = 0; c < channels; ++c) {
         const std::complex<double> residue(x(2 * m, c), x(2 * m + 1, c));
         // model = R phi + conj(R) conj-phi; d lambda / d sigma = -1, d lambda / d omega = i.
-        d(k, (2 * m) * channels + c) = -(residue * dphi + std::conj(residue) * dphi_conj);
-        d(k, (2 * m + 1) * channels + c) = std::complex<double>(0, 1) * (residue * dphi - std::conj(residue) * dphi_conj);
+        d(k, (2 * a) * channels + c) = -(residue * dphi + std::conj(residue) * dphi_conj);
+        d(k, (2 * a + 1) * channels + c) = std::complex<double>(0, 1) * (residue * dphi - std::conj(residue) * dphi_conj);
       }
     }
   }
   const Eigen::MatrixXd projected = stack_real(system.project_out(d));
-  e.jacobian.resize(e.residual.size(), 2 * modes);
-  for (Eigen::Index p = 0; p < 2 * modes; ++p)
+  e.jacobian.resize(e.residual.size(), 2 * active);
+  for (Eigen::Index p = 0; p < 2 * active; ++p)
     for (Eigen::Index c = 0; c < channels; ++c)
       e.jacobian.block(c * 2 * lines, p, 2 * lines, 1) = -projected.col(p * channels + c);
   return e;
+}
+
+// Levenberg-Marquardt with Marquardt's diagonal scaling from theta; returns the last accepted theta.
+Eigen::VectorXd minimize(const ModalData& data, const Eigen::MatrixXcd& hw, const PoleSet& set, Eigen::VectorXd theta,
+                         const LsfdOptions& lsfd_options, int max_iterations, int& iterations) {
+  Evaluation e = evaluate(data, hw, set, theta, lsfd_options, true);
+  double mu = 1e-3;
+  iterations = 0;
+  for (int it = 0; it < max_iterations; ++it) {
+    const Eigen::MatrixXd jtj = e.jacobian.transpose() * e.jacobian;
+    const Eigen::VectorXd g = e.jacobian.transpose() * e.residual;
+    const Eigen::VectorXd diag = jtj.diagonal().cwiseMax(1e-300);
+    bool accepted = false, converged = false;
+    for (int tries = 0; tries < 30 && !accepted; ++tries) {
+      Eigen::MatrixXd a = jtj;
+      a.diagonal() += mu * diag;
+      const Eigen::VectorXd step = -a.ldlt().solve(g);
+      const Eigen::VectorXd trial = theta + step;
+      bool valid = trial.allFinite();
+      for (Eigen::Index r = 0; valid && 2 * r < trial.size(); ++r) valid = trial[2 * r] > 0 && trial[2 * r + 1] > 0;
+      const double trial_cost = valid ? evaluate(data, hw, set, trial, lsfd_options, false).cost : 0;
+      if (valid && trial_cost < e.cost) {
+        converged = (e.cost - trial_cost) / e.cost < 1e-12 || step.norm() < 1e-12 * theta.norm();
+        theta = trial;
+        e = evaluate(data, hw, set, theta, lsfd_options, true);
+        mu = std::max(mu / 3, 1e-12);
+        accepted = true;
+        iterations = it + 1;
+      } else {
+        mu *= 4;
+      }
+    }
+    if (!accepted || converged) break;
+  }
+  return theta;
 }
 
 std::string percent(double x) {
@@ -85,6 +137,8 @@ RefinedPoles refine_poles(const ModalData& data, const std::vector<std::complex<
   RefinedPoles out;
   out.poles = poles;
   const std::size_t n = poles.size();
+  out.refined.assign(n, false);
+  out.notes.assign(n, "");
   out.f_std_hz.assign(n, std::numeric_limits<double>::quiet_NaN());
   out.zeta_std.assign(n, std::numeric_limits<double>::quiet_NaN());
   if (n == 0) return out;
@@ -95,84 +149,53 @@ RefinedPoles refine_poles(const ModalData& data, const std::vector<std::complex<
     const double norm = hw.col(c).norm();
     if (norm > 0) hw.col(c) *= std::sqrt(static_cast<double>(hw.rows())) / norm;
   }
-  Eigen::VectorXd theta(2 * static_cast<Eigen::Index>(n));
-  for (std::size_t r = 0; r < n; ++r) {
-    theta[2 * static_cast<Eigen::Index>(r)] = -poles[r].real();
-    theta[2 * static_cast<Eigen::Index>(r) + 1] = poles[r].imag();
-  }
-  const Eigen::VectorXd start = theta;
-  Evaluation e = evaluate(data, hw, theta, lsfd_options, true);
-  out.initial_cost = e.cost;
-  double mu = -1;
-  for (int it = 0; it < options.max_iterations; ++it) {
-    const Eigen::MatrixXd jtj = e.jacobian.transpose() * e.jacobian;
-    const Eigen::VectorXd g = e.jacobian.transpose() * e.residual;
-    const Eigen::VectorXd diag = jtj.diagonal().cwiseMax(1e-300);
-    if (mu < 0) mu = 1e-3;
-    bool accepted = false;
-    for (int tries = 0; tries < 30 && !accepted; ++tries) {
-      Eigen::MatrixXd a = jtj;
-      a.diagonal() += mu * diag;
-      const Eigen::VectorXd step = -a.ldlt().solve(g);
-      const Eigen::VectorXd trial = theta + step;
-      bool valid = trial.allFinite();
-      for (Eigen::Index r = 0; valid && 2 * r < trial.size(); ++r) valid = trial[2 * r] > 0 && trial[2 * r + 1] > 0;
-      const double trial_cost = valid ? evaluate(data, hw, trial, lsfd_options, false).cost : 0;
-      if (valid && trial_cost < e.cost) {
-        const double decrease = (e.cost - trial_cost) / e.cost;
-        theta = trial;
-        e = evaluate(data, hw, theta, lsfd_options, true);
-        mu = std::max(mu / 3, 1e-12);
-        accepted = true;
-        out.iterations = it + 1;
-        if (decrease < 1e-12 || step.norm() < 1e-12 * theta.norm()) it = options.max_iterations;
-      } else {
-        mu *= 4;
-      }
+  PoleSet set{poles, {}};
+  for (std::size_t r = 0; r < n; ++r) set.active.push_back(r);
+  out.initial_cost = evaluate(data, hw, set, set.theta(), lsfd_options, false).cost;
+
+  // A pole that would wander off (more than max_shift in frequency, or out of 0 < zeta <= max_zeta) is not a
+  // mode the data determine: it is held at its LSCF value and the others are refined again from the start.
+  Eigen::VectorXd theta;
+  for (;;) {
+    theta = minimize(data, hw, set, set.theta(), lsfd_options, options.max_iterations, out.iterations);
+    const std::vector<std::complex<double>> refined = set.with(theta);
+    std::vector<std::size_t> keep;
+    for (const std::size_t r : set.active) {
+      const double w0 = std::abs(poles[r]), w1 = std::abs(refined[r]);
+      const double zeta = -refined[r].real() / w1;
+      std::ostringstream why;
+      if (std::abs(w1 - w0) > options.max_shift * w0)
+        why << "the pole near " << std::setprecision(6) << w0 / kTwoPi << " Hz would move by " << percent(std::abs(w1 - w0) / w0);
+      else if (!(zeta > 0 && zeta <= options.max_zeta))
+        why << "the pole near " << std::setprecision(6) << w0 / kTwoPi << " Hz would get zeta " << zeta;
+      if (why.str().empty())
+        keep.push_back(r);
+      else
+        out.notes[r] = why.str();
     }
-    if (!accepted) break;
+    if (keep.size() == set.active.size()) break;
+    set.active = keep;
   }
+  out.poles = set.with(theta);
+  for (const std::size_t r : set.active) out.refined[r] = true;
+  const Evaluation e = evaluate(data, hw, set, theta, lsfd_options, true);
   out.cost = e.cost;
 
-  // Keep the refined poles only when each stays near where LSCF put it and physical.
-  std::vector<std::complex<double>> refined = poles_of(theta);
-  out.refined = true;
-  for (std::size_t r = 0; r < n && out.refined; ++r) {
-    const double f0 = std::abs(poles[r]), f1 = std::abs(refined[r]);
-    const double zeta = -refined[r].real() / f1;
-    std::ostringstream why;
-    if (std::abs(f1 - f0) > options.max_shift * f0)
-      why << "the pole near " << std::setprecision(6) << f0 / kTwoPi << " Hz would move by " << percent(std::abs(f1 - f0) / f0);
-    else if (!(zeta > 0 && zeta <= options.max_zeta))
-      why << "the pole near " << std::setprecision(6) << f0 / kTwoPi << " Hz would get zeta " << zeta;
-    if (!why.str().empty()) {
-      out.refined = false;
-      out.note = why.str();
-    }
-  }
-  if (!out.refined) {
-    theta = start;
-    e = evaluate(data, hw, theta, lsfd_options, true);
-    out.cost = e.cost;
-  } else {
-    out.poles = refined;
-  }
-
-  // Covariance of theta: s^2 (J^T J)^-1 with s^2 the misfit per degree of freedom (the linear unknowns of every
-  // channel and the poles count against the data).
+  // Covariance of the refined poles' theta: s^2 (J^T J)^-1 with s^2 the misfit per degree of freedom (the linear
+  // unknowns of every channel and the refined poles count against the data).
   const double dof = static_cast<double>(e.residual.size()) - static_cast<double>(theta.size()) -
                      static_cast<double>(hw.cols()) * static_cast<double>(LsfdSystem(data, out.poles, lsfd_options).unknowns());
-  if (dof > 0) {
+  if (dof > 0 && theta.size() > 0) {
     const Eigen::MatrixXd cov = (e.cost / dof) * (e.jacobian.transpose() * e.jacobian).ldlt().solve(
                                                      Eigen::MatrixXd::Identity(theta.size(), theta.size()));
-    for (std::size_t r = 0; r < n; ++r) {
-      const Eigen::Index i = 2 * static_cast<Eigen::Index>(r);
+    for (std::size_t a = 0; a < set.active.size(); ++a) {
+      const Eigen::Index i = 2 * static_cast<Eigen::Index>(a);
       const double sigma = theta[i], omega = theta[i + 1], mag = std::hypot(sigma, omega);
       const Eigen::Vector2d df(sigma / mag / kTwoPi, omega / mag / kTwoPi);
       const Eigen::Vector2d dz(omega * omega / (mag * mag * mag), -sigma * omega / (mag * mag * mag));
       const Eigen::Matrix2d c = cov.block<2, 2>(i, i);
-      out.f_std_hz[r] = std::sqrt(std::max(0.0, df.dot(c * df)));
-      out.zeta_std[r] = std::sqrt(std::max(0.0, dz.dot(c * dz)));
+      out.f_std_hz[set.active[a]] = std::sqrt(std::max(0.0, df.dot(c * df)));
+      out.zeta_std[set.active[a]] = std::sqrt(std::max(0.0, dz.dot(c * dz)));
     }
   }
   return out;
