@@ -63,29 +63,38 @@ Evaluation evaluate(const ModalData& data, const Eigen::MatrixXcd& hw, const Pol
   const Eigen::Index lines = data.f_hz.size(), channels = hw.cols();
   const Eigen::Index active = static_cast<Eigen::Index>(set.active.size());
   const int power = frf_quantity_power(data.quantity);
-  // dModel/dtheta for every parameter and channel, side by side: column (2 a + {0 sigma, 1 omega}) * channels + c.
-  Eigen::MatrixXcd d(lines, 2 * active * channels);
+  // dModel/dtheta of channel c for mode m, with the receptance residue R = a + i b:
+  //   d/dsigma = -(R g1 + conj(R) g2),  d/domega = i R g1 - i conj(R) g2,  g1 = s^p / (s - lambda)^2,
+  //   g2 = s^p / (s - conj(lambda))^2.
+  // Stacked real, a complex multiple (u + i v) g is u stack(g) + v stack(i g): every channel's column combines
+  // the same four real vectors per mode, so only those are projected (not one column per channel and parameter).
+  Eigen::MatrixXcd g(lines, 4 * active);  // per mode: g1, i g1, g2, i g2
   for (Eigen::Index k = 0; k < lines; ++k) {
     const std::complex<double> s(0, kTwoPi * data.f_hz[k]);
     const std::complex<double> sp = std::pow(s, power);
     for (Eigen::Index a = 0; a < active; ++a) {
-      const Eigen::Index m = static_cast<Eigen::Index>(set.active[static_cast<std::size_t>(a)]);
-      const std::complex<double> lambda = poles[static_cast<std::size_t>(m)];
-      const std::complex<double> dphi = sp / ((s - lambda) * (s - lambda));
-      const std::complex<double> dphi_conj = sp / ((s - std::conj(lambda)) * (s - std::conj(lambda)));
-      for (Eigen::Index c = 0; c < channels; ++c) {
-        const std::complex<double> residue(x(2 * m, c), x(2 * m + 1, c));
-        // model = R phi + conj(R) conj-phi; d lambda / d sigma = -1, d lambda / d omega = i.
-        d(k, (2 * a) * channels + c) = -(residue * dphi + std::conj(residue) * dphi_conj);
-        d(k, (2 * a + 1) * channels + c) = std::complex<double>(0, 1) * (residue * dphi - std::conj(residue) * dphi_conj);
-      }
+      const std::complex<double> lambda = poles[set.active[static_cast<std::size_t>(a)]];
+      const std::complex<double> g1 = sp / ((s - lambda) * (s - lambda));
+      const std::complex<double> g2 = sp / ((s - std::conj(lambda)) * (s - std::conj(lambda)));
+      g(k, 4 * a) = g1;
+      g(k, 4 * a + 1) = std::complex<double>(0, 1) * g1;
+      g(k, 4 * a + 2) = g2;
+      g(k, 4 * a + 3) = std::complex<double>(0, 1) * g2;
     }
   }
-  const Eigen::MatrixXd projected = stack_real(system.project_out(d));
+  const Eigen::MatrixXd pg = stack_real(system.project_out(g));  // P_perp of each, 2 lines x 4 active
   e.jacobian.resize(e.residual.size(), 2 * active);
-  for (Eigen::Index p = 0; p < 2 * active; ++p)
-    for (Eigen::Index c = 0; c < channels; ++c)
-      e.jacobian.block(c * 2 * lines, p, 2 * lines, 1) = -projected.col(p * channels + c);
+  for (Eigen::Index a = 0; a < active; ++a) {
+    const Eigen::Index m = static_cast<Eigen::Index>(set.active[static_cast<std::size_t>(a)]);
+    for (Eigen::Index c = 0; c < channels; ++c) {
+      const double re = x(2 * m, c), im = x(2 * m + 1, c);
+      // J = -P_perp dModel/dtheta.
+      e.jacobian.block(c * 2 * lines, 2 * a, 2 * lines, 1) =
+          re * pg.col(4 * a) + im * pg.col(4 * a + 1) + re * pg.col(4 * a + 2) - im * pg.col(4 * a + 3);
+      e.jacobian.block(c * 2 * lines, 2 * a + 1, 2 * lines, 1) =
+          im * pg.col(4 * a) - re * pg.col(4 * a + 1) + im * pg.col(4 * a + 2) + re * pg.col(4 * a + 3);
+    }
+  }
   return e;
 }
 
