@@ -1,7 +1,9 @@
 // modal_frf_matrix: `mbgen modal`'s analysis (identify_modes) on a 9-channel, 4096-line FRF matrix: 3 outputs x 3
 // inputs (poly-reference, 3 references) and the same 9 channels as 9 rows of one reference (common-denominator
 // LSCF), twelve modes in the band with a close pair and a weak mode, 1 % noise. Prints the median wall time of
-// each stage over N runs (default 5) and the modes found. See README.md.
+// each stage over N runs (default 5) and the modes found. `modal_frf_matrix --write FILE.csv` writes the FRFs
+// instead, for timing the command itself. See README.md.
+#include "mbgen/csv.hpp"
 #include "mbgen/modal_identification.hpp"
 #include "../runtime/src/modal_identification/synthetic_frf.hpp"
 
@@ -9,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
 namespace {
@@ -45,8 +48,13 @@ mbgen::test::SyntheticFrfSpec spec() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   const mbgen::FrfData frf = mbgen::test::synthetic_frf(spec(), "bench");
+  if (argc > 2 && std::string(argv[1]) == "--write") {
+    std::ofstream out(argv[2]);
+    mbgen::write_frf_csv(out, frf);
+    return out ? 0 : 1;
+  }
+  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   for (const bool poly : {true, false}) {
     std::vector<double> t_data, t_lscf, t_select, t_refine, t_lsfd, t_total;
     mbgen::ModalIdentification last;
