@@ -90,9 +90,10 @@ int main(int argc, char** argv) {
     std::printf("%s: 9 channels x 4096 lines, %d references, orders 1..%d, %zu poles in the diagram\n",
                 poly ? "poly-reference LSCF (3 x 3)" : "common-denominator LSCF (9 rows)", last.diagram.references,
                 last.diagram.orders.back(), last.diagram.poles.size());
-    std::printf("  median of %d runs: data %.1f ms, LSCF %.1f ms, stabilization + selection %.1f ms, refinement %.1f ms, "
-                "LSFD %.1f ms; identify_modes in all %.1f ms\n",
-                repeats, median(t_data), median(t_lscf), median(t_select), median(t_refine), median(t_lsfd), median(t_total));
+    std::printf(
+        "  median of %d runs: data %.1f ms, LSCF %.1f ms, stabilization + selection %.1f ms, refinement %.1f ms, "
+        "LSFD %.1f ms; identify_modes in all %.1f ms\n",
+        repeats, median(t_data), median(t_lscf), median(t_select), median(t_refine), median(t_lsfd), median(t_total));
     std::printf("  %zu modes:", last.modes.size());
     for (const auto& m : last.modes) std::printf(" %.2f", m.f_hz);
     std::printf(" Hz (true: 35 80 83 140 210 260 330 395 470 520 610 700)\n");

@@ -51,29 +51,35 @@ FrequencyBand parse_band(const std::string& text) {
 
 bool is_uff_path(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return path != "-" && (ext == ".uff" || ext == ".unv");
 }
 
 }  // namespace
 
 int run_modal(int argc, char** argv) {
-  CLI::App app{"Experimental modal analysis of measured FRFs, no model needed: poles by the (poly-reference) "
-               "least-squares complex-frequency method over a range of orders, a stabilization diagram, automatic "
-               "selection of the physical poles, residues by LSFD with residual terms, and a mode table.",
-               "mbgen modal"};
+  CLI::App app{
+      "Experimental modal analysis of measured FRFs, no model needed: poles by the (poly-reference) "
+      "least-squares complex-frequency method over a range of orders, a stabilization diagram, automatic "
+      "selection of the physical poles, residues by LSFD with residual terms, and a mode table.",
+      "mbgen modal"};
   std::vector<std::string> data_paths, sets;
   std::string band_text, model_path, json_path, report_dir, quantity_text = "auto";
   ModalOptions options;
-  app.add_option("--data", data_paths, "measured FRFs: CSV or UFF 58/58b; repeatable (same frequency lines)")->required();
+  app.add_option("--data", data_paths, "measured FRFs: CSV or UFF 58/58b; repeatable (same frequency lines)")
+      ->required();
   app.add_option("--band", band_text, "analyse LO <= f <= HI only (Hz; either side may be left empty)");
   app.add_option("--model", model_path, "pair the identified modes with this model's modes by MAC (.mdl)");
   app.add_option("--set", sets, "with --model: override a parameter's value, NAME=VALUE (repeatable)");
   app.add_option("--json", json_path, "write the result (schema mbgen-modal/1); - for standard output");
-  app.add_option("--report", report_dir, "write a report directory (Markdown with the stabilization diagram, MAC, FRFs)");
-  app.add_option("--max-order", options.lscf.max_order, "highest model order (default: from the data, about 64 / references)")
+  app.add_option("--report", report_dir,
+                 "write a report directory (Markdown with the stabilization diagram, MAC, FRFs)");
+  app.add_option("--max-order", options.lscf.max_order,
+                 "highest model order (default: from the data, about 64 / references)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--select", options.select_hz, "use the poles nearest these frequencies [Hz] instead of the automatic choice")
+  app.add_option("--select", options.select_hz,
+                 "use the poles nearest these frequencies [Hz] instead of the automatic choice")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
   app.add_option("--quantity", quantity_text,

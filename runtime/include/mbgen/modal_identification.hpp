@@ -73,7 +73,7 @@ ModalData modal_data(const std::vector<FrfData>& files, const FrequencyBand& ban
 // ---- poles --------------------------------------------------------------------------------------------------
 
 struct LscfOptions {
-  int max_order = 0;  // highest polynomial order; 0 chooses one from the data (lscf_default_max_order)
+  int max_order = 0;           // highest polynomial order; 0 chooses one from the data (lscf_default_max_order)
   bool poly_reference = true;  // false: common-denominator LSCF (one reference) whatever the data's layout
   std::function<void(int order, int max_order)> progress;  // called after each order
 };
@@ -90,11 +90,11 @@ struct DiagramPole {
 };
 
 struct StabilizationDiagram {
-  int references = 1;       // columns of the matrix-fraction model (1: common-denominator LSCF)
-  bool transposed = false;  // rows are the data's inputs, references its outputs (fewer outputs than inputs)
-  double dt = 0;            // sampling interval of the z-domain basis: 1 / (2 highest line)
-  double lo_hz = 0, hi_hz = 0;  // the band: poles outside it are not kept
-  std::vector<int> orders;      // 1..max_order
+  int references = 1;              // columns of the matrix-fraction model (1: common-denominator LSCF)
+  bool transposed = false;         // rows are the data's inputs, references its outputs (fewer outputs than inputs)
+  double dt = 0;                   // sampling interval of the z-domain basis: 1 / (2 highest line)
+  double lo_hz = 0, hi_hz = 0;     // the band: poles outside it are not kept
+  std::vector<int> orders;         // 1..max_order
   std::vector<DiagramPole> poles;  // by order, then by frequency
 };
 
@@ -139,7 +139,8 @@ struct SelectedPole {
 // pole with the most neighbours (the nearest at each order) seeds a cluster of them, which leaves the pool; a
 // cluster is physical when it spans min_orders_fraction of the orders and holds at least 3 fully stable poles.
 // Repeated while a cluster is large enough. Sorted by frequency.
-std::vector<SelectedPole> select_physical_poles(const StabilizationDiagram& diagram, const SelectionOptions& options = {});
+std::vector<SelectedPole> select_physical_poles(const StabilizationDiagram& diagram,
+                                                const SelectionOptions& options = {});
 
 // User selection: for each frequency, the best-supported cluster of poles within 2 % of it (fully stable
 // poles first, then poles stable in frequency, then any pole of the highest order). Throws
@@ -157,9 +158,9 @@ struct LsfdOptions {
 // H_c(w) = (i w)^p [ sum_r ( R_rc / (i w - lambda_r) + conj(R_rc) / (i w - conj(lambda_r)) ) + LR_c / (i w)^2 + UR_c ]
 // with p = frf_quantity_power(data.quantity), fitted by linear least squares per channel.
 struct LsfdResult {
-  Eigen::MatrixXcd residues;  // modes x channels: the residues of the measured FRF, lambda_r^p R_rc
-  Eigen::VectorXd lower, upper;  // per channel (0 when the term is off)
-  Eigen::MatrixXcd synthesized;  // lines x channels, the fitted model at the data's lines
+  Eigen::MatrixXcd residues;      // modes x channels: the residues of the measured FRF, lambda_r^p R_rc
+  Eigen::VectorXd lower, upper;   // per channel (0 when the term is off)
+  Eigen::MatrixXcd synthesized;   // lines x channels, the fitted model at the data's lines
   Eigen::VectorXd channel_error;  // per channel: ||H - synthesized|| / ||H||
 };
 

@@ -5,9 +5,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace mbgen {
+
+namespace {
+constexpr double kSignificance = 3;  // a physical pole's zeta lies this many standard deviations above 0
+}  // namespace
 
 ModalIdentification identify_modes(const ModalData& data, const ModalOptions& options) {
   ModalIdentification out;
@@ -23,16 +29,27 @@ ModalIdentification identify_modes(const ModalData& data, const ModalOptions& op
     RefineOptions refine = options.refinement;
     refine.max_zeta = options.selection.criteria.max_zeta;
     out.refinement = refine_poles(data, lambdas, options.lsfd, refine);
-    // An automatically selected pole that the refinement cannot hold is no resonance of the data (the misfit has
-    // no minimum near it): it is dropped, and the others refined again without it. Poles the user selected stay.
-    while (automatic && std::find(out.refinement.refined.begin(), out.refinement.refined.end(), false) !=
-                            out.refinement.refined.end()) {
+    // An automatically selected pole is dropped, and the others refined again without it, when the refinement
+    // cannot hold it (the misfit has no minimum near it: no resonance of the data), or when its damping is not
+    // significantly above 0 (zeta < 3 std: a pole fitted to noise). Poles the user selected stay.
+    for (;;) {
       std::vector<SelectedPole> kept;
-      for (std::size_t r = 0; r < poles.size(); ++r)
-        if (out.refinement.refined[r])
+      for (std::size_t r = 0; automatic && r < poles.size(); ++r) {
+        std::string reason = out.refinement.notes[r];
+        const double zeta = -out.refinement.poles[r].real() / std::abs(out.refinement.poles[r]);
+        if (reason.empty() && std::isfinite(out.refinement.zeta_std[r]) &&
+            zeta < kSignificance * out.refinement.zeta_std[r]) {
+          std::ostringstream why;
+          why << std::setprecision(3) << "its damping is not determined by the data: zeta " << 100 * zeta << " +- "
+              << 100 * out.refinement.zeta_std[r] << " %";
+          reason = why.str();
+        }
+        if (reason.empty())
           kept.push_back(poles[r]);
         else
-          out.rejected.push_back({poles[r], out.refinement.notes[r]});
+          out.rejected.push_back({poles[r], reason});
+      }
+      if (!automatic || kept.size() == poles.size()) break;
       poles = kept;
       lambdas.clear();
       for (const SelectedPole& p : poles) lambdas.push_back(p.lambda);

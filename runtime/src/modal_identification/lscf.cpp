@@ -102,7 +102,8 @@ StabilizationDiagram lscf(const ModalData& data, const LscfOptions& options) {
   const std::size_t n_rows = layout.rows.size();
   // Columns: every channel (for S), then per row the products conj(H_k) H_k' (for T).
   const Eigen::Index products = static_cast<Eigen::Index>(m) * m;
-  Eigen::MatrixXcd x(lines, static_cast<Eigen::Index>(data.channels.size() + n_rows * static_cast<std::size_t>(products)));
+  Eigen::MatrixXcd x(lines,
+                     static_cast<Eigen::Index>(data.channels.size() + n_rows * static_cast<std::size_t>(products)));
   x.leftCols(data.H.cols()) = data.H;
   std::vector<double> weight2(n_rows);
   for (std::size_t r = 0; r < n_rows; ++r) {
@@ -113,8 +114,9 @@ StabilizationDiagram lscf(const ModalData& data, const LscfOptions& options) {
     for (int k = 0; k < m; ++k)
       for (int k2 = 0; k2 < m; ++k2)
         x.col(data.H.cols() + static_cast<Eigen::Index>(r) * products + k * m + k2) =
-            data.H.col(layout.rows[r][static_cast<std::size_t>(k)]).conjugate().cwiseProduct(
-                data.H.col(layout.rows[r][static_cast<std::size_t>(k2)]));
+            data.H.col(layout.rows[r][static_cast<std::size_t>(k)])
+                .conjugate()
+                .cwiseProduct(data.H.col(layout.rows[r][static_cast<std::size_t>(k2)]));
   }
   const LagSums lag(basis, x);
   const Eigen::VectorXd r_lag = basis.transpose().rowwise().sum().real();  // sum_f cos(theta_f d), d >= 0
@@ -151,7 +153,8 @@ StabilizationDiagram lscf(const ModalData& data, const LscfOptions& options) {
     // Companion matrix of A(z) = sum_j z^j alpha_j: eigenvector [v; z v; ...; z^(n-1) v] with A(z) v = 0.
     Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(nl, nl);
     if (n > 1) companion.topRightCorner(nl - m, nl - m).setIdentity();
-    for (int j = 0; j < n; ++j) companion.block(nl - m, static_cast<Eigen::Index>(j) * m, m, m) = -alpha.block(j * m, 0, m, m);
+    for (int j = 0; j < n; ++j)
+      companion.block(nl - m, static_cast<Eigen::Index>(j) * m, m, m) = -alpha.block(j * m, 0, m, m);
     // With one reference the null vector v is the scalar 1: no eigenvectors needed (they cost most of the solve).
     Eigen::EigenSolver<Eigen::MatrixXd> eig(companion, /*computeEigenvectors=*/m > 1);
     if (eig.info() != Eigen::Success) continue;  // no poles at this order
@@ -168,16 +171,19 @@ StabilizationDiagram lscf(const ModalData& data, const LscfOptions& options) {
       p.f_hz = std::abs(p.lambda) / kTwoPi;
       if (p.f_hz < diagram.lo_hz || p.f_hz > diagram.hi_hz) continue;
       p.zeta = -p.lambda.real() / std::abs(p.lambda);
-      const Eigen::VectorXcd v = m > 1 ? Eigen::VectorXcd(eig.eigenvectors().col(e).head(m)) : Eigen::VectorXcd::Ones(1);
+      const Eigen::VectorXcd v =
+          m > 1 ? Eigen::VectorXcd(eig.eigenvectors().col(e).head(m)) : Eigen::VectorXcd::Ones(1);
       p.shape.resize(static_cast<Eigen::Index>(n_rows));
       for (std::size_t r = 0; r < n_rows; ++r) {
         std::complex<double> zj = 1, value = 0;
-        for (Eigen::Index j = 0; j < nb; ++j, zj *= z) value += zj * (beta[r].row(j).cast<std::complex<double>>() * v)(0);
+        for (Eigen::Index j = 0; j < nb; ++j, zj *= z)
+          value += zj * (beta[r].row(j).cast<std::complex<double>>() * v)(0);
         p.shape[static_cast<Eigen::Index>(r)] = value;
       }
       poles.push_back(std::move(p));
     }
-    std::stable_sort(poles.begin(), poles.end(), [](const DiagramPole& a, const DiagramPole& b) { return a.f_hz < b.f_hz; });
+    std::stable_sort(poles.begin(), poles.end(),
+                     [](const DiagramPole& a, const DiagramPole& b) { return a.f_hz < b.f_hz; });
     diagram.orders.push_back(n);
     for (DiagramPole& p : poles) diagram.poles.push_back(std::move(p));
     if (options.progress) options.progress(n, n_max);

@@ -19,7 +19,8 @@ Eigen::MatrixXd stack_real(const Eigen::MatrixXcd& h) {
   return out;
 }
 
-LsfdSystem::LsfdSystem(const ModalData& data, const std::vector<std::complex<double>>& poles, const LsfdOptions& options) {
+LsfdSystem::LsfdSystem(const ModalData& data, const std::vector<std::complex<double>>& poles,
+                       const LsfdOptions& options) {
   const Eigen::Index lines = data.f_hz.size();
   const Eigen::Index modes = static_cast<Eigen::Index>(poles.size());
   const int power = frf_quantity_power(data.quantity);
@@ -44,7 +45,9 @@ LsfdSystem::LsfdSystem(const ModalData& data, const std::vector<std::complex<dou
   qr_.compute(a);
 }
 
-Eigen::MatrixXd LsfdSystem::solve(const Eigen::MatrixXcd& h) const { return scale_.asDiagonal() * qr_.solve(stack_real(h)); }
+Eigen::MatrixXd LsfdSystem::solve(const Eigen::MatrixXcd& h) const {
+  return scale_.asDiagonal() * qr_.solve(stack_real(h));
+}
 
 Eigen::MatrixXcd LsfdSystem::project_out(const Eigen::MatrixXcd& h) const {
   return h - basis_ * solve(h).cast<std::complex<double>>();
@@ -63,9 +66,11 @@ LsfdResult lsfd(const ModalData& data, const std::vector<std::complex<double>>& 
   out.residues.resize(modes, channels);
   for (Eigen::Index r = 0; r < modes; ++r)
     for (Eigen::Index c = 0; c < channels; ++c)
-      out.residues(r, c) = std::pow(poles[static_cast<std::size_t>(r)], power) * std::complex<double>(x(2 * r, c), x(2 * r + 1, c));
+      out.residues(r, c) =
+          std::pow(poles[static_cast<std::size_t>(r)], power) * std::complex<double>(x(2 * r, c), x(2 * r + 1, c));
   out.lower = options.lower_residual ? Eigen::VectorXd(x.row(2 * modes).transpose()) : Eigen::VectorXd::Zero(channels);
-  out.upper = options.upper_residual ? Eigen::VectorXd(x.row(2 * modes + lower).transpose()) : Eigen::VectorXd::Zero(channels);
+  out.upper =
+      options.upper_residual ? Eigen::VectorXd(x.row(2 * modes + lower).transpose()) : Eigen::VectorXd::Zero(channels);
   out.synthesized = system.basis() * x.cast<std::complex<double>>();
   out.channel_error.resize(channels);
   for (Eigen::Index c = 0; c < channels; ++c) {

@@ -37,19 +37,26 @@ std::vector<Eigen::Index> band_lines(const FrfData& frf, const FrequencyBand& ba
 
 const char* frf_quantity_name(FrfQuantity q) {
   switch (q) {
-    case FrfQuantity::Receptance: return "receptance";
-    case FrfQuantity::Mobility: return "mobility";
-    case FrfQuantity::Accelerance: return "accelerance";
-    case FrfQuantity::Unknown: break;
+    case FrfQuantity::Receptance:
+      return "receptance";
+    case FrfQuantity::Mobility:
+      return "mobility";
+    case FrfQuantity::Accelerance:
+      return "accelerance";
+    case FrfQuantity::Unknown:
+      break;
   }
   return "unknown";
 }
 
 int frf_quantity_power(FrfQuantity q) {
   switch (q) {
-    case FrfQuantity::Mobility: return 1;
-    case FrfQuantity::Accelerance: return 2;
-    default: return 0;
+    case FrfQuantity::Mobility:
+      return 1;
+    case FrfQuantity::Accelerance:
+      return 2;
+    default:
+      return 0;
   }
 }
 
@@ -82,8 +89,9 @@ ModalData modal_data(const std::vector<FrfData>& files, const FrequencyBand& ban
     const std::vector<Eigen::Index> lines = band_lines(frf, band);
     if (static_cast<int>(lines.size()) < kMinModalLines)
       throw DataError(frf.file, 0, 0,
-                      "the band " + hz(band.lo_hz) + ".." + hz(band.hi_hz) + " Hz holds " + std::to_string(lines.size()) +
-                          " lines above 0 Hz; modal analysis needs at least " + std::to_string(kMinModalLines));
+                      "the band " + hz(band.lo_hz) + ".." + hz(band.hi_hz) + " Hz holds " +
+                          std::to_string(lines.size()) + " lines above 0 Hz; modal analysis needs at least " +
+                          std::to_string(kMinModalLines));
     if (d == 0) {
       out.f_hz.resize(static_cast<Eigen::Index>(lines.size()));
       for (std::size_t k = 0; k < lines.size(); ++k) out.f_hz[static_cast<Eigen::Index>(k)] = frf.f_hz[lines[k]];
@@ -110,8 +118,8 @@ ModalData modal_data(const std::vector<FrfData>& files, const FrequencyBand& ban
     for (const Eigen::Index k : lines)
       for (const FrfChannel& ch : frf.channels)
         if (!std::isfinite(ch.values[k].real()) || !std::isfinite(ch.values[k].imag()))
-          throw DataError(frf.file, 0, 0, "channel " + ch.output + "/" + ch.input + " is not finite at " +
-                                              hz(frf.f_hz[k]) + " Hz");
+          throw DataError(frf.file, 0, 0,
+                          "channel " + ch.output + "/" + ch.input + " is not finite at " + hz(frf.f_hz[k]) + " Hz");
   }
   // Same lines in every file: the first file's line indices hold for all only if the axes agree entirely, so
   // each column is gathered with its own file's indices.

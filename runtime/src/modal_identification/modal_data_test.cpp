@@ -53,7 +53,8 @@ TEST_CASE("modal_data names the file for every data problem", "[modal][data]") {
   const FrfData a = frf("a.csv", {"y1/u1"}, 101, 1.0);
   CHECK_THROWS_AS(modal_data({}, {}), DataError);
   CHECK_THROWS_WITH(modal_data({a}, {200, 300}), Catch::StartsWith("a.csv: error: the band 200..300 Hz holds 0 lines"));
-  CHECK_THROWS_WITH(modal_data({a}, {10, 14}), Catch::Contains("holds 5 lines above 0 Hz; modal analysis needs at least 8"));
+  CHECK_THROWS_WITH(modal_data({a}, {10, 14}),
+                    Catch::Contains("holds 5 lines above 0 Hz; modal analysis needs at least 8"));
   CHECK_THROWS_WITH(modal_data({a, frf("b.csv", {"y1/u1"}, 101, 1.0)}, {}),
                     Catch::StartsWith("b.csv: error: channel y1/u1 is given twice"));
   CHECK_THROWS_WITH(modal_data({a, frf("c.csv", {"y2/u1"}, 101, 1.0, 0.5)}, {}),

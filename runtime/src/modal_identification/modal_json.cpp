@@ -28,7 +28,8 @@ json matrix(const Eigen::MatrixXd& m) {
 
 json per_channel(const ModalData& data, const Eigen::VectorXd& values) {
   json out = json::object();
-  for (std::size_t c = 0; c < data.channels.size(); ++c) out[data.channels[c].name] = number(values[static_cast<Eigen::Index>(c)]);
+  for (std::size_t c = 0; c < data.channels.size(); ++c)
+    out[data.channels[c].name] = number(values[static_cast<Eigen::Index>(c)]);
   return out;
 }
 
@@ -90,7 +91,9 @@ std::string modal_result_json(const ModalReportInput& in) {
     if (!note.empty()) held.push_back(note);
   json rejected = json::array();
   for (const RejectedPole& p : r.rejected)
-    rejected.push_back({{"f_hz", number(p.pole.f_hz)}, {"zeta", number(p.pole.zeta)}, {"stable_orders", p.pole.support},
+    rejected.push_back({{"f_hz", number(p.pole.f_hz)},
+                        {"zeta", number(p.pole.zeta)},
+                        {"stable_orders", p.pole.support},
                         {"reason", p.reason}});
   j["rejected_poles"] = rejected;
   j["refinement"] = {{"enabled", in.options.refine},

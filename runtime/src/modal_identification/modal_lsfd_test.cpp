@@ -52,7 +52,7 @@ TEST_CASE("LSFD recovers the residues at exact poles, for receptance, mobility a
 
 TEST_CASE("LSFD's residual terms stand for the modes outside the band", "[modal][lsfd]") {
   SyntheticFrfSpec spec = two_modes_in_band();
-  spec.modes.push_back({15, 0.02, {0.8, 0.8}});   // below the band: a mass line there
+  spec.modes.push_back({15, 0.02, {0.8, 0.8}});    // below the band: a mass line there
   spec.modes.push_back({600, 0.02, {1.0, -0.7}});  // above: a stiffness line
   spec.power = 2;
   const ModalData data = modal_data({test::synthetic_frf(spec)}, {}, FrfQuantity::Accelerance);

@@ -26,7 +26,8 @@ ModalData channels_of(const std::vector<std::string>& outputs, const std::vector
 
 }  // namespace
 
-TEST_CASE("the model's residues rebuild its FRF (mdof2, displacement, velocity and acceleration outputs)", "[modal][pairing]") {
+TEST_CASE("the model's residues rebuild its FRF (mdof2, displacement, velocity and acceleration outputs)",
+          "[modal][pairing]") {
   const test::Mdof2Model model(/*extra_outputs=*/true);
   const Eigen::VectorXd p = model.info().default_values();
   const ModalData data = channels_of({"d1", "d2", "v1", "a2"}, {"F1"});

@@ -48,11 +48,16 @@ double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(
 
 int stability_code(Stability s) {
   switch (s) {
-    case Stability::New: return 0;
-    case Stability::Frequency: return 1;
-    case Stability::FrequencyDamping: return 2;
-    case Stability::FrequencyShape: return 3;
-    case Stability::Stable: return 4;
+    case Stability::New:
+      return 0;
+    case Stability::Frequency:
+      return 1;
+    case Stability::FrequencyDamping:
+      return 2;
+    case Stability::FrequencyShape:
+      return 3;
+    case Stability::Stable:
+      return 4;
   }
   return 0;
 }
@@ -75,7 +80,8 @@ std::string stabilization_plot(const ModalReportInput& in, const std::string& yl
   for (const IdentifiedMode& m : in.result.modes)
     gp << "set arrow from " << m.f_hz << ", graph 0 to " << m.f_hz << ", graph 1 nohead lc rgb '#2ca02c' dt 3\n";
   gp << "plot 'sum.dat' using 1:2 axes x1y2 with lines lc rgb '#888888' title 'sum of |H|', \\\n"
-     << "     'stabilization.dat' using 1:($3 == 0 ? $2 : 1/0) with points pt 7 ps 0.25 lc rgb '#bbbbbb' title 'new', \\\n"
+     << "     'stabilization.dat' using 1:($3 == 0 ? $2 : 1/0) with points pt 7 ps 0.25 lc rgb '#bbbbbb' title 'new', "
+        "\\\n"
      << "     '' using 1:($3 == 1 ? $2 : 1/0) with points pt 1 ps 0.5 lc rgb '#1f77b4' title 'f', \\\n"
      << "     '' using 1:($3 == 2 ? $2 : 1/0) with points pt 2 ps 0.5 lc rgb '#9467bd' title 'f, zeta', \\\n"
      << "     '' using 1:($3 == 3 ? $2 : 1/0) with points pt 4 ps 0.5 lc rgb '#ff7f0e' title 'f, shape', \\\n"
@@ -83,7 +89,8 @@ std::string stabilization_plot(const ModalReportInput& in, const std::string& yl
   return gp.str();
 }
 
-std::string mac_plot(const std::string& stem, const std::string& title, const std::string& xlabel, const std::string& ylabel) {
+std::string mac_plot(const std::string& stem, const std::string& title, const std::string& xlabel,
+                     const std::string& ylabel) {
   std::ostringstream gp;
   gp << "set terminal svg size 560,480 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
      << "set title " << gp_quote(title) << " noenhanced\nset xlabel " << gp_quote(xlabel) << "\nset ylabel "
@@ -177,15 +184,16 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
   for (const ModalData::Channel& c : data.channels) md << " `" << c.name << "`";
   md << "\n- band: " << num(data.f_hz[0], 8) << " to " << num(data.f_hz[lines - 1], 8) << " Hz, " << lines << " lines\n"
      << "- FRF quantity: " << quantity_text(in) << "\n"
-     << "- poles: " << (diagram.references > 1 ? "poly-reference least-squares complex-frequency method (PolyMAX), "
-                                               : "least-squares complex-frequency method (LSCF, common denominator), ")
+     << "- poles: "
+     << (diagram.references > 1 ? "poly-reference least-squares complex-frequency method (PolyMAX), "
+                                : "least-squares complex-frequency method (LSCF, common denominator), ")
      << diagram.references << " reference" << (diagram.references > 1 ? "s" : "")
      << (diagram.transposed ? " (the outputs; rows are the inputs)" : "") << ", z-domain basis with dt = 1/(2 * "
      << num(diagram.hi_hz, 8) << " Hz), orders 1.." << (diagram.orders.empty() ? 0 : diagram.orders.back()) << "\n"
-     << "- stable between orders: frequency within " << num(100 * in.options.selection.criteria.frequency) << " %, damping within "
-     << num(100 * in.options.selection.criteria.damping) << " %, shape MAC above "
-     << num(1 - in.options.selection.criteria.shape) << "; physical poles have 0 < zeta <= "
-     << num(in.options.selection.criteria.max_zeta) << "\n"
+     << "- stable between orders: frequency within " << num(100 * in.options.selection.criteria.frequency)
+     << " %, damping within " << num(100 * in.options.selection.criteria.damping) << " %, shape MAC above "
+     << num(1 - in.options.selection.criteria.shape)
+     << "; physical poles have 0 < zeta <= " << num(in.options.selection.criteria.max_zeta) << "\n"
      << "- selection: "
      << (in.options.select_hz.empty()
              ? "automatic, clusters of stable poles found at " + num(100 * in.options.selection.min_orders_fraction) +
@@ -195,18 +203,21 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
      << (in.options.lsfd.upper_residual ? ", upper residual" : "") << "\n\n";
 
   md << "## Modes\n\nf and zeta after the refinement (their standard deviations from its Jacobian and misfit; "
-        "before it, the LSCF cluster's median). Residues (the `shape` in the JSON) are those of the measured FRF. MPC is "
+        "before it, the LSCF cluster's median). Residues (the `shape` in the JSON) are those of the measured FRF. MPC "
+        "is "
         "1 for a real (normal) mode shape; MPD is the mean phase deviation from a straight line. *Orders* counts the "
         "model orders whose pole joined the mode's cluster.\n\n"
-        "| mode | f [Hz] | std f [Hz] | zeta [%] | std zeta [%] | LSCF f [Hz] | LSCF zeta [%] | MPC | MPD [deg] | orders |";
+        "| mode | f [Hz] | std f [Hz] | zeta [%] | std zeta [%] | LSCF f [Hz] | LSCF zeta [%] | MPC | MPD [deg] | "
+        "orders |";
   if (in.model) md << " model mode | model f [Hz] | model zeta [%] | MAC |";
   md << "\n|---|---|---|---|---|---|---|---|---|---|" << (in.model ? "---|---|---|---|" : "") << "\n";
   for (std::size_t m = 0; m < r.modes.size(); ++m) {
     const IdentifiedMode& mode = r.modes[m];
-    md << "| " << m + 1 << " | " << fixed(mode.f_hz, 3) << " | " << (mode.refined ? num(mode.f_std_hz, 2) : "not refined")
-       << " | " << num(100 * mode.zeta, 4) << " | " << (mode.refined ? num(100 * mode.zeta_std, 2) : "") << " | "
-       << fixed(mode.lscf_f_hz, 3) << " | " << num(100 * mode.lscf_zeta, 4) << " | " << fixed(mode.mpc, 3) << " | "
-       << fixed(mode.mpd_deg, 1) << " | " << mode.support << (mode.user_selected ? " (selected)" : "") << " |";
+    md << "| " << m + 1 << " | " << fixed(mode.f_hz, 3) << " | "
+       << (mode.refined ? num(mode.f_std_hz, 2) : "not refined") << " | " << num(100 * mode.zeta, 4) << " | "
+       << (mode.refined ? num(100 * mode.zeta_std, 2) : "") << " | " << fixed(mode.lscf_f_hz, 3) << " | "
+       << num(100 * mode.lscf_zeta, 4) << " | " << fixed(mode.mpc, 3) << " | " << fixed(mode.mpd_deg, 1) << " | "
+       << mode.support << (mode.user_selected ? " (selected)" : "") << " |";
     if (in.model) {
       const int k = in.model->pairing.model_mode[m];
       if (k >= 0)
@@ -230,7 +241,8 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
       md << "- " << fixed(p.pole.f_hz, 3) << " Hz, zeta " << num(100 * p.pole.zeta, 3) << " %, " << p.pole.support
          << " orders: " << p.reason << "\n";
   }
-  if (r.modes.empty()) md << "\nNo physical pole was found: see the stabilization diagram, and select poles by frequency.\n";
+  if (r.modes.empty())
+    md << "\nNo physical pole was found: see the stabilization diagram, and select poles by frequency.\n";
 
   // Stabilization diagram over the sum of the FRFs' magnitudes.
   std::ostringstream stab, sum;
@@ -241,7 +253,8 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
   for (Eigen::Index k = 0; k < lines; ++k) sum << data.f_hz[k] << ' ' << data.H.row(k).cwiseAbs().sum() << '\n';
   write_file(dir, "stabilization.dat", stab.str());
   write_file(dir, "sum.dat", sum.str());
-  write_file(dir, "stabilization.gp", stabilization_plot(in, "sum of |H| (" + std::string(frf_quantity_name(data.quantity)) + ")"));
+  write_file(dir, "stabilization.gp",
+             stabilization_plot(in, "sum of |H| (" + std::string(frf_quantity_name(data.quantity)) + ")"));
   std::vector<std::string> stems{"stabilization"};
   md << "\n## Stabilization diagram\n\nEach pole against the nearest of the order below: grey new, blue stable in "
         "frequency, purple also in damping, orange also in shape, red circles stable in all three; dotted green "
@@ -249,7 +262,8 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
         "![stabilization diagram](stabilization.svg)\n";
 
   std::vector<std::string> mode_labels;
-  for (std::size_t m = 0; m < r.modes.size(); ++m) mode_labels.push_back(std::to_string(m + 1) + " (" + fixed(r.modes[m].f_hz, 1) + " Hz)");
+  for (std::size_t m = 0; m < r.modes.size(); ++m)
+    mode_labels.push_back(std::to_string(m + 1) + " (" + fixed(r.modes[m].f_hz, 1) + " Hz)");
   if (!r.modes.empty()) {
     md << "\n## Auto-MAC\n\nMAC between the identified modes' residue vectors (off-diagonal values near 1 mean the "
           "channels cannot tell two modes apart).\n\n";
@@ -268,7 +282,8 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
           "modes as `mbgen inspect` lists them, from 0).\n\n";
     mac_table(md, in.model->pairing.mac, mode_labels, model_labels);
     write_file(dir, "model_mac.dat", matrix_dat(in.model->pairing.mac));
-    write_file(dir, "model_mac.gp", mac_plot("model_mac", "MAC: identified vs model", "model mode + 1", "identified mode"));
+    write_file(dir, "model_mac.gp",
+               mac_plot("model_mac", "MAC: identified vs model", "model mode + 1", "identified mode"));
     stems.push_back("model_mac");
     md << "![MAC against the model](model_mac.svg)\n";
   }
@@ -278,8 +293,8 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
         "| channel | error | lower residual | upper residual |\n|---|---|---|---|\n";
   for (std::size_t c = 0; c < data.channels.size(); ++c) {
     const Eigen::Index ci = static_cast<Eigen::Index>(c);
-    md << "| `" << data.channels[c].name << "` | " << num(r.fit.channel_error[ci], 3) << " | " << num(r.fit.lower[ci], 4)
-       << " | " << num(r.fit.upper[ci], 4) << " |\n";
+    md << "| `" << data.channels[c].name << "` | " << num(r.fit.channel_error[ci], 3) << " | "
+       << num(r.fit.lower[ci], 4) << " | " << num(r.fit.upper[ci], 4) << " |\n";
   }
   md << "\n";
   for (std::size_t c = 0; c < data.channels.size(); ++c) {
@@ -289,7 +304,8 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
     dat << std::setprecision(9) << "# f_hz |H| phase |H_synthesized| phase_synthesized\n";
     for (Eigen::Index k = 0; k < lines; ++k) {
       const std::complex<double> h = data.H(k, ci), s = r.fit.synthesized(k, ci);
-      dat << data.f_hz[k] << ' ' << std::abs(h) << ' ' << phase_deg(h) << ' ' << std::abs(s) << ' ' << phase_deg(s) << '\n';
+      dat << data.f_hz[k] << ' ' << std::abs(h) << ' ' << phase_deg(h) << ' ' << std::abs(s) << ' ' << phase_deg(s)
+          << '\n';
     }
     write_file(dir, stem + ".dat", dat.str());
     write_file(dir, stem + ".gp", frf_plot(stem, data.channels[c].name));

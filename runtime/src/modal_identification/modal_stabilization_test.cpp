@@ -38,8 +38,10 @@ StabilizationDiagram hand_made() {
   for (int n = 1; n <= 20; ++n) {
     d.orders.push_back(n);
     std::vector<DiagramPole> poles;
-    if (n >= 3) poles.push_back(pole(n, 100 * (1 + 2e-4 * jitter(rng)), 0.01 * (1 + 0.01 * jitter(rng)), shape(1, 0.5)));
-    if (n >= 6) poles.push_back(pole(n, 102 * (1 + 2e-4 * jitter(rng)), 0.02 * (1 + 0.01 * jitter(rng)), shape(-0.4, 1)));
+    if (n >= 3)
+      poles.push_back(pole(n, 100 * (1 + 2e-4 * jitter(rng)), 0.01 * (1 + 0.01 * jitter(rng)), shape(1, 0.5)));
+    if (n >= 6)
+      poles.push_back(pole(n, 102 * (1 + 2e-4 * jitter(rng)), 0.02 * (1 + 0.01 * jitter(rng)), shape(-0.4, 1)));
     poles.push_back(pole(n, f(rng), z(rng), shape(jitter(rng), jitter(rng))));
     std::sort(poles.begin(), poles.end(), [](const DiagramPole& a, const DiagramPole& b) { return a.f_hz < b.f_hz; });
     for (const DiagramPole& p : poles) d.poles.push_back(p);
@@ -58,11 +60,11 @@ const DiagramPole* find(const StabilizationDiagram& d, int order, double f) {
 TEST_CASE("stability labels compare each pole with the nearest of the order below", "[modal][stabilization]") {
   StabilizationDiagram d;
   d.orders = {1, 2};
-  d.poles = {pole(1, 100, 0.010, shape(1, 0.5)), pole(1, 200, 0.02, shape(1, 1)),
-             pole(2, 100.5, 0.0104, shape(1, 0.5)),   // f, zeta, shape all within the criteria
-             pole(2, 150, 0.02, shape(1, 1)),         // nothing near below
-             pole(2, 201, 0.03, shape(1, 1.1)),       // f and shape, not damping
-             pole(2, 201.5, 0.0201, shape(1, -1))};   // f and damping, not shape
+  d.poles = {pole(1, 100, 0.010, shape(1, 0.5)),    pole(1, 200, 0.02, shape(1, 1)),
+             pole(2, 100.5, 0.0104, shape(1, 0.5)),  // f, zeta, shape all within the criteria
+             pole(2, 150, 0.02, shape(1, 1)),        // nothing near below
+             pole(2, 201, 0.03, shape(1, 1.1)),      // f and shape, not damping
+             pole(2, 201.5, 0.0201, shape(1, -1))};  // f and damping, not shape
   label_stability(d);
   CHECK(d.poles[0].stability == Stability::New);
   CHECK(d.poles[2].stability == Stability::Stable);

@@ -98,7 +98,8 @@ ModePairing pair_modes(const std::vector<IdentifiedMode>& identified, const Mode
   out.mac.resize(ni, nm);
   for (Eigen::Index i = 0; i < ni; ++i) {
     for (Eigen::Index j = 0; j < nm; ++j)
-      out.mac(i, j) = modal_detail::shape_mac(identified[static_cast<std::size_t>(i)].residues, model.residues.row(j).transpose());
+      out.mac(i, j) =
+          modal_detail::shape_mac(identified[static_cast<std::size_t>(i)].residues, model.residues.row(j).transpose());
     // Largest MAC; near-ties (e.g. a single channel, where every MAC is 1) go to the nearest frequency.
     Eigen::Index best = -1;
     const double f = identified[static_cast<std::size_t>(i)].f_hz;

@@ -174,7 +174,8 @@ RefinedPoles refine_poles(const ModalData& data, const std::vector<std::complex<
       const double zeta = -refined[r].real() / w1;
       std::ostringstream why;
       if (std::abs(w1 - w0) > options.max_shift * w0)
-        why << "the pole near " << std::setprecision(6) << w0 / kTwoPi << " Hz would move by " << percent(std::abs(w1 - w0) / w0);
+        why << "the pole near " << std::setprecision(6) << w0 / kTwoPi << " Hz would move by "
+            << percent(std::abs(w1 - w0) / w0);
       else if (!(zeta > 0 && zeta <= options.max_zeta))
         why << "the pole near " << std::setprecision(6) << w0 / kTwoPi << " Hz would get zeta " << zeta;
       if (why.str().empty())
@@ -192,11 +193,13 @@ RefinedPoles refine_poles(const ModalData& data, const std::vector<std::complex<
 
   // Covariance of the refined poles' theta: s^2 (J^T J)^-1 with s^2 the misfit per degree of freedom (the linear
   // unknowns of every channel and the refined poles count against the data).
-  const double dof = static_cast<double>(e.residual.size()) - static_cast<double>(theta.size()) -
-                     static_cast<double>(hw.cols()) * static_cast<double>(LsfdSystem(data, out.poles, lsfd_options).unknowns());
+  const double dof =
+      static_cast<double>(e.residual.size()) - static_cast<double>(theta.size()) -
+      static_cast<double>(hw.cols()) * static_cast<double>(LsfdSystem(data, out.poles, lsfd_options).unknowns());
   if (dof > 0 && theta.size() > 0) {
-    const Eigen::MatrixXd cov = (e.cost / dof) * (e.jacobian.transpose() * e.jacobian).ldlt().solve(
-                                                     Eigen::MatrixXd::Identity(theta.size(), theta.size()));
+    const Eigen::MatrixXd cov =
+        (e.cost / dof) *
+        (e.jacobian.transpose() * e.jacobian).ldlt().solve(Eigen::MatrixXd::Identity(theta.size(), theta.size()));
     for (std::size_t a = 0; a < set.active.size(); ++a) {
       const Eigen::Index i = 2 * static_cast<Eigen::Index>(a);
       const double sigma = theta[i], omega = theta[i + 1], mag = std::hypot(sigma, omega);

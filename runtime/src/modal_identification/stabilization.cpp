@@ -18,14 +18,17 @@ using Stability = DiagramPole::Stability;
 
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kUserWindow = 0.02;  // select_poles_near: relative distance in frequency
-constexpr int kMinFullyStable = 3;     // a physical pole's cluster holds at least this many fully stable poles
+constexpr int kMinFullyStable = 3;    // a physical pole's cluster holds at least this many fully stable poles
 
 // Distance of two poles of the diagram: relative distance of the complex poles plus the shapes' disagreement.
 double pole_distance(const DiagramPole& a, const DiagramPole& b) {
-  return std::abs(a.lambda - b.lambda) / std::max(std::abs(a.lambda), std::abs(b.lambda)) + (1 - shape_mac(a.shape, b.shape));
+  return std::abs(a.lambda - b.lambda) / std::max(std::abs(a.lambda), std::abs(b.lambda)) +
+         (1 - shape_mac(a.shape, b.shape));
 }
 
-bool physical_damping(const DiagramPole& p, const StabilizationCriteria& c) { return p.zeta > 0 && p.zeta <= c.max_zeta; }
+bool physical_damping(const DiagramPole& p, const StabilizationCriteria& c) {
+  return p.zeta > 0 && p.zeta <= c.max_zeta;
+}
 
 // Neighbours of candidate poles: for each, the others of other orders within `radius`.
 class Neighbours {
@@ -34,7 +37,8 @@ class Neighbours {
       : diagram_(diagram), candidates_(std::move(candidates)) {
     std::sort(candidates_.begin(), candidates_.end(), [&](int a, int b) {
       return diagram.poles[static_cast<std::size_t>(a)].f_hz < diagram.poles[static_cast<std::size_t>(b)].f_hz ||
-             (diagram.poles[static_cast<std::size_t>(a)].f_hz == diagram.poles[static_cast<std::size_t>(b)].f_hz && a < b);
+             (diagram.poles[static_cast<std::size_t>(a)].f_hz == diagram.poles[static_cast<std::size_t>(b)].f_hz &&
+              a < b);
     });
     for (std::size_t i = 0; i < candidates_.size(); ++i) {
       const DiagramPole& p = pole(candidates_[i]);
@@ -102,7 +106,8 @@ SelectedPole summarize(const StabilizationDiagram& diagram, std::vector<int> mem
 }
 
 void sort_by_frequency(std::vector<SelectedPole>& poles) {
-  std::stable_sort(poles.begin(), poles.end(), [](const SelectedPole& a, const SelectedPole& b) { return a.f_hz < b.f_hz; });
+  std::stable_sort(poles.begin(), poles.end(),
+                   [](const SelectedPole& a, const SelectedPole& b) { return a.f_hz < b.f_hz; });
 }
 
 std::string hz(double f) {
@@ -118,8 +123,10 @@ void label_stability(StabilizationDiagram& diagram, const StabilizationCriteria&
   std::map<int, std::pair<std::size_t, std::size_t>> range;
   for (std::size_t i = 0; i < diagram.poles.size(); ++i) {
     auto it = range.find(diagram.poles[i].order);
-    if (it == range.end()) range[diagram.poles[i].order] = {i, i + 1};
-    else it->second.second = i + 1;
+    if (it == range.end())
+      range[diagram.poles[i].order] = {i, i + 1};
+    else
+      it->second.second = i + 1;
   }
   for (std::size_t o = 0; o < diagram.orders.size(); ++o) {
     const auto here = range.find(diagram.orders[o]);
@@ -152,13 +159,14 @@ std::vector<SelectedPole> select_physical_poles(const StabilizationDiagram& diag
     const Stability s = diagram.poles[i].stability;
     const bool stable_enough = s == Stability::Stable || s == Stability::FrequencyDamping ||
                                (shapes_informative && s == Stability::FrequencyShape);
-    if (stable_enough && physical_damping(diagram.poles[i], options.criteria)) candidates.push_back(static_cast<int>(i));
+    if (stable_enough && physical_damping(diagram.poles[i], options.criteria))
+      candidates.push_back(static_cast<int>(i));
   }
   const Neighbours neighbours(diagram, candidates, options.criteria.frequency + options.criteria.shape);
   std::map<int, bool> pool;
   for (int c : neighbours.candidates()) pool[c] = true;
-  const int min_support =
-      std::max(3, static_cast<int>(std::ceil(options.min_orders_fraction * static_cast<double>(diagram.orders.size()))));
+  const int min_support = std::max(
+      3, static_cast<int>(std::ceil(options.min_orders_fraction * static_cast<double>(diagram.orders.size()))));
   const auto fully_stable = [&](const std::vector<int>& members) {
     int count = 0;
     for (int i : members) count += diagram.poles[static_cast<std::size_t>(i)].stability == Stability::Stable;
@@ -206,7 +214,8 @@ std::vector<SelectedPole> select_poles_near(const StabilizationDiagram& diagram,
       std::vector<int> candidates;
       for (std::size_t i = 0; i < diagram.poles.size(); ++i) {
         const DiagramPole& p = diagram.poles[i];
-        if (tier_of(p) <= tier && std::abs(p.f_hz - target) <= kUserWindow * target) candidates.push_back(static_cast<int>(i));
+        if (tier_of(p) <= tier && std::abs(p.f_hz - target) <= kUserWindow * target)
+          candidates.push_back(static_cast<int>(i));
       }
       if (candidates.empty()) continue;
       const Neighbours neighbours(diagram, candidates, c.frequency + c.shape);

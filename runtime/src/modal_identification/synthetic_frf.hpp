@@ -28,8 +28,8 @@ struct SyntheticFrfSpec {
   std::vector<int> output_points, input_points;  // channels: every output x input
   double f_lo = 1, f_hi = 400;
   int lines = 400;
-  int power = 0;              // 0 receptance, 1 mobility, 2 accelerance
-  double noise = 0;           // sigma of the complex noise per line, relative to the channel's RMS
+  int power = 0;     // 0 receptance, 1 mobility, 2 accelerance
+  double noise = 0;  // sigma of the complex noise per line, relative to the channel's RMS
   unsigned seed = 1;
 };
 
