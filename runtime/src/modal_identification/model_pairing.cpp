@@ -1,11 +1,8 @@
 // The model's modes and residues at the measured channels, from the state-space eigenproblem, and the pairing
 // of identified modes with them by MAC.
 #include "mbgen/modal_pairing.hpp"
-#include "mbgen/state_space.hpp"
+#include "mbgen/state_modes.hpp"
 #include "shape_metrics.hpp"
-
-#include <Eigen/Eigenvalues>
-#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -14,8 +11,6 @@
 namespace mbgen {
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 int index_of(const std::vector<std::string>& names, const std::string& n, const char* what) {
   for (std::size_t i = 0; i < names.size(); ++i)
@@ -47,42 +42,18 @@ ModelModes model_modes(const Model& model, const Eigen::VectorXd& parameters, co
   for (std::size_t i = 0; i < inputs.size(); ++i) inputs[i] = index_of(info.inputs, data.inputs[i], "input");
   ModelMatrices m;
   model.evaluate(parameters, m);
-  const StateSpace ss = state_space(m);
-
-  // x = [q; q'/s] with s the square root of the stiffness-to-mass scale: the two blocks of A become comparable
-  // (the eigenvalues do not change, the eigenvectors are rescaled and the residues with them undone below).
-  const Eigen::Index n = m.M.rows();
-  const double s = std::sqrt(std::max(1.0, ss.A.bottomLeftCorner(n, n).cwiseAbs().maxCoeff()));
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(2 * n);
-  scale.tail(n).setConstant(s);
-  const Eigen::MatrixXd A = scale.cwiseInverse().asDiagonal() * ss.A * scale.asDiagonal();
-  const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, /*computeEigenvectors=*/true);
-  if (eig.info() != Eigen::Success) throw std::runtime_error("the model's eigenvalue iteration did not converge");
-  const Eigen::MatrixXcd V = eig.eigenvectors();
-  const Eigen::MatrixXcd left = V.partialPivLu().inverse();  // rows: left eigenvectors, left * V = I
-  const Eigen::MatrixXcd CV = ss.C.cast<std::complex<double>>() * scale.asDiagonal() * V;
-  const Eigen::MatrixXcd WB = left * scale.cwiseInverse().asDiagonal() * ss.B.cast<std::complex<double>>();
-
-  std::vector<Eigen::Index> keep;
-  for (Eigen::Index e = 0; e < eig.eigenvalues().size(); ++e)
-    if (eig.eigenvalues()[e].imag() >= 0) keep.push_back(e);
-  const auto f_of = [&](Eigen::Index e) { return std::abs(eig.eigenvalues()[e]) / kTwoPi; };
-  const auto zeta_of = [&](Eigen::Index e) {
-    const double mag = std::abs(eig.eigenvalues()[e]);
-    return mag > 0 ? -eig.eigenvalues()[e].real() / mag : 0.0;
-  };
-  std::stable_sort(keep.begin(), keep.end(), [&](Eigen::Index a, Eigen::Index b) {
-    return f_of(a) != f_of(b) ? f_of(a) < f_of(b) : zeta_of(a) < zeta_of(b);
-  });
+  const StateModes sm = state_modes(m);
+  const Eigen::MatrixXcd CV = sm.ss.C.cast<std::complex<double>>() * sm.right;
+  const Eigen::MatrixXcd WB = sm.left * sm.ss.B.cast<std::complex<double>>();
 
   ModelModes out;
   out.quantity = quantity_of(m, outputs);
-  out.residues.resize(static_cast<Eigen::Index>(keep.size()), static_cast<Eigen::Index>(data.channels.size()));
-  for (std::size_t r = 0; r < keep.size(); ++r) {
-    const Eigen::Index e = keep[r];
-    out.lambda.push_back(eig.eigenvalues()[e]);
-    out.f_hz.push_back(f_of(e));
-    out.zeta.push_back(zeta_of(e));
+  out.residues.resize(static_cast<Eigen::Index>(sm.modes.size()), static_cast<Eigen::Index>(data.channels.size()));
+  for (std::size_t r = 0; r < sm.modes.size(); ++r) {
+    const Eigen::Index e = sm.modes[r];
+    out.lambda.push_back(sm.lambda[e]);
+    out.f_hz.push_back(sm.f_hz(e));
+    out.zeta.push_back(sm.zeta(e));
     for (std::size_t c = 0; c < data.channels.size(); ++c) {
       const int o = outputs[static_cast<std::size_t>(data.channels[c].output)];
       const int i = inputs[static_cast<std::size_t>(data.channels[c].input)];
