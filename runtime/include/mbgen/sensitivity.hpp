@@ -80,8 +80,8 @@ struct SobolIndices {
 // `f` maps a point of [0, 1)^dimensions to `outputs` values (NaN for "undefined here": such samples are left out
 // of that output's estimates). Points come from a 64-bit Mersenne twister seeded with `seed`, as doubles
 // (x >> 11) 2^-53; results do not depend on the number of threads. `f` is called from several threads at once.
-SobolIndices sobol_indices(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, int dimensions,
-                           int outputs, const SobolOptions& options = {});
+SobolIndices sobol_indices(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, int dimensions, int outputs,
+                           const SobolOptions& options = {});
 
 // ---- over the model's parameters -----------------------------------------------------------------------------
 
@@ -110,9 +110,9 @@ GlobalSensitivity global_sensitivity(const Model& model, const Eigen::VectorXd& 
 
 struct FeatureMap {
   std::string parameter;
-  Eigen::VectorXd values;       // the sweep, lo..hi in `points` steps
-  Eigen::MatrixXd f_hz, zeta;   // points x traces; NaN where a trace was lost
-  std::vector<Mode> start;      // the modes at the first value, one trace each
+  Eigen::VectorXd values;      // the sweep, lo..hi in `points` steps
+  Eigen::MatrixXd f_hz, zeta;  // points x traces; NaN where a trace was lost
+  std::vector<Mode> start;     // the modes at the first value, one trace each
 };
 
 // Each mode followed (by MAC, step to step) while parameter `index` sweeps lo..hi (points >= 2), others at p.

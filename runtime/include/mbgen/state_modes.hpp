@@ -15,9 +15,9 @@ namespace mbgen {
 
 struct StateModes {
   StateSpace ss;
-  Eigen::VectorXcd lambda;  // every eigenvalue of A
-  Eigen::MatrixXcd right;   // columns: right eigenvectors, in the state coordinates [q; q']
-  Eigen::MatrixXcd left;    // rows: left eigenvectors, left * right = I
+  Eigen::VectorXcd lambda;          // every eigenvalue of A
+  Eigen::MatrixXcd right;           // columns: right eigenvectors, in the state coordinates [q; q']
+  Eigen::MatrixXcd left;            // rows: left eigenvectors, left * right = I
   std::vector<Eigen::Index> modes;  // indices into lambda of the listed modes, in order
 
   double f_hz(Eigen::Index e) const;

@@ -48,7 +48,8 @@ std::vector<int> track_modes(const std::vector<Mode>& reference, const std::vect
   };
   std::vector<Pair> pairs;
   for (std::size_t r = 0; r < reference.size(); ++r)
-    for (std::size_t m = 0; m < modes.size(); ++m) pairs.push_back({displacement_mac(reference[r].shape, modes[m].shape), r, m});
+    for (std::size_t m = 0; m < modes.size(); ++m)
+      pairs.push_back({displacement_mac(reference[r].shape, modes[m].shape), r, m});
   std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.mac > b.mac; });
   std::vector<int> out(reference.size(), -1);
   std::vector<bool> taken(modes.size(), false);

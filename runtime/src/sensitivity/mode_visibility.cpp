@@ -22,7 +22,8 @@ ModeVisibility mode_visibility(const Model& model, const Eigen::VectorXd& p) {
   ModeVisibility out;
   for (Eigen::Index o = 0; o < outputs; ++o)
     for (Eigen::Index i = 0; i < inputs; ++i)
-      out.channels.push_back(info.outputs[static_cast<std::size_t>(o)] + "/" + info.inputs[static_cast<std::size_t>(i)]);
+      out.channels.push_back(info.outputs[static_cast<std::size_t>(o)] + "/" +
+                             info.inputs[static_cast<std::size_t>(i)]);
   const Eigen::Index modes = static_cast<Eigen::Index>(eig.size()), channels = outputs * inputs;
   out.dominance.resize(modes, channels);
   out.peak.resize(modes, channels);

@@ -37,7 +37,8 @@ TEST_CASE("Sobol indices of mdof2's frequencies agree with brute force", "[sensi
       q[ranges[i].index] = ranges[i].lo + u[static_cast<Eigen::Index>(i)] * (ranges[i].hi - ranges[i].lo);
     const std::vector<Mode> modes = oscillating_modes(model, q);
     const std::vector<int> match = track_modes(g.nominal, modes);
-    return Eigen::Vector2d(modes[static_cast<std::size_t>(match[0])].f_hz, modes[static_cast<std::size_t>(match[1])].f_hz);
+    return Eigen::Vector2d(modes[static_cast<std::size_t>(match[0])].f_hz,
+                           modes[static_cast<std::size_t>(match[1])].f_hz);
   };
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     Eigen::MatrixXd means(outer, 2);

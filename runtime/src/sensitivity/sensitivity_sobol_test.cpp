@@ -42,8 +42,8 @@ TEST_CASE("Sobol indices of the Ishigami function", "[sensitivity][sobol]") {
   CHECK(s.used[0] == 1 << 14);
   CHECK(s.variance[0] == Approx(exact.v).epsilon(0.03));
   for (int i = 0; i < 3; ++i) {
-    INFO("x" << i + 1 << ": S " << s.first(0, i) << " +- " << s.first_std(0, i) << " (exact " << exact.first(i) << "), ST "
-             << s.total(0, i) << " +- " << s.total_std(0, i) << " (exact " << exact.total(i) << ")");
+    INFO("x" << i + 1 << ": S " << s.first(0, i) << " +- " << s.first_std(0, i) << " (exact " << exact.first(i)
+             << "), ST " << s.total(0, i) << " +- " << s.total_std(0, i) << " (exact " << exact.total(i) << ")");
     // Within 4 standard errors, and the standard errors small: the estimates are tight.
     CHECK(std::abs(s.first(0, i) - exact.first(i)) < 4 * s.first_std(0, i));
     CHECK(std::abs(s.total(0, i) - exact.total(i)) < 4 * s.total_std(0, i));

@@ -51,8 +51,8 @@ double mean_and_std_error(const std::vector<double>& terms, double& std_error) {
 
 }  // namespace
 
-SobolIndices sobol_indices(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, int dimensions,
-                           int outputs, const SobolOptions& options) {
+SobolIndices sobol_indices(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, int dimensions, int outputs,
+                           const SobolOptions& options) {
   const int n = options.samples, k = dimensions;
   // Points: row j of A, then row j of B, j = 0..N-1, from one generator.
   std::mt19937_64 engine(options.seed);

@@ -1,8 +1,8 @@
-# Runs one `mbgen modal` command and checks its exit status, that its standard error (on failure) or output (on
-# success) matches PATTERN, and that a failed run leaves nothing behind in its output directory (@OUT@ in ARGS);
-# with EXPECT_FILES, that a successful run wrote them there.
+# Runs one `mbgen` command (tests/modal, tests/sensitivity) and checks its exit status, that its standard error
+# (on failure) or output (on success) matches PATTERN, and that a failed run leaves nothing behind in its output
+# directory (@OUT@ in ARGS); with EXPECT_FILES, that a successful run wrote them there.
 # Usage: cmake -DMBGEN=... "-DARGS=modal;--data;f.csv" -DSTATUS=0|1|2 "-DPATTERN=regex" [-DEXPECT_FILES=a;b]
-#              -DWORK_DIR=... -P check_modal_cli.cmake
+#              -DWORK_DIR=... -P check_command.cmake
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 string(REPLACE "@OUT@" "${WORK_DIR}" run_args "${ARGS}")
