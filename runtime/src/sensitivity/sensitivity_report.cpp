@@ -102,12 +102,18 @@ std::string sensitivity_summary(const SensitivityReportInput& in) {
     out << "\n";
   }
   if (in.global) {
-    out << "Sobol total indices of f (" << in.global->f.evaluations << " modal analyses):\n";
+    out << "Sobol total indices of f (" << in.global->f.evaluations << " modal analyses; those of 0.01 or more):\n";
     for (std::size_t r = 0; r < in.global->nominal.size(); ++r) {
+      const Eigen::RowVectorXd st = in.global->f.total.row(static_cast<Eigen::Index>(r));
+      std::vector<std::size_t> order(in.global->ranges.size());
+      std::iota(order.begin(), order.end(), 0);
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return st[static_cast<Eigen::Index>(a)] > st[static_cast<Eigen::Index>(b)];
+      });
       out << "  mode " << r + 1 << ":";
-      for (std::size_t i = 0; i < in.global->ranges.size(); ++i)
-        out << " " << in.global->ranges[i].name << " "
-            << num(in.global->f.total(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i)), 2);
+      for (std::size_t i : order)
+        if (st[static_cast<Eigen::Index>(i)] >= 0.01)
+          out << " " << in.global->ranges[i].name << " " << num(st[static_cast<Eigen::Index>(i)], 2);
       out << "\n";
     }
   }
