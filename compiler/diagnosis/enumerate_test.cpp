@@ -61,12 +61,35 @@ TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {
     ctx.output_peak_hz["xs_front"] = {1000};
     std::vector<std::string> expected = common_head;
     expected.insert(expected.end(), common_tail.begin(), common_tail.end());
+    // Its variants: the mounting resonance (there is a peak), and the signal chain's low-pass, high-pass, delay.
     for (const char* id : {"resonator:spindle", "resonator:housing", "sensor_dynamics:xs_front",
+                           "sensor_dynamics:xs_front", "sensor_dynamics:xs_front", "sensor_dynamics:xs_front",
                            "connection:base-spindle"})
       expected.push_back(id);
     const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, ctx);
     CHECK_THAT(test::ids_of(xs), Equals(expected));
+    std::vector<std::string> variants;
+    for (const Extension& x : xs)
+      if (x.id == "sensor_dynamics:xs_front") variants.push_back(x.variant);
+    CHECK_THAT(variants, Equals(std::vector<std::string>{"mounting resonance", "low-pass", "high-pass", "delay"}));
     for (const Extension& x : xs) test::check_candidate(x);
+  }
+  SECTION("a finding without a peak on one output's channels brings its signal chain's forms, not the mounting") {
+    ExtensionContext ctx;
+    ctx.outputs_with_findings = {"xs_rear"};
+    ctx.output_delay_s["xs_rear"] = 2e-4;
+    ctx.band_lo_hz = 50;
+    ctx.band_hi_hz = 1200;
+    std::vector<std::string> variants;
+    const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, ctx);
+    for (const Extension& x : xs) {
+      if (x.id != "sensor_dynamics:xs_rear") continue;
+      variants.push_back(x.variant);
+      REQUIRE(x.model.filters.size() == 1);
+      CHECK(x.model.filters[0].output == "xs_rear");
+      test::check_candidate(x);
+    }
+    CHECK_THAT(variants, Equals(std::vector<std::string>{"low-pass", "high-pass", "delay"}));
   }
   SECTION("a non-zero spin speed alone brings the gyroscopic candidate") {
     ExtensionContext ctx;

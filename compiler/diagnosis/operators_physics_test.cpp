@@ -309,3 +309,44 @@ TEST_CASE("free_parameter:c12 changes the role only", "[diagnosis][physics]") {
     if (p.name == "c12") p.role = ir::Role::Fixed;
   CHECK(frontend::write_model(back) == frontend::write_model(ex2.model));
 }
+
+TEST_CASE("sensor_dynamics:d2's signal-chain forms: one filter on d2 each, started from the residual's delay",
+          "[diagnosis][physics]") {
+  const test::Example ex2 = test::load("mdof2");
+  ExtensionContext ctx;
+  ctx.outputs_with_findings = {"d2"};
+  ctx.output_delay_s["d2"] = 4e-4;
+  ctx.band_lo_hz = 10;
+  ctx.band_hi_hz = 400;
+  const std::vector<Extension> xs = enumerate_extensions(ex2.model, ex2.text, ctx);
+  std::map<std::string, const Extension*> by_variant;
+  for (const Extension& x : xs)
+    if (x.id == "sensor_dynamics:d2") by_variant[x.variant] = &x;
+  REQUIRE(by_variant.size() == 3);  // no peak: no mounting resonance
+  const auto filter_of = [&](const char* variant) -> const ir::Filter& {
+    const Extension& x = *by_variant.at(variant);
+    test::check_candidate(x);
+    REQUIRE(x.model.filters.size() == 1);
+    CHECK(x.model.filters[0].output == "d2");
+    CHECK(x.model.bodies.size() == ex2.model.bodies.size());  // the structure is untouched
+    return x.model.filters[0];
+  };
+  const ModelValues lp(by_variant.at("low-pass")->model, {});
+  CHECK(filter_of("low-pass").kind == ir::FilterKind::Lowpass2);
+  // A low-pass of damping ratio z lags like a delay 2 z / wc below its cutoff: the start matches the delay.
+  CHECK(2 * lp.of(*filter_of("low-pass").damping) / (2 * M_PI * lp.of(*filter_of("low-pass").cutoff)) ==
+        Approx(4e-4).epsilon(1e-3));
+  const ModelValues hp(by_variant.at("high-pass")->model, {});
+  CHECK(filter_of("high-pass").kind == ir::FilterKind::Highpass1);
+  CHECK(hp.of(*filter_of("high-pass").cutoff) == Approx(5.0));  // half the band's lowest line
+  const ModelValues dl(by_variant.at("delay")->model, {});
+  const ir::Filter& delay = filter_of("delay");
+  CHECK(delay.kind == ir::FilterKind::Delay);
+  CHECK(dl.of(*delay.time) == Approx(4e-4));
+  // Enough sections for four times the start over the band: w tau / N < 1.7 at 400 Hz.
+  CHECK(2 * M_PI * 400 * 4 * 4e-4 / delay.sections < 1.7);
+  const ir::Parameter* tau = by_variant.at("delay")->model.find_parameter("td_d2");
+  REQUIRE(tau);
+  REQUIRE(tau->upper);
+  CHECK(2 * M_PI * 400 * dl.of(*tau->upper) / delay.sections == Approx(1.7));
+}

@@ -278,7 +278,7 @@ CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
     for (unsigned j = 0; j < sm.B.cols(); ++j) inputs.push_back("u" + std::to_string(j));
     for (unsigned i = 0; i < sm.Cd.rows(); ++i) outputs.push_back("y" + std::to_string(i));
   }
-  for (const auto& c : sm.coordinates) coordinates.push_back(c.body + "." + ir::to_string(c.dof));
+  for (const auto& c : sm.coordinates) coordinates.push_back(c.name());
 
   FunctionContext ctx(sm);
   const MatrixSpec specs[] = {

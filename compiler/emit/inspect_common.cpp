@@ -13,7 +13,7 @@ namespace detail {
 
 InspectNames inspect_names(const symbolic::SymbolicModel& sm) {
   InspectNames n;
-  for (const auto& c : sm.coordinates) n.coordinates.push_back(c.body + "." + ir::to_string(c.dof));
+  for (const auto& c : sm.coordinates) n.coordinates.push_back(c.name());
   if (sm.model) {
     for (const auto& in : sm.model->inputs) n.inputs.push_back(in.name);
     for (const auto& out : sm.model->outputs) n.outputs.push_back(out.name);

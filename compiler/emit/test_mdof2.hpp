@@ -23,7 +23,7 @@ struct Mdof2 {
     param("c11", c11, GiNaC::numeric(1342, 100));
     param("c22", c22, GiNaC::numeric(47, 100));
     param("c12", c12, GiNaC::numeric(0));
-    sm.coordinates = {{"mass1", ir::Dof::X}, {"mass2", ir::Dof::X}};
+    sm.coordinates = {{"mass1", ir::Dof::X, ""}, {"mass2", ir::Dof::X, ""}};
     sm.M = GiNaC::matrix{{m1, 0}, {0, m2}};
     sm.C = GiNaC::matrix{{c11 + c12, -c12}, {-c12, c12 + c22}};
     sm.G = GiNaC::matrix(2, 2);

@@ -1,5 +1,6 @@
 #include "frontend/check.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -27,6 +28,7 @@ class Checker {
       check_signal_frame(out.at, "output", out.name);
       check_direction(out.direction);
     }
+    for (const ir::Filter& f : m_.filters) check_filter(f);
     check_connected();
   }
 
@@ -53,6 +55,8 @@ class Checker {
     for (const ir::Element& e : m_.elements) declare(elements_, "element", e.name, e.loc);
     for (const ir::Input& in : m_.inputs) declare(signals_, "a signal named", in.name, in.loc);
     for (const ir::Output& out : m_.outputs) declare(signals_, "a signal named", out.name, out.loc);
+    // Filters share the elements' names: both are parts between a frame or a sensor and what is recorded.
+    for (const ir::Filter& f : m_.filters) declare(elements_, "an element or filter named", f.name, f.loc);
   }
 
   void check_expr(const ir::Expr& e) const {
@@ -136,6 +140,14 @@ class Checker {
     if (m_.is_ground(a.frame))
       fail(a.loc, what + " `" + name + "` is on ground `" + a.frame + "`, which does not move: put it on a body");
     resolve(a);
+  }
+
+  void check_filter(const ir::Filter& f) const {
+    const bool is_output = std::any_of(m_.outputs.begin(), m_.outputs.end(),
+                                       [&](const ir::Output& o) { return o.name == f.output; });
+    if (!is_output) fail(f.loc, "filter `" + f.name + "` is on `" + f.output + "`, which is not an output");
+    for (const std::optional<ir::Expr>* e : {&f.cutoff, &f.damping, &f.time})
+      if (*e) check_expr(**e);
   }
 
   // Every body must be held by some element; otherwise it floats free or is forgotten.

@@ -119,6 +119,15 @@ std::string write_output(const ir::Output& out) {
          write_direction(out.direction) + "\n";
 }
 
+std::string write_filter(const ir::Filter& f) {
+  std::string out = "filter " + f.name + " on " + f.output + " " + ir::to_string(f.kind);
+  if (f.cutoff) out += " cutoff " + ir::to_string(*f.cutoff);
+  if (f.damping) out += " damping " + ir::to_string(*f.damping);
+  if (f.time) out += " time " + ir::to_string(*f.time);
+  if (f.kind == ir::FilterKind::Delay && f.sections != 1) out += " sections " + std::to_string(f.sections);
+  return out + "\n";
+}
+
 std::string write_model(const ir::Model& model) {
   std::string out = "model " + model.name + "\n";
 
@@ -147,6 +156,10 @@ std::string write_model(const ir::Model& model) {
     out += "\n";
     for (const ir::Input& in : model.inputs) out += write_input(in);
     for (const ir::Output& o : model.outputs) out += write_output(o);
+  }
+  if (!model.filters.empty()) {
+    out += "\n";
+    for (const ir::Filter& f : model.filters) out += write_filter(f);
   }
   return out;
 }

@@ -24,6 +24,7 @@ std::string write_element(const ir::Element& e);
 std::string write_spin(const ir::Spin& s);
 std::string write_input(const ir::Input& in);
 std::string write_output(const ir::Output& out);
+std::string write_filter(const ir::Filter& f);
 
 // Pieces, without a newline: `(X, Y, Z)`, a direction (`x` or `(A, B, C)`), an attachment (`NAME [at (X, Y, Z)]`).
 std::string write_vec3(const ir::Vec3& v);

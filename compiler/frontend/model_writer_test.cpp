@@ -78,6 +78,17 @@ void require_same_model(const ir::Model& a, const ir::Model& b) {
     same_attachment(a.outputs[i].at, b.outputs[i].at);
     same_direction(a.outputs[i].direction, b.outputs[i].direction);
   }
+  REQUIRE(a.filters.size() == b.filters.size());
+  for (std::size_t i = 0; i < a.filters.size(); ++i) {
+    CHECK(a.filters[i].name == b.filters[i].name);
+    CHECK(a.filters[i].output == b.filters[i].output);
+    CHECK(a.filters[i].kind == b.filters[i].kind);
+    CHECK(a.filters[i].sections == b.filters[i].sections);
+    for (auto member : {&ir::Filter::cutoff, &ir::Filter::damping, &ir::Filter::time}) {
+      REQUIRE((a.filters[i].*member).has_value() == (b.filters[i].*member).has_value());
+      if ((a.filters[i].*member)) CHECK(ir::to_string(*(a.filters[i].*member)) == ir::to_string(*(b.filters[i].*member)));
+    }
+  }
 }
 
 // Uses every construct of the language: derived parameters, open bounds, six inertias, vector directions,
@@ -115,6 +126,9 @@ input T moment on block along z
 output d displacement of rotor along x
 output v velocity of block at (1, 2, 3) along (0, 0, -1)
 output a acceleration of rotor at (0, 0.1, 0) along y
+filter lp on d lowpass2 cutoff 2*n damping 0.7
+filter dl on d delay time 1e-3 sections 2
+filter hp on a highpass1 cutoff 3; filter hp2 on v highpass2 cutoff 5 damping 1/2
 )";
 
 void check_round_trip(const ir::Model& m) {

@@ -71,7 +71,7 @@ class Parser {
   void statement() {
     const Token& t = peek();
     if (t.kind != TokenKind::Name)
-      fail(t, "a statement (model, param, ground, body, spring, spring3, torsion, spin, input, output)");
+      fail(t, "a statement (model, param, ground, body, spring, spring3, torsion, spin, input, output, filter)");
     const std::string kw = t.text;
     if (kw == "model") return model_statement();
     if (kw == "param") return param_statement();
@@ -83,7 +83,8 @@ class Parser {
     if (kw == "spin") return spin_statement();
     if (kw == "input") return input_statement();
     if (kw == "output") return output_statement();
-    fail(t, "a statement (model, param, ground, body, spring, spring3, torsion, spin, input, output)");
+    if (kw == "filter") return filter_statement();
+    fail(t, "a statement (model, param, ground, body, spring, spring3, torsion, spin, input, output, filter)");
   }
 
   void model_statement() {
@@ -323,6 +324,65 @@ class Parser {
     out.direction = direction();
     end_statement();
     model_.outputs.push_back(std::move(out));
+  }
+
+  // filter NAME on OUTPUT lowpass2|highpass1|highpass2|delay ITEM...   (docs/language.md, "Filters")
+  void filter_statement() {
+    next();
+    ir::Filter f;
+    const Token name = expect_name("a filter name");
+    f.name = name.text;
+    f.loc = name.loc;
+    expect_word("on");
+    f.output = expect_name("the name of the output it filters").text;
+    const char* kinds = "a filter kind (lowpass2, highpass1, highpass2, delay)";
+    const Token kind = expect_name(kinds);
+    if (kind.text == "lowpass2") f.kind = ir::FilterKind::Lowpass2;
+    else if (kind.text == "highpass1") f.kind = ir::FilterKind::Highpass1;
+    else if (kind.text == "highpass2") f.kind = ir::FilterKind::Highpass2;
+    else if (kind.text == "delay") f.kind = ir::FilterKind::Delay;
+    else fail(kind, kinds);
+    const bool delay = f.kind == ir::FilterKind::Delay;
+    const bool second_order = f.kind == ir::FilterKind::Lowpass2 || f.kind == ir::FilterKind::Highpass2;
+    const std::string items = delay ? "`time` or `sections`" : second_order ? "`cutoff` or `damping`" : "`cutoff`";
+    bool has_sections = false;
+    while (peek().kind == TokenKind::Name) {
+      const Token item = next();
+      const auto once = [&](bool seen) {
+        if (seen) fail_at(item.loc, "`" + item.text + "` given twice in filter `" + f.name + "`");
+      };
+      if (!delay && item.text == "cutoff") {
+        once(f.cutoff.has_value());
+        f.cutoff = expr();
+      } else if (second_order && item.text == "damping") {
+        once(f.damping.has_value());
+        f.damping = expr();
+      } else if (delay && item.text == "time") {
+        once(f.time.has_value());
+        f.time = expr();
+      } else if (delay && item.text == "sections") {
+        once(has_sections);
+        has_sections = true;
+        const Token n = next();
+        if (n.kind != TokenKind::Number || n.text.find_first_not_of("0123456789") != std::string::npos ||
+            n.text.size() > 2 || std::stoi(n.text) < 1 || std::stoi(n.text) > 16)
+          fail(n, "a whole number of sections from 1 to 16");
+        f.sections = std::stoi(n.text);
+      } else {
+        fail(item, std::string(ir::to_string(f.kind)) + " filter item (" + items + ")");
+      }
+    }
+    const auto require = [&](const std::optional<Expr>& e, const char* word) {
+      if (!e) fail_at(f.loc, std::string(ir::to_string(f.kind)) + " filter `" + f.name + "` has no `" + word + "`");
+    };
+    if (delay) {
+      require(f.time, "time");
+    } else {
+      require(f.cutoff, "cutoff");
+      if (second_order) require(f.damping, "damping");
+    }
+    end_statement();
+    model_.filters.push_back(std::move(f));
   }
 
   // ---- pieces --------------------------------------------------------------------------------------

@@ -90,7 +90,7 @@ TEST_CASE("syntax errors name line, column and what was expected", "[parser][err
   CHECK(error_of("param = 3\n") == "t.mdl:1:7: error: expected a parameter name, found `=`");
   CHECK(error_of("param a = 3 *\n\n") == "t.mdl:3:1: error: expected an expression (a number, a parameter name or `(`), found end of file");
   CHECK(error_of("bogus x\n") ==
-        "t.mdl:1:1: error: expected a statement (model, param, ground, body, spring, spring3, torsion, spin, input, output), found `bogus`");
+        "t.mdl:1:1: error: expected a statement (model, param, ground, body, spring, spring3, torsion, spin, input, output, filter), found `bogus`");
   CHECK(error_of("param a = 1 $\n") == "t.mdl:1:13: error: unexpected character `$`");
   CHECK(error_of("param a = \"kg\n") == "t.mdl:1:11: error: unterminated string: expected a closing `\"` on the same line");
   CHECK(error_of("ground g\nbody b { mass 1\n dof q }\n") ==

@@ -155,6 +155,16 @@ const char* to_string(ElementKind k) {
   return "?";
 }
 
+const char* to_string(FilterKind k) {
+  switch (k) {
+    case FilterKind::Lowpass2: return "lowpass2";
+    case FilterKind::Highpass1: return "highpass1";
+    case FilterKind::Highpass2: return "highpass2";
+    case FilterKind::Delay: return "delay";
+  }
+  return "?";
+}
+
 const char* to_string(InputKind k) { return k == InputKind::Force ? "force" : "moment"; }
 
 const char* to_string(OutputKind k) {

@@ -147,6 +147,27 @@ struct Output {
   SourceLoc loc;
 };
 
+// Signal conditioning between a sensor and the recorded output: the output records its sensor's reading passed
+// through its filters, in declaration order (docs/language.md, "Filters").
+enum class FilterKind {
+  Lowpass2,   // wc^2 / (s^2 + 2 zeta wc s + wc^2): an electrical low-pass, no zero
+  Highpass1,  // s / (s + wc): AC coupling
+  Highpass2,  // s^2 / (s^2 + 2 zeta wc s + wc^2): a charge amplifier's or a second-order AC coupling
+  Delay,      // exp(-s tau), as `sections` second-order Pade sections of tau / sections each
+};
+const char* to_string(FilterKind k);  // "lowpass2", "highpass1", "highpass2", "delay"
+
+struct Filter {
+  std::string name;
+  std::string output;           // the output it conditions
+  FilterKind kind = FilterKind::Lowpass2;
+  std::optional<Expr> cutoff;   // Hz: Lowpass2, Highpass1, Highpass2
+  std::optional<Expr> damping;  // damping ratio: Lowpass2, Highpass2
+  std::optional<Expr> time;     // s: Delay
+  int sections = 1;             // Delay only
+  SourceLoc loc;
+};
+
 struct Model {
   std::string name;  // from `model NAME`
   std::string file;  // path it was read from ("-" for stdin, empty if built in code)
@@ -157,6 +178,7 @@ struct Model {
   std::vector<Spin> spins;
   std::vector<Input> inputs;
   std::vector<Output> outputs;
+  std::vector<Filter> filters;
 
   const Parameter* find_parameter(const std::string& n) const;
   const Body* find_body(const std::string& n) const;

@@ -5,6 +5,7 @@
 #include "symbolic/geometry.hpp"
 #include "symbolic/lagrange.hpp"
 #include "symbolic/mechanism.hpp"
+#include "symbolic/output_filters.hpp"
 #include "symbolic/to_ginac.hpp"
 #include "symbolic/transfer_functions.hpp"
 
@@ -26,7 +27,7 @@ SymbolicModel derive(const ir::Model& model, const DeriveOptions& options) {
   sm.model = &model;
   sm.parameters = params.free_parameters();
   for (const ir::Body& b : model.bodies)
-    for (ir::Dof d : b.dofs) sm.coordinates.push_back({b.name, d});
+    for (ir::Dof d : b.dofs) sm.coordinates.push_back({b.name, d, ""});
   const unsigned n = static_cast<unsigned>(mech.coordinate_count);
   const unsigned inputs = static_cast<unsigned>(model.inputs.size());
   const unsigned outputs = static_cast<unsigned>(model.outputs.size());
@@ -37,13 +38,14 @@ SymbolicModel derive(const ir::Model& model, const DeriveOptions& options) {
   add_kinetic_energy(mech, sm);
   add_spring_dampers(mech, sm);
   add_inputs_outputs(mech, sm);
+  add_output_filters(params, sm);
   for (GiNaC::matrix* mat : {&sm.M, &sm.C, &sm.G, &sm.K, &sm.B, &sm.Cd, &sm.Cv, &sm.Ca}) tidy_all(*mat);
   sm.C_total = sm.C.add(sm.G);
   tidy_all(sm.C_total);
 
   check_every_coordinate_is_held(mech, sm);
   check_mass_matrix(mech, sm);
-  sm.blocks = uncoupled_blocks({&sm.M, &sm.C_total, &sm.K}, static_cast<int>(n));
+  sm.blocks = uncoupled_blocks({&sm.M, &sm.C_total, &sm.K}, static_cast<int>(sm.coordinates.size()));
   if (options.transfer_functions) add_transfer_functions(sm);
   return sm;
 }

@@ -2,7 +2,7 @@
 
 namespace mbgen::symbolic {
 
-std::string Coordinate::name() const { return body + "." + ir::to_string(dof); }
+std::string Coordinate::name() const { return body + "." + (state.empty() ? std::string(ir::to_string(dof)) : state); }
 
 GiNaC::exmap SymbolicModel::values() const {
   GiNaC::exmap m;

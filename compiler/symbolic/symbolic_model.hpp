@@ -24,10 +24,14 @@ struct FreeParameter {
   const ir::Parameter* ir = nullptr;
 };
 
+// A generalized coordinate: a body's dof, or (with `state` set) a state of an output filter named `body`, which
+// moves no mass: its equation is the filter's (output_filters.hpp).
 struct Coordinate {
   std::string body;
-  ir::Dof dof;
-  std::string name() const;  // "body.dof", e.g. "mass1.x"
+  ir::Dof dof = ir::Dof::X;
+  std::string state;         // a filter's state ("w", or "w1", "w2", ... for a delay's sections); empty for a body
+  std::string name() const;  // "body.dof", e.g. "mass1.x", or "filter.state", e.g. "lp_d2.w"
+  bool is_filter_state() const { return !state.empty(); }
 };
 
 struct TransferFunction {
@@ -49,7 +53,7 @@ struct SymbolicModel {
   const ir::Model* model = nullptr;
   GiNaC::symbol s{"s"};
   std::vector<FreeParameter> parameters;  // in model order, derived ones excluded
-  std::vector<Coordinate> coordinates;    // in model order (bodies, then their dofs as written)
+  std::vector<Coordinate> coordinates;    // in model order (bodies, then their dofs as written), then filter states
   GiNaC::matrix M, C, G, C_total, K;      // n x n
   GiNaC::matrix B;                        // n x inputs
   GiNaC::matrix Cd, Cv, Ca;               // outputs x n

@@ -1,21 +1,33 @@
 #!/usr/bin/env python3
 """Self-checks of truthgen (exit 1 on any failure).
 
-    python3 scripts/truthgen/selftest.py            # fast checks (~20 s)
-    python3 scripts/truthgen/selftest.py --effects  # also the effect size of every case (a few minutes)
+    python3 scripts/truthgen/selftest.py            # fast checks (~75 s on a shared 2-core machine)
+    python3 scripts/truthgen/selftest.py --effects  # also the effect size of every case (~5 min more)
+    python3 scripts/truthgen/selftest.py --corners  # and at the weak ends of the --draw ranges (~4 min more)
+    python3 scripts/truthgen/selftest.py --only=CASE[,CASE] [--corners]   # just those cases' effect sizes
 
+0. Existing command lines still write byte-identical files: hashes of files made before --draw, --averages,
+   --no-coherence and the sensor, base_on_feet and frame3 cases were added (the test data of tests/diagnosis
+   and the committed example data depend on them).
 1. The assembled reference models against REFERENCE-MODELS.md: spindle inertias and undamped natural
-   frequencies (0.1 %), mdof2 modes and damping ratios, mdof2 G11/G21 against the printed closed form.
+   frequencies (0.1 %), mdof2 modes and damping ratios, mdof2 G11/G21 against the printed closed form; frame3
+   against its hand-written characteristic polynomial and accelerance, and against examples/frame3/frame3.mdl.
 2. Structure: M, K, C symmetric, G skew, the spindle's two uncoupled blocks, spin couples them.
-3. Cases: the spindle's compliant base has its x mode at 190 Hz; resonators add a mode near their frequency.
+3. Cases: the spindle's compliant base has its x mode at 190 Hz; resonators add a mode near their frequency;
+   the sensor filters are T(s) times the structure's FRF (hand-written T); base_on_feet's rocking mode; the
+   frame's torsion modes; --draw stays in its ranges.
 4. Time simulation against direct solve: a periodic multisine in steady state, simulated with the exact
    zero-order hold, has the FRF sum_n G(i(w + n ws)) H0(i(w + n ws))/T, computed from the direct continuous
-   solve (no matrix exponential): agreement to 1e-6 for every case. Then Welch H1 of a long noisy record
-   agrees with it within the predicted random error.
-5. Noise: FRF noise has the defined sigma; coherence as defined; same seed, same data; the CLI writes files
-   in the documented formats.
+   solve (no matrix exponential): agreement to 1e-6 for every case with time records, filters and delays
+   included. A delayed record from rest equals a record simulated 4 times finer and shifted. Then Welch H1 of
+   long noisy records agrees with the sampled-system FRF within the predicted random error.
+5. Noise: FRF noise has the defined sigma, also averaged; coherence as defined; same seed, same data; the CLI
+   writes files in the documented formats.
 """
+import hashlib
+import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -26,9 +38,14 @@ from truthlib.bootstrap import ensure_numpy  # noqa: E402
 ensure_numpy()
 
 import numpy as np  # noqa: E402
+import scipy.linalg  # noqa: E402
 import scipy.signal  # noqa: E402
 
+import truthgen  # noqa: E402
 from truthlib import cases, effects, generate, models, response  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.normpath(os.path.join(HERE, "..", ".."))
 
 FAILURES = []
 
@@ -108,15 +125,15 @@ def check_structure():
 
 # ---- 3. cases ------------------------------------------------------------------------------------------
 def check_cases():
-    import scipy.linalg
     c = cases.get("spindle", "compliant_ground")
-    s = c.build(c.truth_parameters())
-    m = s.matrices()
-    w2, V = scipy.linalg.eigh(m["K"], m["M"])
-    base = [s.index("base", d) for d in "xyz"]
-    x_modes = [np.sqrt(w) / (2 * np.pi) for w, v in zip(w2, V.T)
-               if abs(v[base[0]]) > 0.9 * np.linalg.norm(v[base])]
+    x_modes = cases.base_x_modes_hz(c.build(c.truth_parameters()))
     check(abs(x_modes[0] - 190.0) < 1.0, "spindle compliant base: lowest base-x mode at %.1f Hz" % x_modes[0])
+    for n in (1, 2):
+        d = c.drawn(n)
+        got = cases.base_x_modes_hz(d.build(d.truth_parameters()))[0]
+        check(abs(got - d.values["f_base"]) < 0.01 and 160 <= got <= 220,
+              "spindle compliant base, --draw %d: base-x mode %.2f Hz (drawn %.4g, range 160-220)"
+              % (n, got, d.values["f_base"]))
     for example in ("mdof2", "spindle"):
         c = cases.get(example, "resonator")
         fr, _ = response.damped_modes(c.build(c.truth_parameters()).matrices())
@@ -144,7 +161,9 @@ def aliased_zoh_frf(mats, f_hz, dt, aliases=400):
 
 
 def steady_state_multisine_frf(mats, fs, period, lines, rng):
-    A, Bc, Cc = response.state_space(mats)
+    """Periodic steady state (initial state solved exactly), output spectrum over input spectrum. A delayed
+    output reads the periodic record before its start, as the steady state has it."""
+    A, Bc, Cc, delays = response.simulation_model(mats)
     Ad, Bd = response.zoh_discretise(A, Bc, 1.0 / fs)
     ni = Bc.shape[1]
     k = np.arange(period)
@@ -155,7 +174,10 @@ def steady_state_multisine_frf(mats, fs, period, lines, rng):
         u[:, i] = np.sum(np.cos(2 * np.pi * np.outer(k, lines) / period + phases), axis=1)
         _, x_end = response.run_discrete(Ad, Bd, Cc, u)
         x0 = np.linalg.solve(np.eye(Ad.shape[0]) - np.linalg.matrix_power(Ad, period), x_end)
-        y, x_after = response.run_discrete(Ad, Bd, Cc, u, x0)
+        states, x_after = response.run_states(Ad, Bd, u, x0)
+        y = states @ Cc.T
+        for o, tau in delays:
+            y[:, o] = response.delayed_output(A, Bc, Cc[o], states, u, tau, 1.0 / fs, periodic=True)
         assert np.allclose(x_after, x0, rtol=1e-6, atol=1e-6 * np.abs(x0).max())
         U = np.fft.rfft(u[:, i])[lines]
         Y = np.fft.rfft(y, axis=0)[lines]
@@ -166,6 +188,8 @@ def steady_state_multisine_frf(mats, fs, period, lines, rng):
 def check_time_vs_frf():
     rng = np.random.default_rng(7)
     for (example, name), c in cases.CASES.items():
+        if "time" not in c.kinds:
+            continue
         mats = c.build(c.truth_parameters()).matrices()
         fs = generate.SAMPLE_RATE[example]
         period = int(fs)                       # 1 Hz lines
@@ -249,35 +273,485 @@ def check_noise_and_files():
         check(bad.returncode == 1 and "zz" in bad.stderr, "CLI: unknown --set parameter is an error")
 
 
+# ---- 0. existing command lines: byte-identical files ---------------------------------------------------
+# (name, arguments, sha256 of CSV + truth JSON, first 16 hex digits) of files written with `-o NAME.csv` in an
+# empty directory by the code as it was before --draw, --averages, --no-coherence, the sensor, base_on_feet and
+# frame3 cases (commit 65ff79a): the command lines of tests/diagnosis, make_examples.sh (b01-b04: the committed
+# example CSVs) and a few options. A mismatch on another machine may be a numpy/LAPACK difference in the last
+# written digit; on this one it means existing data changed.
+EXISTING_OUTPUTS = [
+    ("b01", "--example mdof2 --case nominal --kind frf --snr-db 40 --seed 1", "993ab9232e32dfb8"),
+    ("b02", "--example mdof2 --case nominal --kind time --snr-db 40 --seed 2", "f53a904663018163"),
+    ("b03", "--example spindle --case nominal --kind frf --snr-db 40 --seed 3", "cb8b26aed212b405"),
+    ("b04", "--example spindle --case compliant_ground --kind frf --snr-db 40 --seed 4", "990cb2b7e4e951ea"),
+    ("d11", "--example mdof2 --case nominal --kind frf --snr-db 40 --seed 11", "6e3893bff9e78411"),
+    ("d12", "--example mdof2 --case compliant_ground --kind frf --snr-db 40 --seed 12", "8bc3eb00a57ef247"),
+    ("d13", "--example mdof2 --case free_parameter --kind frf --snr-db 40 --seed 13", "d35045e5248c89d5"),
+    ("d14", "--example mdof2 --case resonator --kind frf --snr-db 40 --seed 14", "5d6835e50fca1c06"),
+    ("d15", "--example mdof2 --case outside_maxwell --kind frf --snr-db 40 --seed 15", "083fb989aaf29847"),
+    ("d21", "--example mdof2 --case nominal --kind time --snr-db 40 --seed 21", "0caf744d5084f71a"),
+    ("d22", "--example mdof2 --case compliant_ground --kind time --snr-db 40 --seed 22", "008b6372e559473f"),
+    ("d61", "--example mdof2 --case free_parameter --kind time --snr-db 40 --seed 61", "cbea37ed94960ff3"),
+    ("d63", "--example mdof2 --case outside_maxwell --kind time --snr-db 40 --seed 63", "93894d75ddcf99c4"),
+    ("d62", "--example mdof2 --case resonator --kind time --snr-db 40 --seed 62", "5a4708a8ec443caf"),
+    ("d53", "--example spindle --case nominal --kind time --snr-db 40 --seed 53 --duration 1", "8c4383febd8282d4"),
+    ("d52", "--example spindle --case compliant_ground --kind time --snr-db 40 --seed 52 --duration 1",
+     "5b966daa2d7d49fb"),
+    ("d54", "--example spindle --case added_mass --kind time --snr-db 40 --seed 54 --duration 1", "bf82c3652dab64aa"),
+    ("d55", "--example spindle --case resonator --kind time --snr-db 40 --seed 55 --duration 1", "84acd9644b325b26"),
+    ("d56", "--example spindle --case moment_stiffness --kind time --snr-db 40 --seed 56 --duration 1",
+     "e184dd59b8fa590e"),
+    ("d57", "--example spindle --case connection --kind time --snr-db 40 --seed 57 --duration 1", "333948f0aaa8da75"),
+    ("d58", "--example spindle --case sensor_dynamics --kind time --snr-db 40 --seed 58 --duration 1",
+     "759f99e5c95b28f9"),
+    ("d59", "--example spindle --case untie_parameter --kind time --snr-db 40 --seed 59 --duration 1",
+     "758ad63baff1cc98"),
+    ("d60", "--example spindle --case gyroscopic --kind time --snr-db 40 --seed 60 --set n_sp=0 --duration 1",
+     "b60de3b9035948ac"),
+    ("d64", "--example spindle --case gyroscopic --kind time --snr-db 40 --seed 64 --set n_sp=300 --duration 1",
+     "0d51aaf8d2f385aa"),
+    ("d31", "--example spindle --case nominal --kind frf --snr-db 40 --seed 31", "b00a7e8eb5ed1acc"),
+    ("d32", "--example spindle --case compliant_ground --kind frf --snr-db 40 --seed 32", "133ded932f18bc2e"),
+    ("d33", "--example spindle --case untie_parameter --kind frf --snr-db 40 --seed 33", "7f9703f7f74d7dbd"),
+    ("d34", "--example spindle --case added_mass --kind frf --snr-db 40 --seed 34", "d67897f981b75e64"),
+    ("d35", "--example spindle --case resonator --kind frf --snr-db 40 --seed 35", "671682a9fb26bd89"),
+    ("d36", "--example spindle --case moment_stiffness --kind frf --snr-db 40 --seed 36", "0949bdf7dac2797e"),
+    ("d37", "--example spindle --case gyroscopic --kind frf --snr-db 40 --seed 37 --set n_sp=0", "6bea7f459848ad98"),
+    ("d38", "--example spindle --case gyroscopic --kind frf --snr-db 40 --seed 38 --set n_sp=300", "0312190e480ccceb"),
+    ("d39", "--example spindle --case connection --kind frf --snr-db 40 --seed 39", "2d160961a39560b4"),
+    ("d40", "--example spindle --case outside_maxwell --kind frf --snr-db 40 --seed 40", "83271f82881ea4a9"),
+    ("d41", "--example spindle --case sensor_dynamics --kind frf --snr-db 40 --seed 41", "58eb2fb533add413"),
+    ("x01", "--example mdof2 --case added_mass --kind frf --seed 5 --snr-db inf", "36b7616b0a97287c"),
+    ("x02", "--example spindle --case outside_maxwell --kind time --seed 6 --excitation gaussian --duration 0.5 "
+            "--snr-db 30", "564092e3e6d7de3c"),
+    ("x03", "--example mdof2 --case nominal --kind frf --seed 7 --f-min 20 --f-max 200 --df 0.5 --set m1=1.5",
+     "55bd1f96280c0eb7"),
+]
+
+
+def run_cli_here(argv, directory):
+    """truthgen.run in this process (no interpreter start per file), in `directory`, with sys.argv as the CLI
+    has it (the truth JSON records the command line). Not for byte comparisons (run_cli)."""
+    saved_argv, saved_cwd = sys.argv, os.getcwd()
+    sys.argv = ["truthgen.py"] + argv
+    os.chdir(directory)
+    try:
+        return truthgen.run(argv)
+    finally:
+        sys.argv = saved_argv
+        os.chdir(saved_cwd)
+
+
+def file_digest(directory, name):
+    data = b""
+    for suffix in (".csv", ".truth.json"):
+        with open(os.path.join(directory, name + suffix), "rb") as f:
+            data += f.read()
+    return hashlib.sha256(data).hexdigest()[:16]
+
+
+def run_cli(argv, directory):
+    """The CLI in a fresh interpreter, as tests run it. (In one long process numpy's results can differ in the
+    last bit with the alignment of its arrays, which depends on what ran before: the written digits of a sigma
+    in the JSON did, so the byte-identity check must not run in-process.)"""
+    subprocess.run([sys.executable, os.path.join(HERE, "truthgen.py")] + argv, cwd=directory, check=True)
+
+
+def check_existing_outputs():
+    changed = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, args, digest in EXISTING_OUTPUTS:
+            run_cli(args.split() + ["-o", name + ".csv"], tmp)
+            if file_digest(tmp, name) != digest:
+                changed.append(name)
+        for path, name in [("examples/mdof2/data/frf_F1.csv", "b01"), ("examples/spindle/data/frf_Fx.csv", "b03"),
+                           ("examples/mdof2/data/time_F1.csv", "b02"),
+                           ("examples/spindle/data/frf_Fx_base_mode.csv", "b04")]:
+            with open(os.path.join(REPO, path), "rb") as f, open(os.path.join(tmp, name + ".csv"), "rb") as g:
+                if f.read() != g.read():
+                    changed.append(path)
+    check(not changed, "%d existing command lines write byte-identical CSV and truth JSON, and the 4 committed "
+                       "example CSVs regenerate byte-identical%s"
+          % (len(EXISTING_OUTPUTS), (" (changed: %s)" % ", ".join(changed)) if changed else ""))
+
+
+# ---- 3b. sensor filters, base on feet, frame3, --draw ----------------------------------------------------
+def hand_filter(kind, value, f_hz):
+    """T(i w) written out again, not through response.output_filter_response."""
+    w = 2 * np.pi * np.asarray(f_hz, dtype=float)
+    if kind == "lowpass":
+        wc = 2 * np.pi * value
+        return wc ** 2 / (wc ** 2 - w ** 2 + 1j * np.sqrt(2) * wc * w)
+    if kind == "highpass":
+        wh = 2 * np.pi * value
+        return 1j * w / (wh + 1j * w)
+    return np.cos(w * value) - 1j * np.sin(w * value)
+
+
+SENSOR_CASES = [("sensor_lowpass", "lowpass", "fc"), ("sensor_highpass", "highpass", "fh"),
+                ("sensor_delay", "delay", "tau")]
+
+
+def check_sensor_filters():
+    for example in ("mdof2", "spindle"):
+        out = cases.SENSOR_OUTPUT[example]
+        f = generate.frequency_grid(*generate.FRF_GRID[example])
+        for name, kind, size in SENSOR_CASES:
+            for c in (cases.get(example, name), cases.get(example, name).drawn(5)):
+                p = c.truth_parameters()
+                system = c.build(p)
+                o = system.output_names().index(out)
+                H = response.frf(system.matrices(), f)
+                H0 = response.frf(models.EXAMPLES[example]["build"](p, None).matrices(), f)
+                T = hand_filter(kind, c.values[size], f)
+                err = np.max(np.abs(H[:, o, :] - T[:, None] * H0[:, o, :])) / np.max(np.abs(H0[:, o, :]))
+                others = np.delete(np.arange(H.shape[1]), o)
+                untouched = np.array_equal(H[:, others, :], H0[:, others, :])
+                phase = np.degrees(np.angle(T))
+                lo, hi = c.sizes[0].low, c.sizes[0].high
+                check(err < 1e-12 and untouched and lo <= c.values[size] <= hi,
+                      "%s/%s%s: %s = T(s) x structure (T by hand, error %.0e), other outputs untouched; %s = %.4g "
+                      "in [%g, %g]; in the band |T| %.3f..%.3f, phase %+.1f..%+.1f deg"
+                      % (example, name, " --draw 5" if c.draw else "", out, err, size, c.values[size], lo, hi,
+                         np.min(np.abs(T)), np.max(np.abs(T)), phase.min(), phase.max()))
+
+
+def check_delay_from_rest():
+    """A delayed record from rest against the undelayed structure simulated 4 times finer (the same held input)
+    and shifted by tau: an independent route for y_d[k] = Cy x(t_k - tau), zero before the record."""
+    c = cases.get("mdof2", "sensor_delay")
+    p = c.truth_parameters()
+    dt, fine = 1 / 4096.0, 4
+    u = np.random.default_rng(3).uniform(-10, 10, (400, 1))
+    plain = models.build_mdof2(p).matrices()
+    y_fine, _ = response.simulate_zoh(plain, np.repeat(u, fine, axis=0), dt / fine)
+    for steps in (2.25, 3.0, 0.5, 9.75):
+        tau = steps * dt
+        mats = models.build_mdof2(p, {"output_filter": {"output": "d2", "kind": "delay", "value": tau}}).matrices()
+        y, _ = response.simulate_zoh(mats, u, dt)
+        shift = int(round(steps * fine))
+        index = np.arange(len(u)) * fine - shift
+        expect = np.where(index >= 0, y_fine[np.clip(index, 0, None), 1], 0.0)
+        err = np.max(np.abs(y[:, 1] - expect)) / np.max(np.abs(expect))
+        err_d1 = np.max(np.abs(y[:, 0] - y_fine[::fine, 0])) / np.max(np.abs(y[:, 0]))
+        check(err < 1e-9 and err_d1 < 1e-9,
+              "delay %.2f dt from rest = the 4x finer record shifted by tau (max error %.1e; d1 undelayed)"
+              % (steps, err))
+
+
+def sampled_frf(mats, f_hz, dt):
+    """Exact FRF of the sampled record, filters and delays included: a delayed output reads
+    z^-(m+1) c (A_p X + B_p U) with X = (zI - Ad)^-1 Bd U (response.delayed_output's formula in z)."""
+    A, Bc, Cc, delays = response.simulation_model(mats)
+    Ad, Bd = response.zoh_discretise(A, Bc, dt)
+    G = response.discrete_frf(Ad, Bd, Cc, f_hz, dt)
+    z = np.exp(1j * 2 * np.pi * np.asarray(f_hz, dtype=float) * dt)
+    X = np.linalg.solve(z[:, None, None] * np.eye(Ad.shape[0]) - Ad,
+                        np.broadcast_to(Bd.astype(complex), (len(z),) + Bd.shape))
+    for o, tau in delays:
+        m, delta = response.split_delay(tau, dt)
+        Ap, Bp = response.zoh_discretise(A, Bc, dt - delta)
+        G[:, o, :] = z[:, None] ** -(m + 1) * np.einsum("s,fsi->fi", Cc[o], np.einsum("st,fti->fsi", Ap, X) + Bp)
+    return G
+
+
+def check_sensor_records():
+    """Welch H1 of generated records (truthgen's own path: make_time from rest, output noise) of the spindle's
+    delayed and low-passed xs_front against the exact sampled FRF, which the multisine check ties to the direct
+    continuous solve."""
+    fs, seconds, nseg = 8192.0, 32.0, 16384
+    for name in ("sensor_delay", "sensor_lowpass"):
+        c = cases.get("spindle", name)
+        mats = c.build(c.truth_parameters()).matrices()
+        data = generate.make_time(mats, fs, seconds, 40.0, np.random.default_rng(17), 100.0)
+        u = data["u"][:, 0]
+        f, Puu = scipy.signal.welch(u, fs, window="hann", nperseg=nseg)
+        _, Puy = scipy.signal.csd(u, data["noisy"][:, 0], fs, window="hann", nperseg=nseg)
+        segments = (len(u) - nseg) // (nseg // 2) + 1
+        band = (f >= 50) & (f <= 1200)
+        Gd = sampled_frf(mats, f[band], 1.0 / fs)[:, 0, 0]
+        G_no_sensor = sampled_frf(models.build_spindle(c.truth_parameters()).matrices(), f[band], 1.0 / fs)[:, 0, 0]
+        predicted = data["sigma"][0] ** 2 / (100.0 ** 2 * segments / 1.06)
+        z = np.abs(Puy[band] / Puu[band] - Gd) ** 2 / predicted
+        z0 = np.abs(Puy[band] / Puu[band] - G_no_sensor) ** 2 / predicted
+        check(0.5 < np.median(z) < 0.95 and np.mean(z < 3) > 0.85 and np.median(z0) > 10,
+              "spindle/%s: Welch H1 of a 32 s record, xs_front/Fx vs the sampled FRF with the sensor: median "
+              "normalised error %.2f (noise alone 0.69), %.1f %% below 3; without the sensor %.3g"
+              % (name, np.median(z), 100 * np.mean(z < 3), np.median(z0)))
+
+
+def rigid_motion_map(system, reference=(0.0, 0.0, 0.0)):
+    """Coordinates of every body when the whole assembly moves as one rigid body (x y z rx ry rz about
+    `reference`): a body's translation is t + theta x (c - reference), its rotations theta."""
+    T = np.zeros((system.n, 6))
+    for j in range(6):
+        t, theta = np.eye(6)[j, :3], np.eye(6)[j, 3:]
+        for body, dof in system.coords:
+            u = t + np.cross(theta, system.bodies[body].com - np.asarray(reference))
+            T[system.index(body, dof), j] = u["xyz".index(dof)] if dof in "xyz" else theta["xyz".index(dof[1])]
+    return T
+
+
+def check_base_on_feet():
+    """The draw tunes the feet so that the machine, taken as one rigid body, rocks about z at f_rock
+    (models.base_rocking_hz, from a parallel-axis sum). Independent route: the truth's own mass matrix and feet
+    stiffness projected on rigid motions of the whole assembly (6 x 6). For the default and four draws; also the
+    truth's own lowest feet mode (the mounts' compliance puts it lower) and, for information, the assembly with
+    mounts and bearings 1e4 times stiffer (about 1 % higher than the rigid body: a stiff x spring between a mount's
+    two points, 16 mm apart in y, also resists the rigid rotation about z, by the linear model's convention)."""
+    case = cases.get("spindle", "base_on_feet")
+    for c in [case] + [case.drawn(n) for n in (1, 2, 3, 4)]:
+        p = c.truth_parameters()
+        f_rock, m_base = c.values["f_rock"], c.values["m_base"]
+        system = c.build(p)
+        T = rigid_motion_map(system)
+        M6 = T.T @ system.mass_matrix() @ T
+        K6 = T.T @ system.stiffness_of("base_foot") @ T
+        w2, V = scipy.linalg.eigh(K6, M6)
+        x_rz = [np.sqrt(w) / (2 * np.pi) for w, v in zip(w2, V.T) if np.linalg.norm(v[[1, 2, 3, 4]]) < 1e-9]
+        rigid = min(x_rz)
+        stiff = dict(p)
+        for name in ("k_fx", "k_fy", "k_fz", "k_rx", "k_ry", "k_hbx", "k_hby", "k_hbz"):
+            stiff[name] = p[name] * 1e4
+        stiff_mounts = cases.feet_modes_hz(models.build_spindle(stiff, c.effects(p)))[0]
+        truth = cases.feet_modes_hz(system)
+        k3, c3 = c.effects(p)["base_box"]["k3"], c.effects(p)["base_box"]["c3"]
+        damping_ok = all(abs(cc - 2 * 0.03 * k / (2 * np.pi * f_rock)) < 1e-9 * cc for k, cc in zip(k3, c3))
+        check(abs(rigid / f_rock - 1) < 1e-9 and 150 <= f_rock <= 260 and 25 <= m_base <= 60 and damping_ok
+              and abs(stiff_mounts / f_rock - 1) < 0.03 and 0.7 * f_rock <= truth[0] <= f_rock,
+              "spindle/base_on_feet%s: base %.4g kg; rigid machine on the feet rocks at %.3f Hz (drawn %.4g, range "
+              "150-260; stiff mounts %.1f); the truth's lowest feet mode %.1f Hz; foot k = %.3g/%.3g/%.3g N/m"
+              % (" --draw %d" % c.draw["n"] if c.draw else "", m_base, rigid, f_rock, stiff_mounts, truth[0], *k3))
+
+
+def frame3_hand_matrices(p):
+    m = np.diag([p["m1"], p["m2"], p["m3"]])
+
+    def chain(a, b, c):
+        return np.array([[a + b, -b, 0.0], [-b, b + c, -c], [0.0, -c, c]])
+    return m, chain(p["k1"], p["k2"], p["k3"]), chain(p["c1"], p["c2"], p["c3"])
+
+
+def check_frame3():
+    p = models.FRAME3_NOMINAL
+    M, K, C = frame3_hand_matrices(p)
+    # det(K - lam M) by hand, as a cubic in lam
+    P = np.polynomial.Polynomial
+    a, b, c = P([p["k1"] + p["k2"], -p["m1"]]), P([p["k2"] + p["k3"], -p["m2"]]), P([p["k3"], -p["m3"]])
+    det = a * (b * c - p["k3"] ** 2) - p["k2"] ** 2 * c
+    hand = np.sort(np.sqrt(det.roots().real)) / (2 * np.pi)
+    mats = models.build_frame3(p).matrices()
+    got = response.undamped_natural_frequencies(mats)
+    fr, zeta = response.damped_modes(mats)
+    check(np.max(np.abs(got / hand - 1)) < 1e-9 and 19 < fr[0] < 20 and 71 < fr[2] < 72
+          and 0.008 < zeta[0] < 0.01 and zeta[2] < 0.032,
+          "frame3 modes %s Hz (characteristic polynomial by hand: %s), damping ratios %s %%"
+          % (np.round(fr, 2).tolist(), np.round(hand, 2).tolist(), np.round(100 * zeta, 2).tolist()))
+    f = generate.frequency_grid(*generate.FRF_GRID["frame3"])
+    w = 2 * np.pi * f
+    hand_H = np.array([-wi ** 2 * np.linalg.inv(K + 1j * wi * C - wi ** 2 * M) for wi in w[::37]])
+    H = response.frf(mats, f[::37])
+    err = np.max(np.abs(H - hand_H)) / np.max(np.abs(hand_H))
+    check(len(f) == 4096 and f[0] == 0.03125 and f[-1] == 128.0 and err < 1e-10,
+          "frame3 accelerances (9 channels) = -w^2 (K + i w C - w^2 M)^-1 by hand (error %.0e); grid 4096 lines "
+          "0.03125-128 Hz" % err)
+
+    # outside_torsion: modes = the x chain's plus the torsion chain's, two of them in the band near 40 and 95 Hz
+    for c in (cases.get("frame3", "outside_torsion"), cases.get("frame3", "outside_torsion").drawn(2)):
+        q = c.truth_parameters()
+        extra = c.extra_at(q)
+        J = np.diag([q["m%d" % i] * 2 * models.PLATE ** 2 / 12 for i in (1, 2, 3)])
+        kt = extra["kt"]
+        Kt = np.array([[kt[0] + kt[1], -kt[1], 0], [-kt[1], kt[1] + kt[2], -kt[2]], [0, -kt[2], kt[2]]])
+        torsion = np.sqrt(scipy.linalg.eigh(Kt, J, eigvals_only=True)) / (2 * np.pi)
+        x_chain = response.undamped_natural_frequencies(models.build_frame3(q).matrices())
+        truth = response.undamped_natural_frequencies(c.build(q).matrices())
+        union = np.sort(np.concatenate([torsion, x_chain]))
+        fq = np.array([torsion[0], torsion[1]])
+        H = response.frf(c.build(q).matrices(), fq)
+        H0 = response.frf(models.build_frame3(q).matrices(), fq)
+        rise = np.max(np.abs(H) / np.abs(H0), axis=(1, 2))
+        in_band = torsion[(torsion > 0) & (torsion < 128)]
+        default = c.draw is None
+        check(np.max(np.abs(truth / union - 1)) < 1e-9 and len(in_band) == 2 and np.all(rise > 2)
+              and (not default or (abs(torsion[0] - 40) < 2 and abs(torsion[1] - 95) < 3)),
+              "frame3/outside_torsion%s: truth modes = x chain %s + torsion %s Hz (two in the band); |H| at the "
+              "torsion modes up to %.1fx, %.1fx the x chain's" % ("" if default else " --draw 2",
+                                                          np.round(x_chain, 1).tolist(), np.round(torsion, 1).tolist(),
+                                                          *rise))
+
+    # examples/frame3/frame3.mdl declares exactly the truth's nominal model
+    text = open(os.path.join(REPO, "examples", "frame3", "frame3.mdl")).read()
+    params = {m.group(1): (float(m.group(2)), m.group(3))
+              for m in re.finditer(r"^param\s+(\w+)\s*=\s*([-+0-9.eE]+)\s+\"[^\"]*\"\s*(\w+)?", text, re.M)}
+    same = {n: v for n, (v, _) in params.items()} == p
+    roles = sorted(n for n, (_, role) in params.items() if role == "estimate") == sorted(models.FRAME3_ESTIMABLE)
+    signals = re.findall(r"^(input|output)\s+(\w+)\s+(\w+)\s+(?:on|of)\s+(\w+)\s+along\s+x\s*$", text, re.M)
+    want = [("input", "F%d" % i, "force", "storey%d" % i) for i in (1, 2, 3)] + \
+           [("output", "a%d" % i, "acceleration", "storey%d" % i) for i in (1, 2, 3)]
+    springs = re.findall(r"spring (column\d) \{\s*from (\w+)\s*to (\w+)\s*along x\s*stiffness (\w+)\s*damping (\w+)",
+                         text)
+    want_springs = [("column1", "floor", "storey1", "k1", "c1"), ("column2", "storey1", "storey2", "k2", "c2"),
+                    ("column3", "storey2", "storey3", "k3", "c3")]
+    check(same and roles and signals == want and springs == want_springs,
+          "examples/frame3/frame3.mdl: parameters, roles, columns, inputs and outputs match the truth's nominal model")
+
+
+def check_draws():
+    """--draw: sizes inside their ranges, offsets 3-10 %, deterministic, different draws differ, and the
+    default truth untouched."""
+    bad = []
+    for (example, name), case in cases.CASES.items():
+        before = case.truth_parameters()
+        for n in (1, 2, 3):
+            c = case.drawn(n)
+            p = c.truth_parameters()
+            nominal = models.EXAMPLES[example]["nominal"]
+            moved = [abs(p[k] / nominal[k] - 1) for k in models.EXAMPLES[example]["estimable"]]
+            inside = all(s.low <= c.draw["sizes"][s.name] <= s.high for s in case.sizes)
+            again = case.drawn(n).truth_parameters() == p and case.drawn(n).values == c.values
+            if not (inside and again and min(moved) >= 0.029 and max(moved) <= 0.101):
+                bad.append("%s/%s --draw %d" % (example, name, n))
+        if case.truth_parameters() != before or case.draw is not None:
+            bad.append("%s/%s default changed" % (example, name))
+        if case.drawn(1).truth_parameters() == case.drawn(2).truth_parameters():
+            bad.append("%s/%s draws 1 and 2 equal" % (example, name))
+    check(not bad, "--draw 1-3 of every case: sizes inside the ranges, offsets 3-10 %%, same draw same truth, "
+                   "draws differ, default unchanged%s" % ((": " + ", ".join(bad)) if bad else ""))
+
+
+# ---- 5b. averages, coherence columns, new CLI options --------------------------------------------------
+def check_averages_and_options():
+    c = cases.get("spindle", "nominal")
+    mats = c.build(c.truth_parameters()).matrices()
+    f = generate.frequency_grid(50, 1200, 0.25)
+    one = generate.make_frf(mats, f, 40.0, np.random.default_rng(5))
+    avg = generate.make_frf(mats, f, 40.0, np.random.default_rng(5), averages=8)
+    H, coh = avg["clean"], avg["coherence"]
+    predicted = (1 - coh) / (8 * coh) * np.abs(H) ** 2       # variance of H1 from N averages at coherence coh
+    ratio = np.mean(np.abs(avg["noisy"] - H) ** 2, axis=0) / np.mean(predicted, axis=0)
+    check(np.array_equal(one["coherence"], coh) and np.all(np.abs(ratio - 1) < 0.05)
+          and np.allclose(avg["noisy"] - H, (one["noisy"] - H) / np.sqrt(8)),
+          "--averages 8: coherence unchanged, noise power / ((1 - coh)/(8 coh) |H|^2) = %s"
+          % np.round(ratio.ravel(), 3).tolist())
+    with tempfile.TemporaryDirectory() as tmp:
+        run_cli_here(["--example", "mdof2", "--case", "sensor_delay", "--kind", "frf", "--averages", "4",
+                      "--no-coherence", "--draw", "7", "-o", "a.csv"], tmp)
+        text = open(os.path.join(tmp, "a.csv")).read()
+        doc = json.load(open(os.path.join(tmp, "a.truth.json")))
+        header = [ln for ln in text.splitlines() if not ln.startswith("#")][0]
+        tau = doc["hidden_effect"]["values"]["delay_s_d2"]
+        check(header == "f_hz,d1/F1.re,d1/F1.im,d2/F1.re,d2/F1.im" and doc["frf"]["averages"] == 4
+              and doc["frf"]["coherence_columns"] is False and doc["draw"]["n"] == 7
+              and doc["draw"]["sizes"]["tau"] == tau and 0.2e-3 <= tau <= 1e-3
+              and set(doc["draw"]["offsets"]) == set(models.MDOF2_ESTIMABLE),
+              "CLI: --no-coherence header %s; JSON records averages, no coherence, the draw (tau = %.4g ms)"
+              % (header, tau * 1e3))
+        run_cli_here(["--example", "frame3", "--case", "outside_torsion", "--kind", "frf", "-o", "f3.csv"], tmp)
+        lines = open(os.path.join(tmp, "f3.csv")).read().splitlines()
+        header = [ln for ln in lines if not ln.startswith("#")][0].split(",")
+        want = ["f_hz"] + ["a%d/F%d.%s" % (o, i, part) for o in (1, 2, 3) for i in (1, 2, 3)
+                           for part in ("re", "im", "coh")]
+        check(header == want and len(lines) == 2 + 4096, "CLI: frame3 FRF, 9 channels, 4096 lines")
+        for argv, what in [(["--example", "frame3", "--case", "nominal", "--kind", "time"], "no frame3 time records"),
+                           (["--example", "mdof2", "--case", "nominal", "--kind", "time", "--averages", "2"],
+                            "--averages on a time record"),
+                           (["--example", "mdof2", "--case", "nominal", "--averages", "0"], "--averages 0"),
+                           (["--example", "mdof2", "--case", "nominal", "--draw", "-1"], "--draw -1")]:
+            bad = subprocess.run([sys.executable, os.path.join(HERE, "truthgen.py")] + argv + ["-o", "e.csv"],
+                                 capture_output=True, text=True, cwd=tmp)
+            check(bad.returncode == 1 and "truthgen: error" in bad.stderr, "CLI: %s is an error" % what)
+
+
 # ---- 6. effect sizes (slow) ----------------------------------------------------------------------------
+def effect_check(c, p, snr_db, label_suffix=""):
+    f = generate.frequency_grid(*generate.FRF_GRID[c.example])
+    r = effects.nominal_fit(c, p, f, snr_db)
+    n = r["points"]
+    threshold = max(1000.0, 5 * np.sqrt(2 * n))
+    label = "%s/%s%s: excess %.4g over %d points, max |residual| %.1f sigma" % (c.example, c.name, label_suffix,
+                                                                               r["excess"], n, r["max_z"])
+    if c.control:
+        check(r["excess"] < 1e-3, label + " (control: ~0)")
+    elif (c.example, c.name) == ("mdof2", "added_mass"):
+        absorbed = abs(r["fitted"]["m1"] - (p["m1"] + c.extra["ma_mass1"])) < 1e-4 * p["m1"]
+        check(r["excess"] < 1e-3 and absorbed, label + " (absorbed: fitted m1 = %.5f = m1 + ma)" % r["fitted"]["m1"])
+    else:
+        check(r["excess"] > threshold, label + " (> %.0f)" % threshold)
+
+
 def check_effects(snr_db=40.0):
     print("effect sizes at %g dB: excess chi-square of the best local nominal fit to noise-free truth" % snr_db)
     for (example, name), c in cases.CASES.items():
-        p = c.truth_parameters()
-        f = generate.frequency_grid(*generate.FRF_GRID[example])
-        r = effects.nominal_fit(c, p, f, snr_db)
-        n = r["points"]
-        threshold = max(1000.0, 5 * np.sqrt(2 * n))
-        label = "%s/%s: excess %.4g over %d points, max |residual| %.1f sigma" % (example, name, r["excess"], n,
-                                                                                 r["max_z"])
-        if c.operator is None and c.effect_hz is None:
-            check(r["excess"] < 1e-3, label + " (control: ~0)")
-        elif (example, name) == ("mdof2", "added_mass"):
-            absorbed = abs(r["fitted"]["m1"] - (p["m1"] + c.extra["ma_mass1"])) < 1e-4 * p["m1"]
-            check(r["excess"] < 1e-3 and absorbed, label + " (absorbed: fitted m1 = %.5f = m1 + ma)"
-                  % r["fitted"]["m1"])
-        else:
-            check(r["excess"] > threshold, label + " (> %.0f)" % threshold)
+        effect_check(c, c.truth_parameters(), snr_db)
+
+
+# The weak ends of the --draw ranges (in the --draw form): the effect must stay clear across each range.
+WEAK_CORNERS = {
+    ("mdof2", "compliant_ground"): [{"m_wall": 3.0, "f_wall": 330.0, "zeta_wall": 0.03},
+                                    {"m_wall": 8.0, "f_wall": 200.0, "zeta_wall": 0.03}],
+    ("mdof2", "free_parameter"): [{"c12": 3.0}],
+    ("mdof2", "added_mass"): [{"ma": 0.16}],
+    ("mdof2", "resonator"): [{"m": 0.03, "f": 110.0, "zeta": 0.02}, {"m": 0.03, "f": 150.0, "zeta": 0.02}],
+    ("mdof2", "outside_maxwell"): [{"c": 55.0, "fc": 100.0}, {"c": 55.0, "fc": 140.0}],
+    ("mdof2", "sensor_lowpass"): [{"fc": 700.0}],
+    ("mdof2", "sensor_highpass"): [{"fh": 2.0}],
+    ("mdof2", "sensor_delay"): [{"tau": 0.2e-3}],
+    ("spindle", "compliant_ground"): [{"m_base": 40.0, "f_base": 220.0}, {"m_base": 80.0, "f_base": 160.0}],
+    ("spindle", "untie_parameter"): [{"loose": 0.6}],
+    ("spindle", "moment_stiffness"): [{"kr": 1.5e5}],
+    ("spindle", "added_mass"): [{"ma": 0.3}],
+    ("spindle", "resonator"): [{"m": 0.1, "f": 340.0, "zeta": 0.02}, {"m": 0.1, "f": 420.0, "zeta": 0.02}],
+    ("spindle", "connection"): [{"k": 5e6, "c": 700.0}],
+    ("spindle", "outside_maxwell"): [{"k": 5e6, "fc": 200.0}, {"k": 5e6, "fc": 400.0}],
+    ("spindle", "sensor_dynamics"): [{"f": 800.0, "zeta": 0.08}],
+    ("spindle", "sensor_lowpass"): [{"fc": 2500.0}],
+    ("spindle", "sensor_highpass"): [{"fh": 10.0}],
+    ("spindle", "sensor_delay"): [{"tau": 0.05e-3}],
+    ("spindle", "base_on_feet"): [{"m_base": 25.0, "f_rock": 260.0}, {"m_base": 60.0, "f_rock": 150.0}],
+    ("frame3", "outside_torsion"): [{"e": 0.03, "kt_scale": 1.25}],
+}
+
+
+def check_corners(snr_db=40.0, only=None):
+    print("effect sizes at the weak ends of the --draw ranges (%g dB)" % snr_db)
+    for (example, name), corners in WEAK_CORNERS.items():
+        if only and name not in only:
+            continue
+        for sizes in corners:
+            c = cases.get(example, name).at_sizes(sizes)
+            effect_check(c, c.truth_parameters(), snr_db,
+                         " at " + ", ".join("%s=%g" % kv for kv in sorted(sizes.items())))
 
 
 def main():
-    check_reference()
-    check_structure()
-    check_cases()
-    check_time_vs_frf()
-    check_noise_and_files()
-    if "--effects" in sys.argv[1:]:
-        check_effects()
+    args = sys.argv[1:]
+    only = [a.split("=", 1)[1] for a in args if a.startswith("--only=")]
+    if only:   # --only=CASE[,CASE]: just the effect sizes of those cases (to look at one case)
+        names = only[0].split(",")
+        for (example, name), c in cases.CASES.items():
+            if name in names:
+                effect_check(c, c.truth_parameters(), 40.0)
+        if "--corners" in args:
+            check_corners(only=names)
+    else:
+        check_existing_outputs()
+        check_reference()
+        check_structure()
+        check_cases()
+        check_sensor_filters()
+        check_base_on_feet()
+        check_frame3()
+        check_draws()
+        check_time_vs_frf()
+        check_delay_from_rest()
+        check_sensor_records()
+        check_noise_and_files()
+        check_averages_and_options()
+        if "--effects" in args:
+            check_effects()
+        if "--corners" in args:
+            check_corners()
     print("%d failed" % len(FAILURES) if FAILURES else "all truthgen self-checks passed")
     return 1 if FAILURES else 0
 

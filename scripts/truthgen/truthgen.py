@@ -2,6 +2,7 @@
 """truthgen: write one measured-style data set (FRF or time record) of a truth model, independent of mbgen.
 
     python3 scripts/truthgen/truthgen.py --example mdof2 --case nominal --kind frf --snr-db 40 --seed 1 -o frf.csv
+    python3 scripts/truthgen/truthgen.py --example spindle --case sensor_delay --kind frf --draw 3 -o frf.csv
     python3 scripts/truthgen/truthgen.py --list
 
 Writes FILE.csv in the formats of INTERFACES.md ("Measured data") and FILE.truth.json (truth values, the
@@ -41,14 +42,21 @@ def parse_args(argv):
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                     help="set a model parameter for this data set; written as `# set NAME=VALUE`")
     ap.add_argument("-o", "--output", help="output CSV file")
-    ap.add_argument("--f-min", type=float, help="FRF grid start, Hz (mdof2 10, spindle 50)")
-    ap.add_argument("--f-max", type=float, help="FRF grid end, Hz (mdof2 400, spindle 1200)")
-    ap.add_argument("--df", type=float, help="FRF grid spacing, Hz (mdof2 0.25, spindle 1)")
+    ap.add_argument("--f-min", type=float, help="FRF grid start, Hz (mdof2 10, spindle 50, frame3 0.03125)")
+    ap.add_argument("--f-max", type=float, help="FRF grid end, Hz (mdof2 400, spindle 1200, frame3 128)")
+    ap.add_argument("--df", type=float, help="FRF grid spacing, Hz (mdof2 0.25, spindle 1, frame3 0.03125)")
     ap.add_argument("--fs", type=float, help="time record sample rate, Hz (mdof2 4096, spindle 8192)")
     ap.add_argument("--duration", type=float, help="time record length, s (default 2)")
     ap.add_argument("--amplitude", type=float, help="force amplitude, N (mdof2 10, spindle 100)")
     ap.add_argument("--excitation", choices=["binary", "gaussian"], default="binary",
                     help="white zero-order-hold force: random +-amplitude (default) or Gaussian")
+    ap.add_argument("--draw", type=int, metavar="N",
+                    help="draw the truth (parameter offsets and the effect's sizes, within the case's ranges) from "
+                         "seed N instead of the case's fixed truth; the noise still comes from --seed")
+    ap.add_argument("--averages", type=int, default=1, metavar="N",
+                    help="FRF: the average of N measurements: noise variance sigma^2/N, coherence unchanged "
+                         "(default 1)")
+    ap.add_argument("--no-coherence", action="store_true", help="FRF: write no .coh columns")
     return ap.parse_args(argv)
 
 
@@ -76,6 +84,13 @@ def list_cases():
     for (example, name), c in cases.CASES.items():
         print("%-8s %-18s %-30s %-9s %s" % (example, name, c.operator or "-",
                                            "%g Hz" % c.effect_hz if c.effect_hz else "-", c.hidden))
+    print()
+    print("--draw N: the estimable parameters' offsets (3-10 %, random sign) and, uniformly, these sizes:")
+    for (example, name), c in cases.CASES.items():
+        if c.sizes:
+            print("%-8s %-18s %s" % (example, name, "; ".join(
+                "%s in [%g, %g]%s (%s)" % (s.name, s.low, s.high, " " + s.unit if s.unit else "", s.what)
+                for s in c.sizes)))
 
 
 def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs):
@@ -85,7 +100,7 @@ def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs)
         "command": "python3 scripts/truthgen/truthgen.py " + " ".join(sys.argv[1:]),
         "example": case.example, "case": case.name, "kind": args.kind,
         "hidden_effect": {"expected_operator": case.operator, "effect_hz": case.effect_hz,
-                          "description": case.hidden, "values": case.extra, "notes": case.notes},
+                          "description": case.hidden, "values": case.extra_at(p), "notes": case.notes},
         "parameters": p,
         "set": {name: text for name, text in settings},
         "seed": args.seed,
@@ -97,6 +112,8 @@ def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs)
                   "sigma": {}},
         "truth_modes": [{"f_hz": round(float(f), 4), "zeta": float("%.5g" % z)} for f, z in zip(freqs, zetas)],
     }
+    if case.draw is not None:
+        doc["draw"] = case.draw
     if case.example == "spindle":
         j_s, j_h = models.spindle_inertias(p)
         doc["derived"] = {"J_sxx": j_s[0, 0], "J_syy": j_s[1, 1], "J_szz": j_s[2, 2],
@@ -104,6 +121,12 @@ def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs)
     if args.kind == "frf":
         f = data["f_hz"]
         doc["frf"] = {"f_min": float(f[0]), "f_max": float(f[-1]), "df": float(f[1] - f[0]) if len(f) > 1 else 0}
+        if args.averages != 1:
+            doc["frf"]["averages"] = args.averages
+            doc["noise"]["definition"] += ("; the FRF is the average of %d measurements: noise variance sigma^2/%d, "
+                                           "coherence as for one" % (args.averages, args.averages))
+        if args.no_coherence:
+            doc["frf"]["coherence_columns"] = False
         for oi, o in enumerate(outputs):
             for ii, i in enumerate(inputs):
                 doc["noise"]["sigma"]["%s/%s" % (o, i)] = float(data["sigma"][oi, ii])
@@ -128,6 +151,14 @@ def run(argv):
         raise UsageError(error.args[0])
     if args.kind not in case.kinds:
         raise UsageError("case %s/%s has no %s data" % (case.example, case.name, args.kind))
+    if args.kind != "frf" and (args.averages != 1 or args.no_coherence):
+        raise UsageError("--averages and --no-coherence apply to FRFs only")
+    if args.averages < 1:
+        raise UsageError("--averages %d: must be at least 1" % args.averages)
+    if args.draw is not None and args.draw < 0:
+        raise UsageError("--draw %d: must be a non-negative integer" % args.draw)
+    if args.draw is not None:
+        case = case.drawn(args.draw)
     try:
         snr_db = float(args.snr_db)
     except ValueError:
@@ -145,8 +176,8 @@ def run(argv):
                                     args.df if args.df is not None else df)
         if f[0] < 0 or len(f) < 1:
             raise UsageError("bad frequency grid")
-        data = generate.make_frf(mats, f, snr_db, rng)
-        datafiles.write_frf_csv(args.output, data, outputs, inputs, settings)
+        data = generate.make_frf(mats, f, snr_db, rng, args.averages)
+        datafiles.write_frf_csv(args.output, data, outputs, inputs, settings, coherence=not args.no_coherence)
     else:
         fs = args.fs or generate.SAMPLE_RATE[case.example]
         args.amplitude = args.amplitude or generate.AMPLITUDE[case.example]

@@ -1,6 +1,7 @@
 #include "diagnosis/engine/channel_residuals.hpp"
 
 #include <mbgen/frf.hpp>
+#include <mbgen/frf_noise.hpp>
 #include <mbgen/welch.hpp>
 
 #include <algorithm>
@@ -37,23 +38,6 @@ WelchEstimate record_frfs(const Model& model, const TimeRecord& rec) {
   return welch_h1(rec, inputs, outputs, o);
 }
 
-// The noise level for judging residuals: the H1 variance (1 - coh^2)/(coh^2 n) |H|^2 with |H|^2 averaged over
-// five lines. A single line's |H| is itself noisy; where noise dominates (anti-resonances) a low draw would
-// shrink sigma and make noise look like a finding, while the average includes the noise power and errs safe.
-Eigen::VectorXd judging_sigma(const FrfChannel& c, const FrfWeighting& w) {
-  Eigen::VectorXd sigma = frf_sigma(c, w);
-  if (!c.coherence) return sigma;
-  const Eigen::Index n = c.values.size();
-  const double rms = std::sqrt(c.values.cwiseAbs2().mean());
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const Eigen::Index lo = std::max<Eigen::Index>(0, k - 2), hi = std::min<Eigen::Index>(n - 1, k + 2);
-    const double h2 = c.values.segment(lo, hi - lo + 1).cwiseAbs2().mean();
-    const double g2 = std::clamp((*c.coherence)[k], 1e-12, 1.0);
-    sigma[k] = std::max(std::sqrt((1.0 - g2) / (g2 * w.averages) * h2), w.floor * rms);
-  }
-  return sigma;
-}
-
 // A record's noise level per line: the variance of the residual's H1, averaged over five lines (noise is smooth
 // across lines; one line's estimate scatters like a chi-square of ~2 x segments degrees of freedom).
 Eigen::VectorXd record_sigma(const Eigen::VectorXd& variance, const Eigen::VectorXcd& measured, double floor) {
@@ -73,12 +57,15 @@ Eigen::VectorXd record_sigma(const Eigen::VectorXd& variance, const Eigen::Vecto
 // (0.4-0.5 at a spindle mode in 1 s records) would drop it. Where noise dominates, H1 and the noise level are both
 // noise: with the Hann window's correlated neighbours a 5-line mean of z passes 4 about once per thousand windows,
 // and a 1 s spindle control record, all of whose ~460 lines above 2.4 kHz are noise, showed such a finding.
-void keep_lines_above_noise(ChannelResidual& r, double segments) {
+// Keeps the lines where `judged(k)` holds.
+template <class Judged>
+void keep_lines(ChannelResidual& r, Judged judged) {
   std::vector<double> f;
   std::vector<Eigen::Index> kept;
   for (Eigen::Index k = 0; k < r.measured.size(); ++k)
-    if (std::norm(r.measured[k]) >= 4.0 * segments * r.sigma[k] * r.sigma[k]) kept.push_back(k);
+    if (judged(k)) kept.push_back(k);
   const auto n = static_cast<Eigen::Index>(kept.size());
+  r.lines_not_judged += r.measured.size() - n;
   Eigen::VectorXcd measured(n), model(n);
   Eigen::VectorXd sigma(n);
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -92,6 +79,24 @@ void keep_lines_above_noise(ChannelResidual& r, double segments) {
   r.measured = std::move(measured);
   r.model = std::move(model);
   r.sigma = std::move(sigma);
+}
+
+// Judges only the lines where the measured response stands out of the noise, by the same measure as an ordinary
+// coherence of 0.8 (|H|^2 at least 4 times the noise power, sigma^2 times the segments), but with the residual's
+// noise level, which leakage does not inflate: a lightly damped resonance is judged, where the measured coherence
+// (0.4-0.5 at a spindle mode in 1 s records) would drop it. Where noise dominates, H1 and the noise level are both
+// noise: with the Hann window's correlated neighbours a 5-line mean of z passes 4 about once per thousand windows,
+// and a 1 s spindle control record, all of whose ~460 lines above 2.4 kHz are noise, showed such a finding.
+void keep_record_lines_above_noise(ChannelResidual& r, double segments) {
+  keep_lines(r, [&](Eigen::Index k) { return std::norm(r.measured[k]) >= 4.0 * segments * r.sigma[k] * r.sigma[k]; });
+}
+
+// A measured FRF is judged where the data stand out of the noise (6 dB above it: the measure of a coherence of
+// 0.8). Below, the data are noise (an accelerance at a few Hz, a deep anti-resonance): nothing there can be a
+// finding, and a noise wiggle is no peak to start a new mode at. The lines depend on the data alone, so that every
+// model is judged on the same lines.
+void keep_frf_lines_above_noise(ChannelResidual& r) {
+  keep_lines(r, [&](Eigen::Index k) { return std::norm(r.measured[k]) >= 4.0 * r.sigma[k] * r.sigma[k]; });
 }
 
 }  // namespace
@@ -167,9 +172,14 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
       }
       if (model_frf) {
         r.sigma = record_sigma(residual_est.variance[channel], c.values, weighting.floor);
-        keep_lines_above_noise(r, static_cast<double>(residual_est.segments));
+        r.noise = "the H1 variance of the record's residual (measured minus simulated) over five lines";
+        keep_record_lines_above_noise(r, static_cast<double>(residual_est.segments));
       } else {
-        r.sigma = judging_sigma(c, weighting);
+        // The noise level from the data alone, the same for every model judged against them.
+        const FrfNoise noise = frf_noise(frf.f_hz, c);
+        r.sigma = noise.sigma;
+        r.noise = noise.description();
+        keep_frf_lines_above_noise(r);
       }
       out.push_back(std::move(r));
     }

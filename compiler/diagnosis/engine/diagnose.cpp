@@ -372,6 +372,10 @@ class Diagnoser {
         const double prominence = peak_prominence_db(c.measured, i);
         const double f = c.f_hz[static_cast<std::size_t>(i)];
         if (prominence < 3.0 || !unexplained(f)) continue;
+        // The rise must stand out of the noise too (4 standard deviations): in data near the noise level, noise
+        // alone makes wiggles of several dB.
+        const double magnitude = std::abs(c.measured[i]);
+        if (magnitude * (1.0 - std::pow(10.0, -prominence / 20.0)) < 4.0 * c.sigma[i]) continue;
         const double height = std::abs(c.measured[i]) / rms;
         if (prominence >= 6.0) found.emplace_back(height, f);
         by_output[output_of(c.channel)].push_back({height, prominence, f});
@@ -428,6 +432,22 @@ class Diagnoser {
       }
     ctx.varying_parameters = varying_parameters(data_);
     ctx.values = s.values;
+    // What a sensor's own dynamics could explain: outputs with a finding on their channels, or whose channels
+    // the model misses on average by more than half the noise power (a filter's phase spread thinly over the band
+    // may raise no band above the threshold).
+    for (const Discrepancy& d : s.residual.discrepancies) {
+      ctx.outputs_with_findings.insert(output_of(d.channel));
+      if (d.kind == "phase_trend" && !ctx.output_delay_s.count(output_of(d.channel)))
+        ctx.output_delay_s[output_of(d.channel)] = d.delay_s;
+    }
+    for (const ChannelResidual& c : s.channels) {
+      if (c.f_hz.empty()) continue;
+      double z = 0;
+      for (Eigen::Index k = 0; k < c.measured.size(); ++k) z += normalized_residual(c.measured[k], c.model[k], c.sigma[k]);
+      if (z / static_cast<double>(c.measured.size()) > 1.5) ctx.outputs_with_findings.insert(output_of(c.channel));
+      ctx.band_lo_hz = ctx.band_lo_hz > 0 ? std::min(ctx.band_lo_hz, c.f_hz.front()) : c.f_hz.front();
+      ctx.band_hi_hz = std::max(ctx.band_hi_hz, c.f_hz.back());
+    }
     return ctx;
   }
 

@@ -30,6 +30,15 @@ ordered_json discrepancies(const ResidualSummary& r) {
   return out;
 }
 
+// How each channel's noise level was obtained, and how many of its lines were judged.
+ordered_json noise_levels(const std::vector<ChannelResidual>& channels) {
+  ordered_json out = ordered_json::array();
+  for (const ChannelResidual& c : channels)
+    out.push_back({{"channel", c.channel}, {"data_set", c.data_set}, {"source", c.noise},
+                   {"lines_judged", c.f_hz.size()}, {"lines_not_judged", c.lines_not_judged}});
+  return out;
+}
+
 }  // namespace
 
 std::string diagnosis_json(const DiagnosisResult& result, const std::string& extended_model_path) {
@@ -41,7 +50,8 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
   for (const ParameterEstimate& p : result.nominal.fit.parameters) nominal_params[p.name] = parameter(p);
   j["nominal"] = {{"parameters", nominal_params},
                   {"fit", fit_summary(result.nominal.fit, result.nominal.validation_nrmse)},
-                  {"mean_normalized_residual", number(result.nominal.residual.mean_z)}};
+                  {"mean_normalized_residual", number(result.nominal.residual.mean_z)},
+                  {"noise", noise_levels(result.nominal.channels)}};
   j["discrepancies"] = discrepancies(result.nominal.residual);
   ordered_json candidates = ordered_json::array();
   for (const CandidateOutcome& c : result.candidates) {

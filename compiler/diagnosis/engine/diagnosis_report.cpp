@@ -84,6 +84,14 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
   md << "## What the nominal model gets wrong\n\n";
   if (r.nominal.residual.discrepancies.empty()) md << "No finding above the noise level.\n\n";
   for (const Discrepancy& d : r.nominal.residual.discrepancies) md << "- " << d.text << " (`" << d.kind << "`)\n";
+  md << "\nThe noise level each channel is judged against (1 in the normalized residual):\n\n";
+  for (const ChannelResidual& c : r.nominal.channels) {
+    md << "- " << c.channel << " (`" << fs::path(c.data_set).filename().string() << "`): " << c.noise;
+    if (c.lines_not_judged > 0)
+      md << "; " << c.lines_not_judged << " of " << (c.lines_not_judged + static_cast<long>(c.f_hz.size()))
+         << " lines not judged (the data there are noise)";
+    md << "\n";
+  }
   md << "\n## Candidates\n\n| round | id | ΔBIC | validation nrmse | plausible | qualifies | what it adds |\n"
      << "|---|---|---|---|---|---|---|\n";
   md << "| | nominal | 0 | " << num(r.nominal.validation_nrmse) << " | | | |\n";

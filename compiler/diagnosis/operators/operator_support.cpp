@@ -59,6 +59,11 @@ void Draft::add_spin(ir::Spin s) {
   ext_.model.spins.push_back(std::move(s));
 }
 
+void Draft::add_filter(ir::Filter f) {
+  statements_ += frontend::write_filter(f);
+  ext_.model.filters.push_back(std::move(f));
+}
+
 Extension Draft::finish(const std::string& description) {
   ext_.description = description;
   patch_.append(declarations_ + statements_);

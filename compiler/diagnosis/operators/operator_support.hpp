@@ -40,6 +40,7 @@ class Draft {
   void add_body(ir::Body b);
   void add_element(ir::Element e);
   void add_spin(ir::Spin s);
+  void add_filter(ir::Filter f);
   void free_parameter(const std::string& name) { ext_.freed_parameters.push_back(name); }
   void set_variant(const std::string& variant) { ext_.variant = variant; }
 

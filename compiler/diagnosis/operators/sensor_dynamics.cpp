@@ -1,14 +1,24 @@
-// sensor_dynamics:O -- output O is not the structure's motion but what its sensor makes of it. The sensor is
-// modelled as what it physically is: a small mass (an accelerometer on its mounting) on a spring-damper at the
-// measured point, moving along the measured direction, and O measures that mass. Seen from the structure's
-// motion y, the sensor reads T(s) y with T = (c s + k)/(m s^2 + c s + k): a second-order low-pass with its
-// resonance at the mounting frequency. A pure delay is not a mechanical element and is not represented.
+// sensor_dynamics:O -- output O is not the structure's motion but what its sensor and its instrumentation make of
+// it. One candidate per output whose channels show a finding, with one variant per form (the diagnosis fits each
+// and BIC chooses):
 //
-// The sensor's mass only sets the scale of k and c (T depends on k/m and c/m); its loading of the structure is
-// far below what the data can resolve, so the mass is a known parameter (0.1 % of the body's mass) and the
-// candidate estimates the mounting resonance fs_O (Hz) and its damping ratio zs_O, which the data do determine.
-// Only offered when O's channels show an unexplained peak: the mounting resonance starts at the first, which is
-// one that only O shows where there is one (the engine orders them so).
+//   mounting resonance  The sensor as what it physically is: a small mass (an accelerometer on its mounting) on a
+//                       spring-damper at the measured point, along the measured direction, and O measures that
+//                       mass: T = (c s + k)/(m s^2 + c s + k), a resonance at the mounting frequency. Its mass only
+//                       sets the scale of k and c (T depends on k/m and c/m); its loading of the structure is far
+//                       below what the data resolve, so the mass is a known parameter (0.1 % of the body's) and the
+//                       variant estimates the mounting resonance fs_O and its damping ratio zs_O. Offered where O
+//                       shows an unexplained peak, which it starts at (one only O shows first: the engine orders
+//                       the peaks so).
+//   low-pass            An electrical second-order low-pass (anti-aliasing, signal conditioning): no zero, mainly a
+//                       phase lag growing with frequency in the band, no peak (`filter ... lowpass2`).
+//   high-pass           AC coupling: a first-order high-pass s/(s + wc), a phase lead and a droop at the band's
+//                       low end (`filter ... highpass1`).
+//   delay               A pure delay (a converter's group delay, a sampling skew between channels): a phase
+//                       linear in frequency (`filter ... delay`, Pade sections enough for the band).
+//
+// The filters' forms need no peak: a misfit, a phase trend or a low-frequency discrepancy on O's channels brings
+// them.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,8 +41,15 @@ ir::Parameter derived(const std::string& name, ir::Expr value, const std::string
   return p;
 }
 
-Extension extend(const OperatorInput& in, const ir::Output& out, const ir::Body& b, int axis, double f_hz) {
+std::string hz_text(double f) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g Hz", f);
+  return text;
+}
+
+Extension mounting(const OperatorInput& in, const ir::Output& out, const ir::Body& b, int axis, double f_hz) {
   Draft d(in, "sensor_dynamics", out.name);
+  d.set_variant("mounting resonance");
   const double mass = in.values.of(b.mass);
   const std::string ms = d.add_parameter("ms_" + out.name, 1e-3 * mass, "kg", std::nullopt, std::nullopt,
                                          "mass of the sensor of " + out.name + " (0.1 % of " + b.name +
@@ -62,11 +79,81 @@ Extension extend(const OperatorInput& in, const ir::Output& out, const ir::Body&
   d.patch().replace_statement(out.loc, out.name + " reads its sensor, not " + b.name + " itself",
                               frontend::write_output(measured));
 
-  char hz[32];
-  std::snprintf(hz, sizeof hz, "%.4g", f_hz);
   return d.finish(out.name + " is read through its sensor: a mass " + ms + " on a mounting (resonance " + fs + ", " +
-                  "damping ratio " + zs + ", starting at " + hz + " Hz) at the measured point of " + b.name +
+                  "damping ratio " + zs + ", starting at " + hz_text(f_hz) + ") at the measured point of " + b.name +
                   ", along " + std::string(1, "xyz"[axis]) + ": a second-order low-pass on " + out.name);
+}
+
+// The band the data cover, with a fallback where the engine gave none (a model enumerated without data).
+struct Band {
+  double lo, hi;
+};
+Band band_of(const ExtensionContext& ctx) {
+  const double hi = ctx.band_hi_hz > 0 ? ctx.band_hi_hz : 1000.0;
+  const double lo = ctx.band_lo_hz > 0 && ctx.band_lo_hz < hi ? ctx.band_lo_hz : hi / 100.0;
+  return {lo, hi};
+}
+
+Extension lowpass(const OperatorInput& in, const ir::Output& out, double delay_s) {
+  Draft d(in, "sensor_dynamics", out.name);
+  d.set_variant("low-pass");
+  const Band band = band_of(in.ctx);
+  // Below its cutoff a low-pass of damping ratio z lags like a delay of 2 z / wc: the residual's delay, where it
+  // shows one, gives the start; otherwise a cutoff at twice the band's top, where the lag is still a few degrees.
+  const double zeta = 0.7071;
+  double fc = delay_s > 0 ? 2 * zeta / (kTwoPi * delay_s) : 2 * band.hi;
+  fc = std::clamp(fc, 1.2 * band.lo, 50 * band.hi);
+  ir::Filter f;
+  f.name = d.names().fresh("lowpass_" + out.name);
+  f.output = out.name;
+  f.kind = ir::FilterKind::Lowpass2;
+  f.cutoff = sym(d.add_parameter("fl_" + out.name, fc, "Hz", band.lo, 100 * band.hi,
+                                 "cutoff of a low-pass in the signal chain of " + out.name));
+  f.damping = sym(d.add_parameter("zl_" + out.name, zeta, "", 0.05, 3.0, "its damping ratio (Butterworth: 0.707)"));
+  d.add_filter(f);
+  return d.finish(out.name + " is recorded through an electrical second-order low-pass (" + f.name +
+                  ", starting at a cutoff of " + hz_text(fc) + "): a phase lag growing with frequency");
+}
+
+Extension highpass(const OperatorInput& in, const ir::Output& out) {
+  Draft d(in, "sensor_dynamics", out.name);
+  d.set_variant("high-pass");
+  const Band band = band_of(in.ctx);
+  const double fc = 0.5 * band.lo;  // a lead of 27 degrees and a droop of 1 dB at the band's lowest line
+  ir::Filter f;
+  f.name = d.names().fresh("highpass_" + out.name);
+  f.output = out.name;
+  f.kind = ir::FilterKind::Highpass1;
+  f.cutoff = sym(d.add_parameter("fh_" + out.name, fc, "Hz", 1e-3 * band.lo, band.hi,
+                                 "cutoff of an AC coupling (first-order high-pass) of " + out.name));
+  d.add_filter(f);
+  return d.finish(out.name + " is AC-coupled: a first-order high-pass (" + f.name + ", starting at a cutoff of " +
+                  hz_text(fc) + "), a phase lead and a droop at the band's low end");
+}
+
+Extension delay(const OperatorInput& in, const ir::Output& out, double delay_s) {
+  Draft d(in, "sensor_dynamics", out.name);
+  d.set_variant("delay");
+  const Band band = band_of(in.ctx);
+  const double w_hi = kTwoPi * band.hi;
+  const double tau = delay_s > 0 ? delay_s : 0.2 / w_hi;  // the residual's delay, or 0.2 rad at the band's top
+  // Enough Pade sections that the delay stays accurate (phase within 1 %, w tau/N < 1.7) up to four times the
+  // start value over the whole band; the bound keeps the estimate where the sections are accurate.
+  const int sections = std::clamp(static_cast<int>(std::ceil(4 * tau * w_hi / 1.7)), 1, 16);
+  const double tau_max = sections * 1.7 / w_hi;
+  ir::Filter f;
+  f.name = d.names().fresh("delay_" + out.name);
+  f.output = out.name;
+  f.kind = ir::FilterKind::Delay;
+  f.sections = sections;
+  f.time = sym(d.add_parameter("td_" + out.name, std::min(tau, 0.5 * tau_max), "s", 0.0, tau_max,
+                               "delay of " + out.name + " against the input (bounded where its " +
+                                   std::to_string(sections) + " Pade section(s) stay accurate over the band)"));
+  d.add_filter(f);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g s", tau);
+  return d.finish(out.name + " is recorded late: a pure delay (" + f.name + ", starting at " + text +
+                  "), a phase linear in frequency");
 }
 
 }  // namespace
@@ -74,14 +161,20 @@ Extension extend(const OperatorInput& in, const ir::Output& out, const ir::Body&
 std::vector<Extension> sensor_dynamics(const OperatorInput& in) {
   std::vector<Extension> out;
   for (const ir::Output& o : in.model.outputs) {
-    const auto peaks = in.ctx.output_peak_hz.find(o.name);
-    if (peaks == in.ctx.output_peak_hz.end() || peaks->second.empty()) continue;
     const ir::Body* b = in.model.find_body(o.at.frame);
     if (!b) continue;
-    // The sensor's coordinate is along a global axis: an oblique measured direction has no single one.
+    const auto peaks = in.ctx.output_peak_hz.find(o.name);
+    const bool has_peak = peaks != in.ctx.output_peak_hz.end() && !peaks->second.empty();
+    const bool has_finding = has_peak || in.ctx.outputs_with_findings.count(o.name) > 0;
+    if (!has_finding) continue;
+    const auto delay_it = in.ctx.output_delay_s.find(o.name);
+    const double delay_s = delay_it == in.ctx.output_delay_s.end() ? 0.0 : delay_it->second;
+    // The mounting resonance needs a body coordinate along a global axis: an oblique direction has no single one.
     const std::optional<int> axis = axis_of(o.direction, in.values);
-    if (!axis) continue;
-    out.push_back(extend(in, o, *b, *axis, peaks->second.front()));
+    if (has_peak && axis) out.push_back(mounting(in, o, *b, *axis, peaks->second.front()));
+    out.push_back(lowpass(in, o, delay_s));
+    out.push_back(highpass(in, o));
+    out.push_back(delay(in, o, delay_s));
   }
   return out;
 }

@@ -23,6 +23,8 @@ struct ChannelResidual {
   std::vector<double> f_hz;     // increasing
   Eigen::VectorXcd measured, model;
   Eigen::VectorXd sigma;        // standard deviation of the measured complex value (total, not per part)
+  std::string noise;            // how sigma was obtained, one phrase (frf_noise.hpp; a record's residual H1)
+  long lines_not_judged = 0;    // lines left out because the data there are noise (measured and model below it)
 };
 
 struct Discrepancy {

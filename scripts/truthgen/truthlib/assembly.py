@@ -10,6 +10,10 @@ energy gives M = blockdiag(m I3, J) per body. Equation: M q'' + (C + G) q' + K q
 A Maxwell element (spring k in series with a damper c, no mass at the joint) adds one internal state z:
 the element force is k (h q - z) = c z'. It is how a frequency-dependent damping enters a linear model
 that can still be simulated in time.
+
+Outputs are displacements of points, or their accelerations (the FRF row times (i w)^2). An output may be
+read through a sensor's own dynamics (output_filter: a low-pass, AC coupling or a delay), which response.py
+applies: as T(i w) in FRFs, as extra states (or the exact delay) in time.
 """
 import numpy as np
 
@@ -58,6 +62,8 @@ class System:
         self._spins = []           # (body, axis index, omega rad/s)
         self.inputs = []           # (name, column)
         self.outputs = []          # (name, row)
+        self._output_orders = {}   # output name -> time derivative (1 velocity, 2 acceleration); 0 if absent
+        self._output_filters = []  # (output name, kind, value): the sensor's own dynamics, see output_filter
 
     # ---- frames -------------------------------------------------------------------------------------
     def ground(self, name):
@@ -145,6 +151,23 @@ class System:
     def output_displacement(self, name, frame, point, along):
         self.outputs.append((name, _axis(along) @ self.point_jacobian(self._frame(frame), point)))
 
+    def output_acceleration(self, name, frame, point, along):
+        """An accelerometer: the second time derivative of the point's displacement along `along`."""
+        self.output_displacement(name, frame, point, along)
+        self._output_orders[name] = 2
+
+    def output_filter(self, name, kind, value):
+        """Output `name` is read through a sensor of its own: `lowpass` (value: corner in Hz, second-order
+        Butterworth wc^2/(s^2 + sqrt(2) wc s + wc^2)), `highpass` (value: corner in Hz, first-order AC coupling
+        s/(s + wh)) or `delay` (value: seconds, exp(-s tau)). Filters on one output act in the order given."""
+        if kind not in ("lowpass", "highpass", "delay"):
+            raise ValueError("output filter %s: unknown kind %s" % (name, kind))
+        if name not in self.output_names():
+            raise ValueError("output filter on unknown output %s" % name)
+        if not value > 0:
+            raise ValueError("output filter %s %s: value must be positive" % (name, kind))
+        self._output_filters.append((name, kind, float(value)))
+
     # ---- matrices -----------------------------------------------------------------------------------
     def _pad(self, v):
         """Rows made before later bodies were added are shorter: the new coordinates come last, and don't move."""
@@ -170,6 +193,15 @@ class System:
             K += k * np.outer(h, h)
             C += c * np.outer(h, h)
         return K, C
+
+    def stiffness_of(self, prefix):
+        """The part of K from the springs whose names start with `prefix` (a strain-energy share per element)."""
+        K = np.zeros((self.n, self.n))
+        for name, h, k, _ in self._springs:
+            if name.startswith(prefix):
+                h = self._pad(h)
+                K += k * np.outer(h, h)
+        return K
 
     def gyroscopic_matrix(self):
         G = np.zeros((self.n, self.n))
@@ -198,8 +230,12 @@ class System:
         return [(self._pad(h), k, c) for _, h, k, c in self._maxwell]
 
     def matrices(self):
-        """Return dict M, C, G, K, B, Cy and the Maxwell elements (h, k, c)."""
+        """Return dict M, C, G, K, B, Cy, the Maxwell elements (h, k, c), the outputs' derivative orders and the
+        output filters (output index, kind, value)."""
         K, C = self.stiffness_damping()
         return {"M": self.mass_matrix(), "C": C, "G": self.gyroscopic_matrix(), "K": K,
                 "B": self.input_matrix(), "Cy": self.output_matrix(), "maxwell": self.maxwell_elements(),
-                "inputs": self.input_names(), "outputs": self.output_names()}
+                "inputs": self.input_names(), "outputs": self.output_names(),
+                "output_orders": [self._output_orders.get(name, 0) for name in self.output_names()],
+                "output_filters": [(self.output_names().index(name), kind, value)
+                                   for name, kind, value in self._output_filters]}

@@ -14,13 +14,14 @@ def _set_lines(settings):
     return ["# set %s=%s" % (name, text) for name, text in settings]
 
 
-def write_frf_csv(path, data, outputs, inputs, settings, digits=8):
-    """f_hz, then per output and input OUT/IN.re, OUT/IN.im, OUT/IN.coh."""
+def write_frf_csv(path, data, outputs, inputs, settings, digits=8, coherence=True):
+    """f_hz, then per output and input OUT/IN.re, OUT/IN.im and (unless coherence=False, as many analysers'
+    exports) OUT/IN.coh."""
     lines = [HEADER_NOTE] + _set_lines(settings)
     columns = ["f_hz"]
     for o in outputs:
         for i in inputs:
-            columns += ["%s/%s.re" % (o, i), "%s/%s.im" % (o, i), "%s/%s.coh" % (o, i)]
+            columns += ["%s/%s.re" % (o, i), "%s/%s.im" % (o, i)] + (["%s/%s.coh" % (o, i)] if coherence else [])
     lines.append(",".join(columns))
     H, coh = data["noisy"], data["coherence"]
     for k, f in enumerate(data["f_hz"]):
@@ -28,7 +29,9 @@ def write_frf_csv(path, data, outputs, inputs, settings, digits=8):
         for oi in range(len(outputs)):
             for ii in range(len(inputs)):
                 h = H[k, oi, ii]
-                row += [_number(h.real, digits), _number(h.imag, digits), _number(coh[k, oi, ii], 6)]
+                row += [_number(h.real, digits), _number(h.imag, digits)]
+                if coherence:
+                    row.append(_number(coh[k, oi, ii], 6))
         lines.append(",".join(row))
     _write(path, lines)
 

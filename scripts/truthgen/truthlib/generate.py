@@ -4,6 +4,9 @@ Noise definitions (docs/truthgen.md):
 - FRF: per channel OUT/IN, sigma = RMS over the grid of |H| divided by 10^(SNR/20); the noise is complex
   Gaussian with E|n|^2 = sigma^2 (real and imaginary parts each of variance sigma^2/2), independent per
   frequency and channel. Coherence column: |H|^2/(|H|^2 + sigma^2) with the noise-free H.
+  An FRF averaged over N measurements (--averages N) has noise of variance sigma^2/N, while the coherence
+  column stays |H|^2/(|H|^2 + sigma^2): averaging does not improve the coherence, it shrinks the estimate's
+  variance (1 - coh)/(N coh) |H|^2 = sigma^2/N.
 - Time: per output, sigma = RMS of the noise-free output record divided by 10^(SNR/20), white Gaussian,
   independent per sample and channel. Inputs are exact (a measured force taken as clean).
 """
@@ -11,7 +14,7 @@ import numpy as np
 
 from . import response
 
-FRF_GRID = {"mdof2": (10.0, 400.0, 0.25), "spindle": (50.0, 1200.0, 1.0)}
+FRF_GRID = {"mdof2": (10.0, 400.0, 0.25), "spindle": (50.0, 1200.0, 1.0), "frame3": (0.03125, 128.0, 0.03125)}
 SAMPLE_RATE = {"mdof2": 4096.0, "spindle": 8192.0}
 DURATION = {"mdof2": 2.0, "spindle": 2.0}
 AMPLITUDE = {"mdof2": 10.0, "spindle": 100.0}
@@ -26,8 +29,9 @@ def noise_sigma(rms, snr_db):
     return rms / 10 ** (snr_db / 20.0)
 
 
-def make_frf(mats, f_hz, snr_db, rng):
-    """Noisy FRF of every output/input pair. Returns dict with f, clean H, noisy H, coherence, sigma (O x I)."""
+def make_frf(mats, f_hz, snr_db, rng, averages=1):
+    """Noisy FRF of every output/input pair, the average of `averages` measurements. Returns dict with f, clean
+    H, noisy H, coherence, sigma (O x I; the noise of one measurement: the average's is sigma/sqrt(averages))."""
     H = response.frf(mats, f_hz)
     F, O, I = H.shape
     sigma = np.zeros((O, I))
@@ -38,9 +42,11 @@ def make_frf(mats, f_hz, snr_db, rng):
             sigma[o, i] = noise_sigma(np.sqrt(np.mean(np.abs(H[:, o, i]) ** 2)), snr_db)
             if np.isfinite(snr_db):
                 n = rng.standard_normal(F) + 1j * rng.standard_normal(F)
-                noisy[:, o, i] += sigma[o, i] / np.sqrt(2) * n
+                scale = sigma[o, i] if averages == 1 else sigma[o, i] / np.sqrt(averages)
+                noisy[:, o, i] += scale / np.sqrt(2) * n
                 coh[:, o, i] = np.abs(H[:, o, i]) ** 2 / (np.abs(H[:, o, i]) ** 2 + sigma[o, i] ** 2)
-    return {"f_hz": np.asarray(f_hz, float), "clean": H, "noisy": noisy, "coherence": coh, "sigma": sigma}
+    return {"f_hz": np.asarray(f_hz, float), "clean": H, "noisy": noisy, "coherence": coh, "sigma": sigma,
+            "averages": averages}
 
 
 def excitation(kind, count, inputs, amplitude, rng):

@@ -1,7 +1,9 @@
-"""The two reference models (shared/design/REFERENCE-MODELS.md), written by hand, with optional hidden effects.
+"""The reference models (shared/design/REFERENCE-MODELS.md) and the three-storey frame, written by hand, with
+optional hidden effects.
 
-Parameter names are exactly those of examples/mdof2/mdof2.mdl and examples/spindle/spindle.mdl. A hidden effect
-is passed as `effects`, a dict whose keys are listed in EFFECT_KEYS; the cases module fills it in.
+Parameter names are exactly those of examples/mdof2/mdof2.mdl, examples/spindle/spindle.mdl and
+examples/frame3/frame3.mdl. A hidden effect is passed as `effects`, a dict whose keys each builder's docstring
+lists; the cases module fills it in.
 """
 import math
 
@@ -25,7 +27,9 @@ def build_mdof2(p, effects=None):
     ground_body {m, k, c}: the wall is a body (x only) held by a spring to a fixed ground;
     added_mass {m}: a point mass at mass1's point (mass1 is a point, so its mass just grows);
     resonator {m, k, c}: a mass on a spring-damper along x on mass1;
-    maxwell {a, b, k, c}: a Maxwell element along x between frames a and b.
+    maxwell {a, b, k, c}: a Maxwell element along x between frames a and b;
+    output_filter {output, kind, value}: that output is read through a low-pass, AC coupling or delay
+        (assembly.System.output_filter).
     """
     e = effects or {}
     s = System("mdof2")
@@ -52,7 +56,14 @@ def build_mdof2(p, effects=None):
     s.input_force("F1", "mass1", None, "x")
     s.output_displacement("d1", "mass1", None, "x")
     s.output_displacement("d2", "mass2", None, "x")
+    _output_filter(s, e)
     return s
+
+
+def _output_filter(s, e):
+    if "output_filter" in e:
+        of = e["output_filter"]
+        s.output_filter(of["output"], of["kind"], of["value"])
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -84,6 +95,12 @@ MOUNTS = [  # name, housing point, base point
     ("mount4", (0.048, -0.064, -0.060), (0.048, -0.080, -0.060)),
 ]
 NOSE = (0.0, 0.0, 0.306)
+# base_on_feet: the base as a rigid box 0.30 x 0.10 x 0.40 m (x, y, z), its top face at the mounts' base points
+# (y = -0.080), on four feet at its bottom corners.
+BASE_BOX_SIZE = (0.30, 0.10, 0.40)
+BASE_BOX_CENTRE = (0.0, -0.130, 0.0)
+BASE_FEET = [(sx * 0.15, -0.180, sz * 0.20) for sx in (-1, 1) for sz in (1, -1)]
+FOOT_PATTERN = (1.0, 3.0, 1.0)   # per-foot stiffness kx : ky : kz (a levelling foot is stiffer vertically)
 
 
 def spindle_inertias(p):
@@ -123,7 +140,11 @@ def build_spindle(p, effects=None):
     maxwell {name, a, pa, b, pb, along, k, c}: a Maxwell element;
     sensor {output, m, k, c}: that output is read by a sensor, a mass m on a spring-damper (k, c) along the
         output's direction at its point on the spindle, with the one coordinate along it: the output measures
-        the sensor's mass (an accelerometer's mounting resonance; the sensor also loads the spindle).
+        the sensor's mass (an accelerometer's mounting resonance; the sensor also loads the spindle);
+    base_box {m, k3, c3}: the base is a rigid box of mass m (BASE_BOX_SIZE, centre BASE_BOX_CENTRE, all six
+        coordinates) standing on four feet (BASE_FEET; spring3 to a fixed ground, each with stiffnesses k3 and
+        dampings c3); the mounts attach to it at their base points;
+    output_filter {output, kind, value}: that output is read through a low-pass, AC coupling or delay.
     """
     e = effects or {}
     s = System("spindle")
@@ -139,6 +160,12 @@ def build_spindle(p, effects=None):
         s.body("base", g["m"], np.eye(3) * 2 * g["m"] * radius ** 2 / 5, centroid, ["x", "y", "z"])
         s.ground("base_fixed")
         s.spring3("base_support", "base", centroid, "base_fixed", centroid, (g["k"],) * 3, (g["c"],) * 3)
+    elif "base_box" in e:
+        bb = e["base_box"]
+        s.body("base", bb["m"], box_inertia(bb["m"], BASE_BOX_SIZE), BASE_BOX_CENTRE)
+        s.ground("base_fixed")
+        for i, foot in enumerate(BASE_FEET):
+            s.spring3("base_foot%d" % (i + 1), "base", foot, "base_fixed", foot, bb["k3"], bb["c3"])
     else:
         s.ground("base")
     s.body("spindle", m_s, j_s, com_s, ["x", "y", "z", "rx", "ry"])
@@ -175,10 +202,89 @@ def build_spindle(p, effects=None):
             s.spring(body + "_mount", frame, point, body, point, "x", sensor["k"], sensor["c"])
             frame = body
         s.output_displacement(name, frame, point, "x")
+    _output_filter(s, e)
+    return s
+
+
+def box_inertia(m, size):
+    """Solid box of mass m and edges (a, b, c) along x, y, z: inertia about its centre."""
+    a, b, c = size
+    return np.array([m * (b ** 2 + c ** 2) / 12, m * (a ** 2 + c ** 2) / 12, m * (a ** 2 + b ** 2) / 12])
+
+
+def machine_rigid_inertia(p, m_base):
+    """Mass, centre of mass and inertia tensor of base box + housing + spindle welded together (the spindle
+    still turns freely about its own axis, so its J_szz is left out): the body that rocks on the feet when the
+    mounts are taken as rigid (base_on_feet's tuning)."""
+    j_s, j_h = spindle_inertias(p)
+    j_s = j_s.copy()
+    j_s[2, 2] = 0.0
+    parts = [(m_base, np.diag(box_inertia(m_base, BASE_BOX_SIZE)), np.array(BASE_BOX_CENTRE)),
+             (p["m_h"], j_h, np.zeros(3)), (p["m_s"], j_s, np.zeros(3))]
+    total = sum(m for m, _, _ in parts)
+    com = sum(m * c for m, _, c in parts) / total
+    inertia = sum(j + m * (np.dot(c - com, c - com) * np.eye(3) - np.outer(c - com, c - com)) for m, j, c in parts)
+    return total, com, inertia
+
+
+def base_rocking_hz(p, m_base, k_ref):
+    """Frequency (Hz) of the lowest rocking mode about z (tilting in the x-y plane, with x sway: the one that
+    x-direction data see) of the machine taken as rigid on the four feet, each foot k_ref * FOOT_PATTERN."""
+    total, com, inertia = machine_rigid_inertia(p, m_base)
+    s = System("rigid_machine_on_feet")
+    s.body("machine", total, inertia, com, ["x", "rz"])
+    s.ground("floor")
+    for i, foot in enumerate(BASE_FEET):
+        s.spring3("foot%d" % i, "machine", foot, "floor", foot, tuple(k_ref * r for r in FOOT_PATTERN))
+    K, _ = s.stiffness_damping()
+    w2 = np.linalg.eigvals(np.linalg.solve(s.mass_matrix(), K)).real
+    return float(np.sqrt(min(w2)) / (2 * np.pi))
+
+
+# ---------------------------------------------------------------------------------------------------------
+# frame3: a three-storey shear frame (like the Los Alamos "bookshelf"), y vertical
+
+FRAME3_NOMINAL = {
+    "m1": 5.8, "m2": 5.6, "m3": 5.4,
+    "k1": 6.0e5, "k2": 3.2e5, "k3": 2.9e5,
+    "c1": 160.0, "c2": 25.0, "c3": 28.0,
+}
+FRAME3_ESTIMABLE = ["m1", "m2", "m3", "k1", "k2", "k3", "c1", "c2", "c3"]
+STOREY_HEIGHT = 0.177
+PLATE = 0.305   # square storey plate, m (its torsional inertia in outside_torsion)
+
+
+def build_frame3(p, effects=None):
+    """Ground `floor`, storeys 1-3 along x joined by columns (spring-dampers along x), forces F1-F3 on the
+    storeys along x, accelerations a1-a3 of the storeys along x. Effects (optional):
+    torsion {kt: (kt1, kt2, kt3), ct: (...), e}: each storey also twists about the vertical y (its own
+        coordinate ry, the inertia of a square plate of side PLATE), with torsional springs floor-storey1,
+        storey1-storey2, storey2-storey3; the forces act and the accelerations are read at (0, h, e) on each
+        storey, an eccentricity e off the centre line, so the twist shows in the x data.
+    """
+    e = effects or {}
+    tor = e.get("torsion")
+    s = System("frame3")
+    s.ground("floor")
+    storeys = ["storey1", "storey2", "storey3"]
+    for i, name in enumerate(storeys):
+        m = p["m%d" % (i + 1)]
+        inertia = [0.0, m * 2 * PLATE ** 2 / 12, 0.0]
+        s.body(name, m, inertia, (0, STOREY_HEIGHT * (i + 1), 0), ["x", "ry"] if tor else ["x"])
+    for i, (a, b) in enumerate(zip(["floor"] + storeys[:-1], storeys)):
+        s.spring("column%d" % (i + 1), a, None, b, None, "x", p["k%d" % (i + 1)], p["c%d" % (i + 1)])
+        if tor:
+            s.torsion("twist%d" % (i + 1), a, b, "y", tor["kt"][i], tor["ct"][i])
+    points = [(0, STOREY_HEIGHT * (i + 1), tor["e"] if tor else 0.0) for i in range(3)]
+    for i, name in enumerate(storeys):
+        s.input_force("F%d" % (i + 1), name, points[i], "x")
+    for i, name in enumerate(storeys):
+        s.output_acceleration("a%d" % (i + 1), name, points[i], "x")
     return s
 
 
 EXAMPLES = {
     "mdof2": {"nominal": MDOF2_NOMINAL, "estimable": MDOF2_ESTIMABLE, "build": build_mdof2},
     "spindle": {"nominal": SPINDLE_NOMINAL, "estimable": SPINDLE_ESTIMABLE, "build": build_spindle},
+    "frame3": {"nominal": FRAME3_NOMINAL, "estimable": FRAME3_ESTIMABLE, "build": build_frame3},
 }

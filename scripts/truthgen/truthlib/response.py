@@ -13,11 +13,31 @@ def dynamic_stiffness(mats, s):
 
 
 def frf(mats, f_hz):
-    """H[f, output, input] = Cy D(i w)^-1 B (displacement per force)."""
+    """H[f, output, input] = Cy D(i w)^-1 B (displacement per force), each output row times (i w)^order for
+    velocity or acceleration outputs and times its sensor's T(i w) (output_filter_response)."""
     w = 2 * np.pi * np.asarray(f_hz, dtype=float)
     D = dynamic_stiffness(mats, 1j * w)
     X = np.linalg.solve(D, np.broadcast_to(mats["B"].astype(complex), (len(w),) + mats["B"].shape))
-    return np.einsum("on,fni->foi", mats["Cy"], X)
+    H = np.einsum("on,fni->foi", mats["Cy"], X)
+    for o, order in enumerate(mats.get("output_orders", [])):
+        if order:
+            H[:, o, :] *= ((1j * w) ** order)[:, None]
+    for o, kind, value in mats.get("output_filters", []):
+        H[:, o, :] *= output_filter_response(kind, value, 1j * w)[:, None]
+    return H
+
+
+def output_filter_response(kind, value, s):
+    """T(s) of a sensor's own dynamics (assembly.System.output_filter): Butterworth low-pass, AC coupling, delay."""
+    s = np.asarray(s, dtype=complex)
+    if kind == "lowpass":
+        wc = 2 * np.pi * value
+        return wc ** 2 / (s ** 2 + np.sqrt(2) * wc * s + wc ** 2)
+    if kind == "highpass":
+        return s / (s + 2 * np.pi * value)
+    if kind == "delay":
+        return np.exp(-s * value)
+    raise ValueError("unknown output filter %r" % kind)
 
 
 def state_space(mats):
@@ -52,18 +72,70 @@ def zoh_discretise(A, Bc, dt):
     return E[:ns, :ns], E[:ns, ns:]
 
 
+def simulation_model(mats):
+    """State space of the structure with its sensors: A, Bc, Cc as state_space, plus the states of the output
+    filters (a low-pass adds two, AC coupling one, both driven by the output they filter, so the zero-order-hold
+    discretisation stays exact), and the delays [(output index, tau)], which are applied to the sampled states
+    (delayed_output). Acceleration and velocity outputs are refused: their feedthrough at the sample instants
+    would need a convention the data format does not fix.
+    """
+    if any(mats.get("output_orders", [])):
+        raise ValueError("time simulation of velocity or acceleration outputs is not supported (FRF only)")
+    A, Bc, Cc = state_space(mats)
+    delays = []
+    for o, kind, value in mats.get("output_filters", []):
+        if kind == "delay":
+            delays.append((o, value))
+            continue
+        extra = 2 if kind == "lowpass" else 1
+        ns = A.shape[0]
+        A2 = np.zeros((ns + extra, ns + extra))
+        A2[:ns, :ns] = A
+        Bc = np.vstack([Bc, np.zeros((extra, Bc.shape[1]))])
+        Cc = np.hstack([Cc, np.zeros((Cc.shape[0], extra))])
+        y_row = Cc[o].copy()                     # what the filter is driven by (the output so far)
+        if kind == "lowpass":                    # v'' = wc^2 (y - v) - sqrt(2) wc v', reads v
+            wc = 2 * np.pi * value
+            A2[ns, ns + 1] = 1.0
+            A2[ns + 1, :] += wc ** 2 * y_row
+            A2[ns + 1, ns] -= wc ** 2
+            A2[ns + 1, ns + 1] = -np.sqrt(2) * wc
+            Cc[o] = 0.0
+            Cc[o, ns] = 1.0
+        else:                                    # w' = wh (y - w), reads y - w: T = 1 - wh/(s + wh) = s/(s + wh)
+            wh = 2 * np.pi * value
+            A2[ns, :] += wh * y_row
+            A2[ns, ns] -= wh
+            Cc[o, ns] -= 1.0
+        A = A2
+    return A, Bc, Cc, delays
+
+
 def simulate_zoh(mats, u, dt, x0=None):
     """Outputs y[k] (k = 0..N-1) of the model driven by inputs u[k] (N x inputs) held over [k dt, (k+1) dt).
 
     y[k] is sampled at t = k dt, before u[k] acts (a displacement output has no direct feedthrough).
-    Returns (y, final state).
+    Returns (y, final state). With output filters the state includes the filters' states; a delayed output
+    reads the state before the record started as at rest, so x0 must be None then.
     """
-    A, Bc, Cc = state_space(mats)
+    if not mats.get("output_filters"):
+        A, Bc, Cc = state_space(mats)
+        Ad, Bd = zoh_discretise(A, Bc, dt)
+        return run_discrete(Ad, Bd, Cc, u, x0)
+    A, Bc, Cc, delays = simulation_model(mats)
+    if delays and x0 is not None:
+        raise ValueError("a delayed output needs the record to start at rest")
     Ad, Bd = zoh_discretise(A, Bc, dt)
-    return run_discrete(Ad, Bd, Cc, u, x0)
+    u = np.atleast_2d(np.asarray(u, dtype=float))
+    states, x = run_states(Ad, Bd, u, x0)
+    y = states @ Cc.T
+    for o, tau in delays:
+        y[:, o] = delayed_output(A, Bc, Cc[o], states, u, tau, dt)
+    return y, x
 
 
-def run_discrete(Ad, Bd, Cc, u, x0=None):
+def run_states(Ad, Bd, u, x0=None):
+    """States x[k] at t = k dt (x[0] = x0, at rest by default) and the state after the last step."""
     u = np.atleast_2d(np.asarray(u, dtype=float))
     x = np.zeros(Ad.shape[0]) if x0 is None else np.array(x0, dtype=float)
     states = np.empty((u.shape[0], Ad.shape[0]))
@@ -71,7 +143,41 @@ def run_discrete(Ad, Bd, Cc, u, x0=None):
     for k in range(u.shape[0]):
         states[k] = x
         x = Ad @ x + drive[k]
+    return states, x
+
+
+def run_discrete(Ad, Bd, Cc, u, x0=None):
+    states, x = run_states(Ad, Bd, u, x0)
     return states @ Cc.T, x
+
+
+def split_delay(tau, dt):
+    """tau = m dt + delta with 0 <= delta < dt (rounding kept inside the interval)."""
+    m = int(np.floor(tau / dt))
+    delta = tau - m * dt
+    if delta < 0:
+        m, delta = m - 1, delta + dt
+    if delta >= dt:
+        m, delta = m + 1, delta - dt
+    return m, max(delta, 0.0)
+
+
+def delayed_output(A, Bc, c_row, states, u, tau, dt, periodic=False):
+    """y_d[k] = c_row x(t_k - tau), exactly. With tau = m dt + delta and j = k - m, x(t_j - delta) =
+    expm(A (dt - delta)) x[j-1] + Gamma(dt - delta) u[j-1], since the input is held over [t_{j-1}, t_j).
+    Before the record the system is at rest (zero), or with periodic=True the record repeats (steady state).
+    """
+    m, delta = split_delay(tau, dt)
+    Ap, Bp = zoh_discretise(A, Bc, dt - delta)
+    count = states.shape[0]
+    prev = np.arange(count) - m - 1
+    if periodic:
+        prev = prev % count
+    valid = prev >= 0
+    x_between = states[prev[valid]] @ Ap.T + np.atleast_2d(u)[prev[valid]] @ Bp.T
+    y = np.zeros(count)
+    y[valid] = x_between @ c_row
+    return y
 
 
 def discrete_frf(Ad, Bd, Cc, f_hz, dt):

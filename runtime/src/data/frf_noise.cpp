@@ -1,0 +1,212 @@
+#include "mbgen/frf_noise.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+namespace mbgen {
+
+namespace {
+
+// Lines whose |d|^2 stands more than this many times above its fitted mean are taken as the response's own
+// curvature, not noise: an exponential variable exceeds 6 times its mean once in 400 draws.
+constexpr double kCut = 6.0;
+// The mean of an exponential variable of mean 1 truncated at kCut: the fits below see only the lines under the
+// cut, so their level comes out low by this factor.
+const double kTruncatedMean = 1.0 - kCut * std::exp(-kCut) / (1.0 - std::exp(-kCut));
+
+// Fourth differences d_k = h_{k-2} - 4 h_{k-1} + 6 h_k - 4 h_{k+1} + h_{k+2}: they cancel any cubic through five
+// lines, so a resonance a few lines wide bends them far less than second differences (by the square of its
+// half-width in lines), while white noise passes with E|d|^2 = 1 + 16 + 36 + 16 + 1 = 70 times its variance.
+constexpr int kHalf = 2;
+constexpr double kWeights[] = {1, -4, 6, -4, 1};
+
+struct Stencil {
+  Eigen::VectorXd e;  // |d_k|^2, k = kHalf .. n-1-kHalf (index k - kHalf)
+};
+
+Stencil differences(const Eigen::VectorXcd& h) {
+  const Eigen::Index m = h.size() - 2 * kHalf;
+  Stencil s;
+  s.e.resize(m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    std::complex<double> d = 0;
+    for (int j = 0; j <= 2 * kHalf; ++j) d += kWeights[j] * h[k + j];
+    s.e[k] = std::norm(d);
+  }
+  return s;
+}
+
+// The stencil's sum of a per-line variance v: sum_j w_j^2 v_{k+j}.
+Eigen::VectorXd stencil_sum(const Eigen::VectorXd& v) {
+  const Eigen::Index m = v.size() - 2 * kHalf;
+  Eigen::VectorXd out(m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    double sum = 0;
+    for (int j = 0; j <= 2 * kHalf; ++j) sum += kWeights[j] * kWeights[j] * v[k + j];
+    out[k] = sum;
+  }
+  return out;
+}
+
+struct LevelFit {
+  double a = 0, log_likelihood = -std::numeric_limits<double>::infinity();
+};
+
+// Maximum likelihood of e_k ~ Exp(mean a G_k) over the lines `kept`: a = mean(e_k / G_k). The kept lines are those
+// under kCut times their mean, so their mean is kTruncatedMean times the fitted one; that bias is removed. The
+// log-likelihood is over the kept lines, so that fits compared on the same lines compare fairly.
+LevelFit fit_level(const Eigen::VectorXd& e, const Eigen::VectorXd& G, const std::vector<char>& kept) {
+  double sum = 0;
+  int count = 0;
+  for (Eigen::Index k = 0; k < e.size(); ++k)
+    if (kept[static_cast<std::size_t>(k)]) sum += e[k] / G[k], ++count;
+  LevelFit fit;
+  fit.a = count > 0 ? std::max(sum / count / kTruncatedMean, 1e-300) : 1e-300;
+  fit.log_likelihood = 0;
+  for (Eigen::Index k = 0; k < e.size(); ++k) {
+    if (!kept[static_cast<std::size_t>(k)]) continue;
+    const double mean = std::max(fit.a * G[k], 1e-300);
+    fit.log_likelihood -= std::log(mean) + e[k] / mean;
+  }
+  return fit;
+}
+
+FrfNoise from_scatter(const Eigen::VectorXd& f_hz, const Eigen::VectorXcd& h, double floor) {
+  const Eigen::Index n = h.size();
+  const Stencil s = differences(h);
+  const double span = std::max(f_hz[n - 1] - f_hz[0], 1e-300), mid = 0.5 * (f_hz[n - 1] + f_hz[0]);
+  Eigen::VectorXd x(n);
+  for (Eigen::Index k = 0; k < n; ++k) x[k] = (f_hz[k] - mid) / span;
+  // Which lines are noise: first under a constant level, then under the best model so far. Within one pass every
+  // drift is scored on the same lines; the drift by a coarse search, then refined.
+  const Eigen::Index m = s.e.size();
+  std::vector<char> kept(static_cast<std::size_t>(m), 1);
+  const auto drift_weights = [&](double g) { return stencil_sum(x.unaryExpr([g](double v) { return std::exp(g * v); })); };
+  const auto trim = [&](const Eigen::VectorXd& G, double a) {
+    int left_out = 0;
+    for (Eigen::Index k = 0; k < m; ++k) {
+      kept[static_cast<std::size_t>(k)] = s.e[k] <= kCut * a * G[k];
+      left_out += !kept[static_cast<std::size_t>(k)];
+    }
+    return left_out;
+  };
+  const Eigen::VectorXd flat = drift_weights(0);
+  for (int pass = 0; pass < 10; ++pass) {
+    const std::vector<char> before = kept;
+    trim(flat, fit_level(s.e, flat, kept).a);
+    if (kept == before) break;
+  }
+  double best_g = 0;
+  LevelFit best;
+  int left_out = 0;
+  for (int pass = 0; pass < 4; ++pass) {
+    best = LevelFit{};
+    const auto try_drift = [&](double g) {
+      const LevelFit fit = fit_level(s.e, drift_weights(g), kept);
+      if (fit.log_likelihood > best.log_likelihood) best = fit, best_g = g;
+    };
+    for (int g = -8; g <= 8; g += 2) try_drift(g);
+    const double coarse = best_g;
+    for (double g = coarse - 1.75; g <= coarse + 1.75 + 1e-9; g += 0.25)
+      if (g != coarse) try_drift(g);
+    const std::vector<char> before = kept;
+    left_out = trim(drift_weights(best_g), best.a);
+    if (kept == before) break;
+  }
+
+  FrfNoise out;
+  out.source = FrfNoise::Source::Scatter;
+  out.additive = best.a;
+  out.drift = best_g;
+  out.lines_left_out = left_out;
+  const double rms = std::sqrt(h.cwiseAbs2().mean());
+  out.sigma.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    out.sigma[k] = std::max(std::sqrt(best.a * std::exp(best_g * x[k])), floor * rms);
+  return out;
+}
+
+// The coherence-based level in shape (one average), each line's |H|^2 averaged over five lines: a single line's
+// |H| is itself noisy, and where noise dominates (anti-resonances) a low draw would shrink the level and make noise
+// look like a finding, while the average includes the noise power and errs safe. Its scale is then estimated from
+// the data's scatter.
+FrfNoise from_coherence(const Eigen::VectorXcd& h, const Eigen::VectorXd& coherence, double floor) {
+  const Eigen::Index n = h.size();
+  const double rms = std::sqrt(h.cwiseAbs2().mean());
+  Eigen::VectorXd line_variance(n), judged(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double g2 = std::clamp(coherence[k], 1e-12, 1.0);
+    const double ratio = (1.0 - g2) / g2;
+    const Eigen::Index lo = std::max<Eigen::Index>(0, k - 2), hi = std::min<Eigen::Index>(n - 1, k + 2);
+    line_variance[k] = std::max(ratio * std::norm(h[k]), floor * floor * rms * rms);
+    judged[k] = std::max(ratio * h.segment(lo, hi - lo + 1).cwiseAbs2().mean(), floor * floor * rms * rms);
+  }
+  // Maximum likelihood of the scale of e_k ~ Exp(scale v_k), the curvature-dominated lines left out.
+  const Stencil s = differences(h);
+  const Eigen::VectorXd v = stencil_sum(line_variance);
+  const Eigen::Index m = s.e.size();
+  double scale = (s.e.array() / v.array()).mean();
+  int left_out = 0;
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    double sum = 0;
+    int kept = 0;
+    for (Eigen::Index k = 0; k < m; ++k)
+      if (s.e[k] <= kCut * scale * v[k]) sum += s.e[k] / v[k], ++kept;
+    const double next = kept > 0 ? sum / kept / kTruncatedMean : scale;
+    left_out = static_cast<int>(m) - kept;
+    const bool settled = std::abs(next - scale) <= 1e-9 * scale;
+    scale = next;
+    if (settled) break;
+  }
+  FrfNoise out;
+  out.source = FrfNoise::Source::Coherence;
+  out.coherence_scale = scale;
+  out.lines_left_out = left_out;
+  out.sigma = (scale * judged.array()).sqrt();
+  return out;
+}
+
+}  // namespace
+
+std::string FrfNoise::description() const {
+  char text[256];
+  switch (source) {
+    case Source::Coherence:
+      std::snprintf(text, sizeof text,
+                    "coherence, its variance scaled by %.3g to match the data's scatter between neighbouring lines "
+                    "(as %.3g averages would)",
+                    coherence_scale, coherence_scale > 0 ? 1.0 / coherence_scale : 0.0);
+      break;
+    case Source::Scatter:
+      std::snprintf(text, sizeof text,
+                    "the data's scatter between neighbouring lines (no coherence): %.3g at the band's centre, its "
+                    "variance changing by a factor %.3g across the band",
+                    std::sqrt(additive), std::exp(drift));
+      break;
+    case Source::TooFewLines:
+      std::snprintf(text, sizeof text, "too few lines to estimate it: the channel's RMS");
+      break;
+  }
+  return text;
+}
+
+FrfNoise frf_noise(const Eigen::VectorXd& f_hz, const FrfChannel& channel) {
+  constexpr double floor = 1e-3;  // no line weighs more than a thousandth of the channel's RMS allows
+  const Eigen::VectorXcd& h = channel.values;
+  const Eigen::Index n = h.size();
+  if (n < FrfNoise::kMinLines) {
+    FrfNoise out;
+    out.source = FrfNoise::Source::TooFewLines;
+    const double rms = n > 0 ? std::sqrt(h.cwiseAbs2().mean()) : 1.0;
+    out.sigma = Eigen::VectorXd::Constant(n, rms > 0 ? rms : 1.0);
+    return out;
+  }
+  if (channel.coherence) return from_coherence(h, *channel.coherence, floor);
+  return from_scatter(f_hz, h, floor);
+}
+
+}  // namespace mbgen

@@ -1,0 +1,129 @@
+// The noise level of measured FRFs from their own scatter: synthetic FRFs of a hand-written two-mode receptance
+// with noise of known level added here, over several random draws.
+#include "mbgen/frf_noise.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <complex>
+#include <random>
+
+namespace {
+
+using cd = std::complex<double>;
+constexpr double two_pi = 6.283185307179586;
+
+// A receptance with modes at f1 and f2 (damping ratios z1, z2), unit modal masses.
+cd receptance(double f, double f1, double z1, double f2, double z2) {
+  const cd s(0, two_pi * f);
+  const auto mode = [&](double fn, double z) {
+    const double w = two_pi * fn;
+    return 1.0 / (s * s + 2.0 * z * w * s + w * w);
+  };
+  return mode(f1, z1) - 0.6 * mode(f2, z2);
+}
+
+struct Synthetic {
+  Eigen::VectorXd f;
+  Eigen::VectorXcd clean, noisy;
+  Eigen::VectorXd sigma;  // the true standard deviation per line
+};
+
+// Lines f0 .. f0 + (n-1) df; noise of standard deviation additive * exp(drift x) + proportional * |H| per line
+// (complex Gaussian, E|n|^2 = sigma^2).
+Synthetic make(unsigned seed, int n, double df, double zeta, double additive_rel, double drift, double proportional) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  Synthetic s;
+  s.f.resize(n);
+  s.clean.resize(n);
+  s.noisy.resize(n);
+  s.sigma.resize(n);
+  for (int k = 0; k < n; ++k) {
+    s.f[k] = 20.0 + df * k;
+    s.clean[k] = receptance(s.f[k], 180.0, zeta, 410.0, 1.5 * zeta);
+  }
+  const double rms = std::sqrt(s.clean.cwiseAbs2().mean());
+  const double mid = 0.5 * (s.f[0] + s.f[n - 1]), span = s.f[n - 1] - s.f[0];
+  for (int k = 0; k < n; ++k) {
+    const double add = additive_rel * rms * std::exp(0.5 * drift * (s.f[k] - mid) / span);
+    s.sigma[k] = std::sqrt(add * add + std::pow(proportional * std::abs(s.clean[k]), 2));
+    s.noisy[k] = s.clean[k] + s.sigma[k] / std::sqrt(2.0) * cd(normal(rng), normal(rng));
+  }
+  return s;
+}
+
+mbgen::FrfChannel channel(const Eigen::VectorXcd& values) {
+  mbgen::FrfChannel c;
+  c.output = "y";
+  c.input = "u";
+  c.values = values;
+  return c;
+}
+
+// The largest ratio estimated/true or true/estimated over the lines.
+double worst_ratio(const Eigen::VectorXd& estimated, const Eigen::VectorXd& truth) {
+  double worst = 1;
+  for (Eigen::Index k = 0; k < truth.size(); ++k)
+    worst = std::max({worst, estimated[k] / truth[k], truth[k] / estimated[k]});
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("frf_noise: additive white noise without coherence is found at its level everywhere", "[frf_noise]") {
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const Synthetic s = make(seed, 1200, 0.5, 0.02, 0.01, 0.0, 0.0);
+    const mbgen::FrfNoise noise = mbgen::frf_noise(s.f, channel(s.noisy));
+    INFO("seed " << seed << ": " << noise.description());
+    CHECK(noise.source == mbgen::FrfNoise::Source::Scatter);
+    // About 1200 lines determine the level to a few per cent; the peaks' curvature must not inflate it.
+    CHECK(worst_ratio(noise.sigma, s.sigma) < 1.12);
+  }
+}
+
+TEST_CASE("frf_noise: an additive level that drifts across the band is followed", "[frf_noise]") {
+  for (unsigned seed = 21; seed <= 25; ++seed) {
+    const Synthetic s = make(seed, 1500, 0.4, 0.02, 0.01, 3.0, 0.0);  // the level's variance changes e^3 = 20x
+    const mbgen::FrfNoise noise = mbgen::frf_noise(s.f, channel(s.noisy));
+    INFO("seed " << seed << ": " << noise.description());
+    CHECK(noise.drift == Approx(3.0).margin(0.6));
+    CHECK(worst_ratio(noise.sigma, s.sigma) < 1.2);
+  }
+}
+
+TEST_CASE("frf_noise: lightly damped peaks a few lines wide do not inflate the level", "[frf_noise]") {
+  // Half-power bandwidth 2 zeta f = 0.9 Hz at 180 Hz on 1 Hz lines: the response bends sharply over 2-3 lines.
+  for (unsigned seed = 31; seed <= 35; ++seed) {
+    const Synthetic s = make(seed, 1000, 1.0, 0.0025, 0.01, 0.0, 0.0);
+    const mbgen::FrfNoise noise = mbgen::frf_noise(s.f, channel(s.noisy));
+    INFO("seed " << seed << ": " << noise.description());
+    CHECK(worst_ratio(noise.sigma, s.sigma) < 1.15);
+    CHECK(noise.lines_left_out >= 2);  // the peak's lines were recognised as curvature
+  }
+}
+
+TEST_CASE("frf_noise: the scale of a coherence-based level is corrected by the data's scatter", "[frf_noise]") {
+  // An FRF averaged 50 times: its variance is 1/50 of what the coherence says for one average.
+  for (unsigned seed = 41; seed <= 45; ++seed) {
+    const Synthetic one = make(seed, 1200, 0.5, 0.02, 0.01, 0.0, 0.0);
+    const Eigen::VectorXd sigma2 = one.sigma.cwiseAbs2();
+    Eigen::VectorXcd averaged = one.clean + (one.noisy - one.clean) / std::sqrt(50.0);
+    mbgen::FrfChannel c = channel(averaged);
+    c.coherence = Eigen::VectorXd(one.clean.size());
+    for (Eigen::Index k = 0; k < one.clean.size(); ++k)
+      (*c.coherence)[k] = std::norm(one.clean[k]) / (std::norm(one.clean[k]) + sigma2[k]);
+    const mbgen::FrfNoise noise = mbgen::frf_noise(one.f, c);
+    INFO("seed " << seed << ": " << noise.description());
+    CHECK(noise.source == mbgen::FrfNoise::Source::Coherence);
+    CHECK(noise.coherence_scale == Approx(1.0 / 50).epsilon(0.12));
+  }
+}
+
+TEST_CASE("frf_noise: too few lines fall back to the channel's RMS and say so", "[frf_noise]") {
+  Eigen::VectorXd f = Eigen::VectorXd::LinSpaced(5, 10, 14);
+  const mbgen::FrfNoise noise = mbgen::frf_noise(f, channel(Eigen::VectorXcd::Constant(5, cd(3, 4))));
+  CHECK(noise.source == mbgen::FrfNoise::Source::TooFewLines);
+  CHECK(noise.sigma[0] == Approx(5.0));
+  CHECK(noise.description().find("too few") != std::string::npos);
+}
