@@ -31,6 +31,9 @@ struct ModePairing {
   Eigen::MatrixXd mac;          // identified x model modes
   std::vector<int> model_mode;  // per identified mode, the model mode of largest MAC
   std::vector<double> best_mac;
+  // Per identified mode: another identified mode has the same model mode. With few channels the shapes of
+  // different modes can look alike (e.g. a torsion mode seen by sensors on one line); the model may lack a mode.
+  std::vector<bool> shared;
 };
 
 ModePairing pair_modes(const std::vector<IdentifiedMode>& identified, const ModelModes& model);

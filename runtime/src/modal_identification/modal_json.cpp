@@ -64,6 +64,7 @@ std::string modal_result_json(const ModalReportInput& in) {
       const int k = in.model->pairing.model_mode[m];
       entry["model_mode"] = k;
       entry["mac"] = number(in.model->pairing.best_mac[m]);
+      entry["model_mode_shared"] = static_cast<bool>(in.model->pairing.shared[m]);
       if (k >= 0) {
         entry["model_f_hz"] = number(in.model->modes.f_hz[static_cast<std::size_t>(k)]);
         entry["model_zeta"] = number(in.model->modes.zeta[static_cast<std::size_t>(k)]);

@@ -78,6 +78,9 @@ TEST_CASE("identified modes pair with the model's by MAC", "[modal][pairing]") {
   CHECK(pairing.best_mac[0] == Approx(1).epsilon(1e-12));
   CHECK(pairing.best_mac[1] == Approx(1).epsilon(1e-12));
   CHECK(pairing.mac(0, 0) < 0.5);
+  CHECK(pairing.shared == std::vector<bool>{false, false});
+  identified.push_back(identified[1]);  // a third mode that looks like model mode 0 as well
+  CHECK(pair_modes(identified, modes).shared == std::vector<bool>{false, true, true});
 }
 
 }  // namespace mbgen

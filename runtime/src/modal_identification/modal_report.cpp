@@ -3,6 +3,7 @@
 #include "mbgen/gnuplot.hpp"
 #include "mbgen/modal_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -159,8 +160,8 @@ std::string modal_summary(const ModalReportInput& in) {
     out << line;
     if (in.model && in.model->pairing.model_mode[m] >= 0) {
       const int k = in.model->pairing.model_mode[m];
-      std::snprintf(line, sizeof line, "   %d (%.4f, %.3f)", k, in.model->modes.f_hz[static_cast<std::size_t>(k)],
-                    in.model->pairing.best_mac[m]);
+      std::snprintf(line, sizeof line, "   %d (%.4f, %.3f)%s", k, in.model->modes.f_hz[static_cast<std::size_t>(k)],
+                    in.model->pairing.best_mac[m], in.model->pairing.shared[m] ? " shared" : "");
       out << line;
     }
     out << (mode.user_selected ? "  (selected by frequency)" : "") << (mode.refined ? "" : "  (not refined)") << "\n";
@@ -223,7 +224,7 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
       if (k >= 0)
         md << " " << k << " | " << fixed(in.model->modes.f_hz[static_cast<std::size_t>(k)], 3) << " | "
            << num(100 * in.model->modes.zeta[static_cast<std::size_t>(k)], 4) << " | "
-           << fixed(in.model->pairing.best_mac[m], 3) << " |";
+           << fixed(in.model->pairing.best_mac[m], 3) << (in.model->pairing.shared[m] ? " (shared)" : "") << " |";
       else
         md << " — | | | |";
     }
@@ -273,6 +274,11 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
     stems.push_back("auto_mac");
     md << "![auto-MAC](auto_mac.svg)\n";
   }
+  if (in.model && std::find(in.model->pairing.shared.begin(), in.model->pairing.shared.end(), true) !=
+                      in.model->pairing.shared.end())
+    md << "\n*(shared)*: another identified mode has the same best-matching model mode. The channels cannot tell "
+          "their shapes apart (few sensors, or all on one line), or the model lacks a mode the structure has; "
+          "compare the frequencies.\n";
   if (in.model && !r.modes.empty()) {
     std::vector<std::string> model_labels;
     for (std::size_t k = 0; k < in.model->modes.f_hz.size(); ++k)

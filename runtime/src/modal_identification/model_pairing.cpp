@@ -84,6 +84,9 @@ ModePairing pair_modes(const std::vector<IdentifiedMode>& identified, const Mode
     out.model_mode.push_back(static_cast<int>(best));
     out.best_mac.push_back(best >= 0 ? out.mac(i, best) : 0.0);
   }
+  for (std::size_t i = 0; i < out.model_mode.size(); ++i)
+    out.shared.push_back(out.model_mode[i] >= 0 &&
+                         std::count(out.model_mode.begin(), out.model_mode.end(), out.model_mode[i]) > 1);
   return out;
 }
 
