@@ -62,7 +62,7 @@ int run_modal(int argc, char** argv) {
   CLI::App app{
       "Experimental modal analysis of measured FRFs, no model needed: poles by the (poly-reference) "
       "least-squares complex-frequency method over a range of orders, a stabilization diagram, automatic "
-      "selection of the physical poles, residues by LSFD with residual terms, and a mode table.",
+      "selection of the physical poles and their refinement, residues by LSFD with residual terms, and a mode table.",
       "mbgen modal"};
   std::vector<std::string> data_paths, sets;
   std::string band_text, model_path, json_path, report_dir, quantity_text = "auto";
@@ -82,12 +82,15 @@ int run_modal(int argc, char** argv) {
                  "use the poles nearest these frequencies [Hz] instead of the automatic choice")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
+  bool no_refine = false;
+  app.add_flag("--no-refine", no_refine, "keep the LSCF poles (cluster medians) instead of refining them");
   app.add_option("--quantity", quantity_text,
                  "what the FRFs are: auto (from a UFF file's ordinate type or the model's outputs), receptance, "
                  "mobility or accelerance")
       ->check(CLI::IsMember({"auto", "receptance", "mobility", "accelerance"}));
   app.set_version_flag("--version", std::string("mbgen ") + kVersion);
   return run_guarded(app, argc, argv, [&] {
+    options.refine = !no_refine;
     const FrequencyBand band = band_text.empty() ? FrequencyBand{} : parse_band(band_text);
     if (!sets.empty() && model_path.empty()) throw CLI::ValidationError("--set", "needs --model");
     OutputFiles::require_writable(json_path);
