@@ -14,6 +14,7 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 Eigen::MatrixXd stack_real(const Eigen::MatrixXcd& h) {
   Eigen::MatrixXd out(2 * h.rows(), h.cols());
+  if (h.cols() == 0) return out;  // (a block below the top of an empty matrix would offset a null pointer)
   out.topRows(h.rows()) = h.real();
   out.bottomRows(h.rows()) = h.imag();
   return out;

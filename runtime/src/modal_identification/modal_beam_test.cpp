@@ -53,7 +53,7 @@ TEST_CASE("the beam's six bending modes, with plausible damping", "[modal][beam]
   CHECK(id.fit.channel_error.maxCoeff() < 0.06);
 }
 
-TEST_CASE("the beam's CSV and UFF files give the same modes", "[modal][beam]") {
+TEST_CASE("slow: the beam's CSV and UFF files give the same modes", "[modal][beam][slow]") {
   const ModalIdentification uff = from_uff();
   // The CSV does not say what the FRFs are: told it is accelerance, it is the same data to 10 digits.
   const ModalIdentification csv = from_csv(FrfQuantity::Accelerance);

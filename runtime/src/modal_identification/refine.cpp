@@ -58,7 +58,7 @@ Evaluation evaluate(const ModalData& data, const Eigen::MatrixXcd& hw, const Pol
   const Eigen::MatrixXd rs = stack_real(r);
   e.residual = Eigen::Map<const Eigen::VectorXd>(rs.data(), rs.size());
   e.cost = e.residual.squaredNorm();
-  if (!with_jacobian) return e;
+  if (!with_jacobian || set.active.empty()) return e;
 
   const Eigen::Index lines = data.f_hz.size(), channels = hw.cols();
   const Eigen::Index active = static_cast<Eigen::Index>(set.active.size());
@@ -101,9 +101,10 @@ Evaluation evaluate(const ModalData& data, const Eigen::MatrixXcd& hw, const Pol
 // Levenberg-Marquardt with Marquardt's diagonal scaling from theta; returns the last accepted theta.
 Eigen::VectorXd minimize(const ModalData& data, const Eigen::MatrixXcd& hw, const PoleSet& set, Eigen::VectorXd theta,
                          const LsfdOptions& lsfd_options, int max_iterations, int& iterations) {
+  iterations = 0;
+  if (theta.size() == 0) return theta;  // every pole held: nothing to move
   Evaluation e = evaluate(data, hw, set, theta, lsfd_options, true);
   double mu = 1e-3;
-  iterations = 0;
   for (int it = 0; it < max_iterations; ++it) {
     const Eigen::MatrixXd jtj = e.jacobian.transpose() * e.jacobian;
     const Eigen::VectorXd g = e.jacobian.transpose() * e.residual;

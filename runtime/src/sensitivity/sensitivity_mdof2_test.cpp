@@ -14,7 +14,7 @@ double unit(std::mt19937_64& engine) { return static_cast<double>(engine() >> 11
 
 }  // namespace
 
-TEST_CASE("Sobol indices of mdof2's frequencies agree with brute force", "[sensitivity][sobol]") {
+TEST_CASE("slow: Sobol indices of mdof2's frequencies agree with brute force", "[sensitivity][sobol][slow]") {
   const test::Mdof2Model model;
   const Eigen::VectorXd p = model.info().default_values();
   const std::vector<ParameterRange> ranges = parameter_ranges(model.info(), p, 0.2, false);
