@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
@@ -104,9 +105,11 @@ int run_sensitivity(int argc, char** argv) {
       } catch (const std::invalid_argument& e) {
         throw CLI::ValidationError(bounds ? "--bounds" : "--spread", e.what());
       }
-      range_text = bounds ? "their declared bounds"
-                          : "value * [1 - " + std::to_string(spread).substr(0, 6) + ", 1 + " +
-                                std::to_string(spread).substr(0, 6) + "] within their bounds";
+      std::ostringstream spread_text;
+      spread_text << spread;
+      range_text = bounds
+                       ? "their declared bounds"
+                       : "value * [1 - " + spread_text.str() + ", 1 + " + spread_text.str() + "] within their bounds";
       progress_line("sensitivity: Sobol indices, " + std::to_string(sobol.samples * (ranges.size() + 2)) +
                     " modal analyses on " + std::to_string(sobol.threads) + " threads");
       global_result = global_sensitivity(*model, p, ranges, sobol);

@@ -25,6 +25,7 @@ void write_file(const std::string& dir, const std::string& name, const std::stri
 
 std::string num(double x, int digits = 3) {
   if (!std::isfinite(x)) return "—";
+  if (x == 0) x = 0;  // no "-0"
   std::ostringstream s;
   s << std::setprecision(digits) << x;
   return s.str();
@@ -174,7 +175,7 @@ void write_sensitivity_report(const std::string& dir, const SensitivityReportInp
   for (std::size_t r = 0; r < l.modes.size(); ++r) {
     md << "| " << mode_labels[r] << " |";
     for (std::size_t c = 0; c < in.visibility.channels.size(); ++c)
-      md << " " << num(in.visibility.dominance(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)), 2) << " |";
+      md << " " << num(in.visibility.dominance(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)), 4) << " |";
     md << " `"
        << (in.visibility.channels.empty() ? ""
                                           : in.visibility.channels[static_cast<std::size_t>(in.visibility.best[r])])
