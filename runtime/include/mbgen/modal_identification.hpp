@@ -137,7 +137,7 @@ struct SelectedPole {
 // stable in frequency and in damping or shape (in damping when the shapes have one entry). Two poles of
 // different orders are neighbours within frequency + shape of the distance |dlambda|/|lambda| + (1 - MAC). The
 // pole with the most neighbours (the nearest at each order) seeds a cluster of them, which leaves the pool; a
-// cluster is physical when it spans min_orders_fraction of the orders and holds at least 3 fully stable poles.
+// cluster is physical when it spans min_orders_fraction of the orders and holds a fully stable pole.
 // Repeated while a cluster is large enough. Sorted by frequency.
 std::vector<SelectedPole> select_physical_poles(const StabilizationDiagram& diagram,
                                                 const SelectionOptions& options = {});

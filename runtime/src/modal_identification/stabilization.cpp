@@ -18,7 +18,7 @@ using Stability = DiagramPole::Stability;
 
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kUserWindow = 0.02;  // select_poles_near: relative distance in frequency
-constexpr int kMinFullyStable = 3;    // a physical pole's cluster holds at least this many fully stable poles
+constexpr int kMinFullyStable = 1;    // a physical pole's cluster holds at least this many fully stable poles
 
 // Distance of two poles of the diagram: relative distance of the complex poles plus the shapes' disagreement.
 double pole_distance(const DiagramPole& a, const DiagramPole& b) {
