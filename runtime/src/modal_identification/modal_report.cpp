@@ -146,7 +146,8 @@ void mac_table(std::ostringstream& md, const Eigen::MatrixXd& mac, const std::ve
 std::string modal_summary(const ModalReportInput& in) {
   const ModalIdentification& r = in.result;
   std::ostringstream out;
-  out << r.modes.size() << " modes from " << in.data.channels.size() << " channels, " << num(in.data.f_hz[0], 6) << ".."
+  out << r.modes.size() << (r.modes.size() == 1 ? " mode" : " modes") << " from " << in.data.channels.size()
+      << (in.data.channels.size() == 1 ? " channel, " : " channels, ") << num(in.data.f_hz[0], 6) << ".."
       << num(in.data.f_hz[in.data.f_hz.size() - 1], 6) << " Hz (" << frf_quantity_name(in.data.quantity) << "), "
       << r.method << ", orders 1.." << (r.diagram.orders.empty() ? 0 : r.diagram.orders.back()) << "\n";
   char line[256];
