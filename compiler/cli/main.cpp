@@ -17,7 +17,11 @@ void print_usage() {
                "  mbgen inspect MODEL.mdl [--format markdown|latex|json]          symbolic matrices, TFs, modes\n"
                "  mbgen fit MODEL.mdl --data FILE... [--json OUT] [--report DIR]  estimate parameters\n"
                "  mbgen diagnose MODEL.mdl --data FILE... [--json OUT] [--report DIR] [--extended OUT.mdl]\n"
-               "                                                                  find and fix what the model misses\n\n"
+               "                                                                  find and fix what the model misses\n"
+               "  mbgen modal --data FILE... [--band LO:HI] [--model MODEL.mdl] [--json OUT] [--report DIR]\n"
+               "                                                                  experimental modal analysis of FRFs\n"
+               "  mbgen sensitivity MODEL.mdl [--global] [--sweep NAME=LO:HI:N] [--json OUT] [--report DIR]\n"
+               "                                                                  how the modes depend on the parameters\n\n"
                "Run `mbgen COMMAND --help` for a command's options.\n";
 }
 
@@ -40,5 +44,7 @@ int main(int argc, char** argv) {
   if (first == "inspect") return mbgen::cli::run_inspect(argc - 1, argv + 1);
   if (first == "fit") return mbgen::cli::run_fit(argc - 1, argv + 1);
   if (first == "diagnose") return mbgen::cli::run_diagnose(argc - 1, argv + 1);
+  if (first == "modal") return mbgen::cli::run_modal(argc - 1, argv + 1);
+  if (first == "sensitivity") return mbgen::cli::run_sensitivity(argc - 1, argv + 1);
   return mbgen::cli::run_compile(argc, argv);
 }

@@ -1,0 +1,160 @@
+// `mbgen modal --data FILE [--data FILE ...] [--band LO:HI] [--model MODEL.mdl] [--json OUT] [--report DIR]`:
+// experimental modal analysis of measured FRFs (runtime/include/mbgen/modal_identification.hpp, docs/modal.md).
+#include <mbgen/data_error.hpp>
+#include <mbgen/data_set.hpp>
+#include <mbgen/modal_report.hpp>
+#include <mbgen/uff.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "cli/commands.hpp"
+#include "cli/load_data.hpp"
+#include "cli/output_files.hpp"
+#include "cli/run_guarded.hpp"
+#include "cli/version.hpp"
+#include "evaluator/symbolic_evaluator.hpp"
+#include "frontend/parser.hpp"
+
+namespace mbgen::cli {
+
+namespace {
+
+// "LO:HI", either side may be empty (open).
+FrequencyBand parse_band(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  const auto fail = [&] {
+    return CLI::ValidationError("--band", "expected LO:HI in Hz with 0 <= LO < HI, got `" + text + "`");
+  };
+  if (colon == std::string::npos || text.find(':', colon + 1) != std::string::npos) throw fail();
+  FrequencyBand band;
+  const auto number = [&](const std::string& s, double& out) {
+    if (s.empty()) return;
+    std::size_t used = 0;
+    try {
+      out = std::stod(s, &used);
+    } catch (const std::exception&) {
+      throw fail();
+    }
+    if (used != s.size() || !std::isfinite(out)) throw fail();
+  };
+  number(text.substr(0, colon), band.lo_hz);
+  number(text.substr(colon + 1), band.hi_hz);
+  if (band.lo_hz < 0 || !(band.lo_hz < band.hi_hz)) throw fail();
+  return band;
+}
+
+bool is_uff_path(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return path != "-" && (ext == ".uff" || ext == ".unv");
+}
+
+}  // namespace
+
+int run_modal(int argc, char** argv) {
+  CLI::App app{
+      "Experimental modal analysis of measured FRFs, no model needed: poles by the (poly-reference) "
+      "least-squares complex-frequency method over a range of orders, a stabilization diagram, automatic "
+      "selection of the physical poles and their refinement, residues by LSFD with residual terms, and a mode table.",
+      "mbgen modal"};
+  std::vector<std::string> data_paths, sets;
+  std::string band_text, model_path, json_path, report_dir, quantity_text = "auto";
+  ModalOptions options;
+  app.add_option("--data", data_paths, "measured FRFs: CSV or UFF 58/58b; repeatable (same frequency lines)")
+      ->required();
+  app.add_option("--band", band_text, "analyse LO <= f <= HI only (Hz; either side may be left empty)");
+  app.add_option("--model", model_path, "pair the identified modes with this model's modes by MAC (.mdl)");
+  app.add_option("--set", sets, "with --model: override a parameter's value, NAME=VALUE (repeatable)");
+  app.add_option("--json", json_path, "write the result (schema mbgen-modal/1); - for standard output");
+  app.add_option("--report", report_dir,
+                 "write a report directory (Markdown with the stabilization diagram, MAC, FRFs)");
+  app.add_option("--max-order", options.lscf.max_order,
+                 "highest model order (default: from the data, about 64 / references)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--select", options.select_hz,
+                 "use the poles nearest these frequencies [Hz] instead of the automatic choice")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  bool no_refine = false;
+  app.add_flag("--no-refine", no_refine, "keep the LSCF poles (cluster medians) instead of refining them");
+  app.add_option("--quantity", quantity_text,
+                 "what the FRFs are: auto (from a UFF file's ordinate type or the model's outputs), receptance, "
+                 "mobility or accelerance")
+      ->check(CLI::IsMember({"auto", "receptance", "mobility", "accelerance"}));
+  app.set_version_flag("--version", std::string("mbgen ") + kVersion);
+  return run_guarded(app, argc, argv, [&] {
+    options.refine = !no_refine;
+    const FrequencyBand band = band_text.empty() ? FrequencyBand{} : parse_band(band_text);
+    if (!sets.empty() && model_path.empty()) throw CLI::ValidationError("--set", "needs --model");
+    OutputFiles::require_writable(json_path);
+    OutputFiles::require_writable(report_dir);
+
+    std::unique_ptr<Model> model;
+    if (!model_path.empty()) {
+      symbolic::DeriveOptions derive;
+      derive.set = parse_set_options(sets);
+      model = evaluator::make_evaluator(frontend::parse_file(model_path), derive);
+    }
+    std::vector<FrfData> frfs;
+    FrfQuantity quantity = FrfQuantity::Unknown;
+    std::string quantity_source;
+    for (std::size_t d = 0; d < data_paths.size(); ++d) {
+      const std::string& path = data_paths[d];
+      DataFile file = model ? read_data_file(path, model->info().inputs, model->info().outputs) : read_data_file(path);
+      if (std::holds_alternative<TimeRecord>(file))
+        throw DataError(path, 0, 0, "modal analysis needs FRFs, but this is a time record");
+      frfs.push_back(std::get<FrfData>(std::move(file)));
+      const FrfQuantity here = is_uff_path(path) ? uff_frf_quantity(read_uff58(path)) : FrfQuantity::Unknown;
+      quantity = d == 0 || here == quantity ? here : FrfQuantity::Unknown;
+    }
+    if (quantity != FrfQuantity::Unknown) quantity_source = "from the UFF ordinate type";
+    if (quantity_text != "auto") {
+      quantity = quantity_text == "receptance" ? FrfQuantity::Receptance
+                 : quantity_text == "mobility" ? FrfQuantity::Mobility
+                                               : FrfQuantity::Accelerance;
+      quantity_source = "given by --quantity";
+    }
+    ModalData data = modal_data(frfs, band, quantity);
+
+    std::optional<ModelComparison> comparison;
+    if (model) {
+      comparison.emplace();
+      comparison->model_file = model_path;
+      comparison->modes = model_modes(*model, model->info().default_values(), data);
+      if (data.quantity == FrfQuantity::Unknown && comparison->modes.quantity != FrfQuantity::Unknown) {
+        data.quantity = comparison->modes.quantity;
+        quantity_source = "from the model's outputs";
+      }
+    }
+
+    options.lscf.progress = [](int order, int max_order) {
+      progress_line("modal: order " + std::to_string(order) + "/" + std::to_string(max_order));
+    };
+    ModalIdentification result;
+    try {
+      result = identify_modes(data, options);
+    } catch (const std::invalid_argument& e) {  // an order or a selected frequency the data cannot serve
+      progress_done();
+      throw CLI::ValidationError(e.what());
+    }
+    progress_done();
+    if (comparison) comparison->pairing = pair_modes(result.modes, comparison->modes);
+
+    const ModalReportInput in{data, result, options, comparison ? &*comparison : nullptr, quantity_source};
+    OutputFiles out;
+    if (!json_path.empty()) out.add(json_path, modal_result_json(in));
+    if (!report_dir.empty()) write_modal_report(out.stage_directory(report_dir), in);
+    out.commit();
+    if (json_path != "-") std::cout << modal_summary(in);
+    return 0;
+  });
+}
+
+}  // namespace mbgen::cli

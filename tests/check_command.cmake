@@ -1,0 +1,31 @@
+# Runs one `mbgen` command (tests/modal, tests/sensitivity) and checks its exit status, that its standard error
+# (on failure) or output (on success) matches PATTERN, and that a failed run leaves nothing behind in its output
+# directory (@OUT@ in ARGS); with EXPECT_FILES, that a successful run wrote them there.
+# Usage: cmake -DMBGEN=... "-DARGS=modal;--data;f.csv" -DSTATUS=0|1|2 "-DPATTERN=regex" [-DEXPECT_FILES=a;b]
+#              -DWORK_DIR=... -P check_command.cmake
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+string(REPLACE "@OUT@" "${WORK_DIR}" run_args "${ARGS}")
+execute_process(COMMAND "${MBGEN}" ${run_args} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL STATUS)
+  message(FATAL_ERROR "expected exit status ${STATUS}, got ${status}\nstdout: ${out}\nstderr: ${err}")
+endif()
+if(STATUS EQUAL 0)
+  set(text "${out}")
+else()
+  set(text "${err}")
+endif()
+if(NOT text MATCHES "${PATTERN}")
+  message(FATAL_ERROR "the output does not match `${PATTERN}`:\n${text}")
+endif()
+if(NOT STATUS EQUAL 0)
+  file(GLOB left "${WORK_DIR}/*" "${WORK_DIR}/.*")
+  if(left)
+    message(FATAL_ERROR "output left behind after a failed run: ${left}")
+  endif()
+endif()
+foreach(f IN LISTS EXPECT_FILES)
+  if(NOT EXISTS "${WORK_DIR}/${f}")
+    message(FATAL_ERROR "${f} was not written")
+  endif()
+endforeach()
