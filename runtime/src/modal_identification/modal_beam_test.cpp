@@ -1,4 +1,4 @@
-// The real beam FRFs of examples/pyuff-beam (accelerance, three roving-hammer points, 1 Hz lines, no coherence):
+// The real beam FRFs of examples/beam (accelerance, three roving-hammer points, 1 Hz lines, no coherence):
 // the six bending modes near 52, 142, 279, 460, 687 and 959 Hz, from the CSV and from the UFF file alike.
 #include "mbgen/csv.hpp"
 #include "mbgen/data_set.hpp"
@@ -13,7 +13,7 @@
 namespace mbgen {
 namespace {
 
-const std::string kDir = std::string(MBGEN_SOURCE_DIR) + "/examples/pyuff-beam/";
+const std::string kDir = std::string(MBGEN_SOURCE_DIR) + "/examples/beam/";
 const double kPeaks[] = {52, 142, 279, 460, 687, 959};  // the README's peaks, read off the magnitude
 
 ModalIdentification from_csv(FrfQuantity quantity) {
