@@ -88,13 +88,17 @@ int run_modal(int argc, char** argv) {
                  "what the FRFs are: auto (from a UFF file's ordinate type or the model's outputs), receptance, "
                  "mobility or accelerance")
       ->check(CLI::IsMember({"auto", "receptance", "mobility", "accelerance"}));
-  app.set_version_flag("--version", std::string("mbgen ") + kVersion);
+  app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     options.refine = !no_refine;
     const FrequencyBand band = band_text.empty() ? FrequencyBand{} : parse_band(band_text);
     if (!sets.empty() && model_path.empty()) throw CLI::ValidationError("--set", "needs --model");
-    OutputFiles::require_writable(json_path);
-    OutputFiles::require_writable(report_dir);
+    OutputPlan plan;
+    plan.files = {{"--json", json_path}};
+    plan.report_dir = report_dir;
+    plan.inputs = data_paths;
+    if (!model_path.empty()) plan.inputs.push_back(model_path);
+    plan.check();
 
     std::unique_ptr<Model> model;
     if (!model_path.empty()) {

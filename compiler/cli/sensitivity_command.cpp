@@ -80,12 +80,15 @@ int run_sensitivity(int argc, char** argv) {
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("--json", json_path, "write the result (schema mbgen-sensitivity/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with plots)");
-  app.set_version_flag("--version", std::string("mbgen ") + kVersion);
+  app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     if (!global && (bounds || app.count("--samples") || app.count("--seed") || app.count("--spread")))
       throw CLI::ValidationError("--samples, --seed, --spread and --bounds need --global");
-    OutputFiles::require_writable(json_path);
-    OutputFiles::require_writable(report_dir);
+    OutputPlan plan;
+    plan.files = {{"--json", json_path}};
+    plan.report_dir = report_dir;
+    plan.inputs = {model_path};
+    plan.check();
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(sets);
     const auto model = evaluator::make_evaluator(frontend::parse_file(model_path), derive);
