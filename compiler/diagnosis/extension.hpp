@@ -1,4 +1,4 @@
-// Candidate extensions of a model for `mbgen diagnose` (ids: /work/shared/design/INTERFACES.md, operators:
+// Candidate extensions of a model for `mbgen diagnose` (ids: docs/interfaces.md, operators:
 // docs/extensions.md).
 //
 // Each operator looks at the model's own structure (its grounds, bodies, elements, parameters and signals) and

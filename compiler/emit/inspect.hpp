@@ -1,7 +1,7 @@
 // The inspection emitter behind `mbgen inspect MODEL.mdl --format markdown|latex|json`: parameters,
 // coordinates, inputs, outputs, the symbolic M, C, K (G when there is spin), B and the output maps, the
 // transfer-function coefficients, exact pole-zero cancellations and the modes at the current values.
-// JSON follows schema mbgen-inspect/1 (/work/shared/design/INTERFACES.md) exactly. Output is deterministic.
+// JSON follows schema mbgen-inspect/1 (docs/interfaces.md) exactly. Output is deterministic.
 #pragma once
 
 #include <string>

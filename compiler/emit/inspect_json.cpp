@@ -1,4 +1,4 @@
-// schema mbgen-inspect/1: exactly the keys of INTERFACES.md, in its order.
+// schema mbgen-inspect/1: exactly the keys of docs/interfaces.md, in its order.
 #include <nlohmann/json.hpp>
 
 #include "emit/infix_printer.hpp"

@@ -38,7 +38,7 @@ TEST_CASE("JSON inspection follows mbgen-inspect/1") {
   for (const auto& tf : j["transfer_functions"])
     for (const char* part : {"numerator", "denominator"})
       for (const auto& e : tf[part]) CHECK(std::regex_match(e.get<std::string>(), allowed));
-  // Modes of Table 5.1 values (REFERENCE-MODELS.md): 89.72 Hz (zeta 0.000514), 166.29 Hz (zeta 0.00455).
+  // Modes of Table 5.1 values (docs/reference-models.md): 89.72 Hz (zeta 0.000514), 166.29 Hz (zeta 0.00455).
   REQUIRE(j["modes"].size() == 2);
   CHECK(j["modes"][0]["f_hz"].get<double>() == Approx(89.72).epsilon(1e-4));
   CHECK(j["modes"][0]["zeta"].get<double>() == Approx(0.000514).epsilon(1e-2));

@@ -1,6 +1,6 @@
-// A SymbolicModel of mdof2 (REFERENCE-MODELS.md) assembled by hand, independent of the symbolic stage:
+// A SymbolicModel of mdof2 (docs/reference-models.md) assembled by hand, independent of the symbolic stage:
 // M = diag(m1, m2), C = [[c11+c12, -c12], [-c12, c12+c22]], K likewise, B = e1, Cd = I, and the G11, G21
-// coefficients as printed in REFERENCE-MODELS.md.
+// coefficients as printed in docs/reference-models.md.
 #pragma once
 
 #include "symbolic/symbolic_model.hpp"

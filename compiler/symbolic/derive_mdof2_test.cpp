@@ -1,4 +1,4 @@
-// mdof2 (REFERENCE-MODELS.md): the derived transfer functions against the closed-form coefficients, the thesis's
+// mdof2 (docs/reference-models.md): the derived transfer functions against the closed-form coefficients, the thesis's
 // printed Eq. 5.19, and the modes of Table 5.1.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// spindle (REFERENCE-MODELS.md): natural frequencies, symmetry, uncoupled blocks, and gyroscopic coupling.
+// spindle (docs/reference-models.md): natural frequencies, symmetry, uncoupled blocks, and gyroscopic coupling.
 #include <catch2/catch.hpp>
 
 #include <Eigen/Eigenvalues>

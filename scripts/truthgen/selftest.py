@@ -9,7 +9,7 @@
 0. Existing command lines still write byte-identical files: hashes of files made before --draw, --averages,
    --no-coherence and the sensor, base_on_feet and frame3 cases were added (the test data of tests/diagnosis
    and the committed example data depend on them).
-1. The assembled reference models against REFERENCE-MODELS.md: spindle inertias and undamped natural
+1. The assembled reference models against docs/reference-models.md: spindle inertias and undamped natural
    frequencies (0.1 %), mdof2 modes and damping ratios, mdof2 G11/G21 against the printed closed form; frame3
    against its hand-written characteristic polynomial and accelerance, and against examples/frame3/frame3.mdl.
 2. Structure: M, K, C symmetric, G skew, the spindle's two uncoupled blocks, spin couples them.
@@ -88,7 +88,7 @@ def check_reference():
           "mdof2 modes %.3f, %.3f Hz (reference 89.72, 166.29)" % (fr[0], fr[1]))
     check(abs(zeta[1] - 0.00455) < 5e-6 and abs(zeta[0] - 0.000514) < 5e-7,
           "mdof2 damping ratios %.6f, %.6f (reference 0.000514, 0.00455)" % (zeta[0], zeta[1]))
-    # Closed form of REFERENCE-MODELS.md, with a damped helix so that every coefficient matters.
+    # Closed form of docs/reference-models.md, with a damped helix so that every coefficient matters.
     q = dict(models.MDOF2_NOMINAL, c12=3.0)
     m1, m2, k11, k22, k12, c11, c22, c12 = (q[n] for n in ("m1", "m2", "k11", "k22", "k12", "c11", "c22", "c12"))
     mm = m1 * m2

@@ -5,7 +5,7 @@
     python3 scripts/truthgen/truthgen.py --example spindle --case sensor_delay --kind frf --draw 3 -o frf.csv
     python3 scripts/truthgen/truthgen.py --list
 
-Writes FILE.csv in the formats of INTERFACES.md ("Measured data") and FILE.truth.json (truth values, the
+Writes FILE.csv in the formats of docs/interfaces.md ("Measured data") and FILE.truth.json (truth values, the
 case and its hidden effect; for people and for checking recovered values, never for deciding verdicts).
 See docs/truthgen.md.
 """

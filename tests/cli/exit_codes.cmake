@@ -37,7 +37,10 @@ expect_run(STATUS 0 ARGS fit one.mdl --data bom.csv --starts 1)
 # A data file name that is not UTF-8 (Latin-1 "é"): the JSON result is still valid UTF-8, the name with U+FFFD.
 string(ASCII 233 latin1)
 file(COPY_FILE "${WORK}/one_frf.csv" "${WORK}/d${latin1}.csv")
+file(COPY_FILE "${WORK}/one.mdl" "${WORK}/m${latin1}.mdl")
 expect_run(STATUS 0 STDOUT "\"d�.csv\"" ARGS fit one.mdl --data "d${latin1}.csv" --starts 1 --json -)
+expect_run(STATUS 0 STDOUT "\"d�.csv\"" ARGS modal --data "d${latin1}.csv" --json -)
+expect_run(STATUS 0 STDOUT "\"m�.mdl\"" ARGS sensitivity "m${latin1}.mdl" --json -)
 
 # A valid model the numeric evaluator cannot run (a parameter in an exponent) is the model's limit, status 1 with the
 # file named; it was reported as a bare exception message.

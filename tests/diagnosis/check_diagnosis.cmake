@@ -3,6 +3,8 @@
 #   -DMBGEN=... -DPYTHON=... -DTRUTHGEN=... -DMODEL=... -DWORK_DIR=...
 #   -DDATA="example:case:kind:seed[:NAME=VALUE][:duration=S][:draw=N][:averages=N][:nocoh][:fs=HZ]|..."
 #                                                                     one or more data sets
+#         or "file=PATH|..." for measured data as they are (real data, no generator)
+#   -DDIAGNOSE_ARGS="--fit-band;20:320" (optional): more arguments of `mbgen diagnose`
 #   -DEXPECT_VERDICT=extended|no_extension_justified|unexplained|not_extended
 #   -DEXPECT_SELECTED=id (first selected extension, when extended)
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -11,6 +13,10 @@ string(REPLACE "|" ";" sets "${DATA}")
 set(data_args "")
 set(index 0)
 foreach(set IN LISTS sets)
+  if(set MATCHES "^file=(.*)$")
+    list(APPEND data_args --data "${CMAKE_MATCH_1}")
+    continue()
+  endif()
   string(REPLACE ":" ";" f "${set}")
   list(GET f 0 example)
   list(GET f 1 case)
@@ -47,7 +53,7 @@ foreach(set IN LISTS sets)
   math(EXPR index "${index} + 1")
 endforeach()
 
-execute_process(COMMAND "${MBGEN}" diagnose "${MODEL}" ${data_args} --json "${WORK_DIR}/diagnosis.json"
+execute_process(COMMAND "${MBGEN}" diagnose "${MODEL}" ${data_args} ${DIAGNOSE_ARGS} --json "${WORK_DIR}/diagnosis.json"
                         --report "${WORK_DIR}/report" --extended "${WORK_DIR}/extended.mdl"
                 RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT status EQUAL 0)

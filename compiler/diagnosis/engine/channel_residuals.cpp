@@ -4,8 +4,11 @@
 #include <mbgen/frf_noise.hpp>
 #include <mbgen/welch.hpp>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "diagnosis/engine/data_split.hpp"
@@ -98,22 +101,127 @@ void keep_record_lines_above_noise(ChannelResidual& r, double segments) {
 // those the noise made large, and against a model near zero they would read as findings (2 % of noise lines pass
 // |h| >= 2 sigma; nine lines' mean power passes 4 sigma^2 about once in 10^9). The lines depend on the data
 // alone, so that every model is judged on the same lines.
-void keep_frf_lines_above_noise(ChannelResidual& r) {
+// The model's own prediction variance is added to sigma only after the lines are chosen (`extra_variance`).
+void keep_frf_lines_above_noise(ChannelResidual& r, const Eigen::VectorXd& extra_variance) {
   const Eigen::Index n = r.measured.size();
-  keep_lines(r, [&](Eigen::Index k) {
+  std::vector<bool> judged(static_cast<std::size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Index lo = std::max<Eigen::Index>(0, k - 4), hi = std::min<Eigen::Index>(n - 1, k + 4);
     double power = 0, noise = 0;
     for (Eigen::Index j = lo; j <= hi; ++j) power += std::norm(r.measured[j]), noise += r.sigma[j] * r.sigma[j];
-    return power >= 4.0 * noise;
-  });
+    judged[static_cast<std::size_t>(k)] = power >= 4.0 * noise;
+  }
+  if (extra_variance.size() == n) r.sigma = (r.sigma.array().square() + extra_variance.array()).sqrt().matrix();
+  keep_lines(r, [&](Eigen::Index k) { return judged[static_cast<std::size_t>(k)]; });
 }
+
+// A measured FRF's channel as the fit saw it: its frequencies and the noise level there (the full data's, looked
+// up by frequency: the fitted lines are a subset of the data's lines).
+struct FittedChannel {
+  int output = -1, input = -1;
+  std::vector<double> f_hz;
+  std::vector<double> sigma;
+};
+
+// The parameters' covariance from the noise alone: the inverse Fisher information of the fitted lines,
+// sum over lines of 2 Re(j^H j) / sigma^2 (real and imaginary parts each carry half of the complex noise
+// variance sigma^2). Returns the model's prediction variance E|dH|^2 = j Cov j^H at every line of `data`'s FRFs not
+// among the fitted ones, per data set and channel (empty for records), in the order channel_residuals walks them.
+class PredictionVariance {
+ public:
+  PredictionVariance(const Model& model, const std::vector<DataSet>& data, const Eigen::VectorXd& values,
+                     const FittedOn& fitted)
+      : model_(model) {
+    if (!fitted.data || !fitted.estimated || fitted.estimated->empty()) return;
+    for (const std::string& name : *fitted.estimated) {
+      const int i = model.info().parameter_index(name);
+      if (i >= 0) columns_.push_back(i);
+    }
+    const auto p = static_cast<Eigen::Index>(columns_.size());
+    if (p == 0) return;
+    Eigen::MatrixXd fisher = Eigen::MatrixXd::Zero(p, p);
+    for (const DataSet& fd : *fitted.data) {
+      const FrfData* fit_frf = std::get_if<FrfData>(&fd.content);
+      if (!fit_frf || fit_frf->f_hz.size() == 0) continue;
+      const DataSet* full = nullptr;
+      for (const DataSet& d : data)
+        if (d.file() == fd.file() && d.is_frf()) full = &d;
+      if (!full) continue;
+      const FrfData& all = std::get<FrfData>(full->content);
+      const std::vector<double> f(fit_frf->f_hz.data(), fit_frf->f_hz.data() + fit_frf->f_hz.size());
+      const FrfJacobianResult jac = frf_jacobian(model, with_set_values(model, fd, values), f);
+      const Eigen::Index outputs = jac.H.empty() ? 0 : jac.H.front().rows();
+      for (const FrfChannel& c : fit_frf->channels) {
+        const int o = model.info().output_index(c.output), i = model.info().input_index(c.input);
+        const FrfChannel* whole = all.find(c.output, c.input);
+        if (o < 0 || i < 0 || !whole) continue;
+        const FrfNoise noise = frf_noise(all.f_hz, *whole);
+        const Eigen::Index row = o + i * outputs;
+        Eigen::Index line = 0;
+        for (std::size_t k = 0; k < f.size(); ++k) {
+          while (line < all.f_hz.size() && all.f_hz[line] < f[k]) ++line;
+          if (line == all.f_hz.size() || all.f_hz[line] != f[k]) continue;
+          const double s2 = noise.sigma[line] * noise.sigma[line];
+          if (!(s2 > 0)) continue;
+          Eigen::RowVectorXcd j(p);
+          for (Eigen::Index q = 0; q < p; ++q) j[q] = jac.dH[k](row, columns_[static_cast<std::size_t>(q)]);
+          fisher.noalias() += 2.0 * (j.adjoint() * j).real() / s2;
+        }
+      }
+      fitted_lines_[fd.file()] = f;
+    }
+    // A pseudo-inverse: directions the fitted lines do not determine stay out (the fit reports them unidentifiable).
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(fisher);
+    const Eigen::VectorXd ev = eig.eigenvalues();
+    const double top = ev.size() ? ev.maxCoeff() : 0;
+    if (!(top > 0)) return;
+    Eigen::VectorXd inv = Eigen::VectorXd::Zero(p);
+    for (Eigen::Index q = 0; q < p; ++q)
+      if (ev[q] > top * 1e-14) inv[q] = 1 / ev[q];
+    covariance_ = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+  }
+
+  // The prediction variance at the lines of data set `d`'s FRFs for channel (o, i); zero at the fitted lines.
+  // Empty when there is no covariance.
+  Eigen::VectorXd at(const DataSet& d, const Eigen::VectorXd& values, const std::vector<double>& f, int o,
+                     int i) {
+    if (covariance_.size() == 0) return {};
+    auto lines = fitted_lines_.find(d.file());
+    if (jacobian_file_ != d.file()) {
+      jacobian_ = frf_jacobian(model_, with_set_values(model_, d, values), f);
+      jacobian_file_ = d.file();
+    }
+    const Eigen::Index outputs = jacobian_.H.empty() ? 0 : jacobian_.H.front().rows();
+    const Eigen::Index row = o + i * outputs;
+    const auto p = static_cast<Eigen::Index>(columns_.size());
+    Eigen::VectorXd var = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(f.size()));
+    for (std::size_t k = 0; k < f.size(); ++k) {
+      if (lines != fitted_lines_.end() && std::binary_search(lines->second.begin(), lines->second.end(), f[k]))
+        continue;  // the fit saw this line: its residual is, if anything, smaller than the noise
+      Eigen::RowVectorXcd j(p);
+      for (Eigen::Index q = 0; q < p; ++q) j[q] = jacobian_.dH[k](row, columns_[static_cast<std::size_t>(q)]);
+      var[static_cast<Eigen::Index>(k)] = std::max(0.0, (j * covariance_ * j.adjoint())(0, 0).real());
+    }
+    return var;
+  }
+
+ private:
+  const Model& model_;
+  std::vector<int> columns_;
+  Eigen::MatrixXd covariance_;
+  std::map<std::string, std::vector<double>> fitted_lines_;
+  std::string jacobian_file_;
+  FrfJacobianResult jacobian_;
+};
 
 }  // namespace
 
 std::vector<ChannelResidual> channel_residuals(const Model& model, const std::vector<DataSet>& data,
-                                               const Eigen::VectorXd& values, const FrfWeighting& weighting) {
+                                               const Eigen::VectorXd& values, const FrfWeighting& weighting,
+                                               const FittedOn& fitted) {
   std::vector<ChannelResidual> out;
   const ModelInfo& info = model.info();
+  PredictionVariance prediction(model, data, values, fitted);
   for (const DataSet& d : data) {
     FrfData frf;
     std::optional<FrfData> model_frf;  // for a record: the model's FRFs as the same estimator sees them
@@ -188,7 +296,7 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
         const FrfNoise noise = frf_noise(frf.f_hz, c);
         r.sigma = noise.sigma;
         r.noise = noise.description();
-        keep_frf_lines_above_noise(r);
+        keep_frf_lines_above_noise(r, prediction.at(d, values, f, o, i));
       }
       out.push_back(std::move(r));
     }

@@ -18,11 +18,15 @@ ordered_json fit_summary(const FitResult& fit, double validation) {
 }
 
 ordered_json parameter(const ParameterEstimate& p) {
-  // A parameter at a bound has no std (fit.hpp); the bound it sits on is named.
+  // A parameter at a bound, or one the data do not determine, has no std (fit.hpp), as in mbgen-fit/1; the bound
+  // it sits on is named.
   ordered_json out = {{"value", number(p.value)},
-                      {"std", p.at_bound.empty() ? number(p.std) : ordered_json(nullptr)},
+                      {"std", p.identifiable ? number(p.std) : ordered_json(nullptr)},
                       {"identifiable", p.identifiable}};
-  if (!p.at_bound.empty()) out["at_bound"] = p.at_bound;
+  if (!p.at_bound.empty()) {
+    out["at_bound"] = p.at_bound;
+    out["pull_chi2"] = number(p.pull_chi2);
+  }
   return out;
 }
 
@@ -75,6 +79,14 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
                           {"plausible", c.plausible},
                           {"doubts", c.doubts},
                           {"qualifies", c.qualifies}};
+    // A freed parameter (free_parameter:P) is no new one, but its estimate is what the candidate is about.
+    if (!c.freed_parameters.empty()) {
+      ordered_json freed = ordered_json::object();
+      for (const std::string& name : c.freed_parameters)
+        for (const ParameterEstimate& p : c.fit.parameters)
+          if (p.name == name) freed[p.name] = parameter(p);
+      entry["freed_parameters"] = freed;
+    }
     entry["screen_delta_bic"] = number(c.screen_delta_bic);
     if (c.screen_records_delta_bic != 0) entry["screen_records_delta_bic"] = number(c.screen_records_delta_bic);
     entry["fully_fitted"] = c.fully_fitted;

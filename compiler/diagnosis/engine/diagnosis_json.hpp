@@ -1,4 +1,4 @@
-// The diagnosis result as JSON, schema `mbgen-diagnosis/1` (shared/design/INTERFACES.md). Extra fields beyond
+// The diagnosis result as JSON, schema `mbgen-diagnosis/1` (docs/interfaces.md). Extra fields beyond
 // the schema (documented in docs/diagnosis.md): discrepancy band, size and data set; each candidate's
 // description, round, plausibility doubts and whether it qualified; the findings left after extension.
 #pragma once

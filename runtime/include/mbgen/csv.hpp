@@ -1,4 +1,4 @@
-// CSV time records and FRFs, in the formats of INTERFACES.md ("Measured data"); details in docs/data.md.
+// CSV time records and FRFs, in the formats of docs/interfaces.md ("Measured data"); details in docs/data.md.
 //
 // Readers validate strictly and throw DataError naming file, line and column (the 1-based field index,
 // with the column's name). `file_name` is used for messages only; "-" conventionally means standard input.

@@ -18,7 +18,7 @@ struct SetValue {
 };
 using SetMap = std::map<std::string, SetValue>;
 
-// How inputs behave between samples of a time record (INTERFACES.md, "Measured data").
+// How inputs behave between samples of a time record (docs/interfaces.md, "Measured data").
 enum class HoldMode {
   ZeroOrder,  // default: each input sample is held constant until the next one
   None,       // `# hold=none`: band-limited inputs sampled without hold

@@ -1,4 +1,4 @@
-// Output of a fit: the `mbgen-fit/1` JSON (INTERFACES.md) and a report directory with Markdown and gnuplot plots.
+// Output of a fit: the `mbgen-fit/1` JSON (docs/interfaces.md) and a report directory with Markdown and gnuplot plots.
 #pragma once
 
 #include "mbgen/fit.hpp"

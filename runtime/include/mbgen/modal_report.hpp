@@ -1,4 +1,4 @@
-// Output of `mbgen modal`: the `mbgen-modal/1` JSON (INTERFACES.md, extended in docs/modal.md) and a report
+// Output of `mbgen modal`: the `mbgen-modal/1` JSON (docs/interfaces.md, extended in docs/modal.md) and a report
 // directory with Markdown and gnuplot plots.
 #pragma once
 

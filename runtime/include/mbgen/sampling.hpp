@@ -1,4 +1,4 @@
-// Checks on sampled records (INTERFACES.md: the time column is increasing and uniformly sampled).
+// Checks on sampled records (docs/interfaces.md: the time column is increasing and uniformly sampled).
 #pragma once
 
 #include <Eigen/Core>

@@ -5,7 +5,7 @@
 //   C = [Cd - Ca M^-1 K, Cv - Ca M^-1 C],  D = Ca M^-1 B   (acceleration outputs feed the input through).
 //
 // Discretisation with sampling interval T, exact for the assumed input between samples:
-// - InputHold::ZeroOrder: u is held constant over each interval (records without a `# hold` line, INTERFACES.md;
+// - InputHold::ZeroOrder: u is held constant over each interval (records without a `# hold` line, docs/interfaces.md;
 //   the thesis's Eq. 3.9): x[k+1] = Phi x[k] + Gamma0 u[k], Phi = e^{AT}, Gamma0 = int_0^T e^{A s} ds B.
 // - InputHold::FirstOrder: u is interpolated linearly between samples (triangle hold; `# hold=none`, a
 //   band-limited input sampled without hold): x[k+1] = Phi x[k] + Gamma0 u[k] + Gamma1 u[k+1].

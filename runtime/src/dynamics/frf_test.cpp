@@ -14,7 +14,7 @@ namespace {
 using cd = std::complex<double>;
 const double pi = std::acos(-1.0);
 
-// REFERENCE-MODELS.md closed form: G11 = (b2 s^2 + b1 s + b0) / (s^4 + a3 s^3 + a2 s^2 + a1 s + a0), G21 with
+// docs/reference-models.md closed form: G11 = (b2 s^2 + b1 s + b0) / (s^4 + a3 s^3 + a2 s^2 + a1 s + a0), G21 with
 // numerator b1* s + b0*.
 struct Mdof2ClosedForm {
   double m1 = 1.39, m2 = 1.09, k11 = 1.38e6, k22 = 0.24e6, k12 = 0.12e6, c11 = 13.42, c22 = 0.47, c12 = 0;

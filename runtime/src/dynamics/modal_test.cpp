@@ -33,7 +33,7 @@ TEST_CASE("mdof2 modes match the reference frequencies and damping ratios") {
   const auto m = mdof2_matrices();
   const auto modes = mbgen::modal_analysis(m.M, m.C, m.K);
   REQUIRE(modes.size() == 2);
-  // REFERENCE-MODELS.md: 89.72 Hz (zeta 0.000514) and 166.29 Hz (zeta 0.00455), sorted by frequency.
+  // docs/reference-models.md: 89.72 Hz (zeta 0.000514) and 166.29 Hz (zeta 0.00455), sorted by frequency.
   CHECK(modes[0].f_hz == Approx(89.72).margin(0.005));
   CHECK(modes[0].zeta == Approx(0.000514).margin(0.0000005));
   CHECK(modes[1].f_hz == Approx(166.29).margin(0.005));

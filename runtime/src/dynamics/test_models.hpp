@@ -11,7 +11,7 @@
 
 namespace mbgen::test {
 
-// mdof2 (REFERENCE-MODELS.md): two masses, coordinates mass1.x and mass2.x, input F1 on mass1, outputs
+// mdof2 (docs/reference-models.md): two masses, coordinates mass1.x and mass2.x, input F1 on mass1, outputs
 // d1 = q1 and d2 = q2. Parameters in model order m1, m2, k11, k22, k12, c11, c22, c12 (Table 5.1 defaults).
 // With `extra_outputs` two more outputs are appended to exercise the velocity and acceleration paths:
 // v1 = q1' and a2 = q2''.

@@ -1,5 +1,5 @@
 // Frequency-domain output-error fits of mdof2 on FRFs from the closed-form transfer functions of
-// REFERENCE-MODELS.md (test_support.hpp), with noise at 40 dB SNR.
+// docs/reference-models.md (test_support.hpp), with noise at 40 dB SNR.
 #include "test_support.hpp"
 
 #include "mbgen/fit.hpp"

@@ -1,4 +1,4 @@
-// The `mbgen-fit/1` document (INTERFACES.md) plus documented extra members (docs/estimation.md).
+// The `mbgen-fit/1` document (docs/interfaces.md) plus documented extra members (docs/estimation.md).
 #include "mbgen/fit_report.hpp"
 
 #include <nlohmann/json.hpp>
@@ -30,7 +30,10 @@ std::string fit_result_json(const FitResult& r) {
     p["prior"] = number(e.prior);
     p["unit"] = e.unit;
     if (!e.confounded_with.empty()) p["confounded_with"] = e.confounded_with;
-    if (!e.at_bound.empty()) p["at_bound"] = e.at_bound;
+    if (!e.at_bound.empty()) {
+      p["at_bound"] = e.at_bound;
+      p["pull_chi2"] = number(e.pull_chi2);  // how hard the data press it there (docs/estimation.md)
+    }
     params[e.name] = p;
   }
   j["parameters"] = params;

@@ -103,12 +103,12 @@ class LinearModel : public Model {
   ModelDerivatives slope_;
 };
 
-// mdof2 truth (REFERENCE-MODELS.md, Table 5.1), in the order m1, m2, k11, k22, k12, c11, c22, c12.
+// mdof2 truth (docs/reference-models.md, Table 5.1), in the order m1, m2, k11, k22, k12, c11, c22, c12.
 struct Mdof2Values {
   double m1 = 1.39, m2 = 1.09, k11 = 1.38e6, k22 = 0.24e6, k12 = 0.12e6, c11 = 13.42, c22 = 0.47, c12 = 0;
 };
 
-// G11 = d1/F1 and G21 = d2/F1 from the closed-form coefficients of REFERENCE-MODELS.md.
+// G11 = d1/F1 and G21 = d2/F1 from the closed-form coefficients of docs/reference-models.md.
 inline std::complex<double> mdof2_g11(const Mdof2Values& v, double f_hz) {
   const std::complex<double> s(0, 2 * std::acos(-1.0) * f_hz);
   const double mm = v.m1 * v.m2;

@@ -1,4 +1,4 @@
-// The `mbgen-modal/1` document (INTERFACES.md) and its documented extra members (docs/modal.md).
+// The `mbgen-modal/1` document (docs/interfaces.md) and its documented extra members (docs/modal.md).
 #include "mbgen/modal_report.hpp"
 
 #include <nlohmann/json.hpp>
@@ -113,7 +113,8 @@ std::string modal_result_json(const ModalReportInput& in) {
     j["model_modes"] = model_modes;
     j["model_mac"] = matrix(in.model->pairing.mac);
   }
-  return j.dump(2) + "\n";
+  // Invalid UTF-8 in a file name becomes U+FFFD (docs/cli.md), not an exception.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace mbgen

@@ -100,7 +100,8 @@ std::string sensitivity_json(const SensitivityReportInput& in) {
     maps.push_back({{"parameter", m.parameter}, {"values", vector_of(m.values)}, {"traces", traces}});
   }
   j["feature_maps"] = maps;
-  return j.dump(2) + "\n";
+  // Invalid UTF-8 in a file name becomes U+FFFD (docs/cli.md), not an exception.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace mbgen

@@ -1,4 +1,4 @@
-"""Writers for the measured-data CSV formats of INTERFACES.md ("Measured data") and the truth sidecar JSON."""
+"""Writers for the measured-data CSV formats of docs/interfaces.md ("Measured data") and the truth sidecar JSON."""
 import json
 import math
 

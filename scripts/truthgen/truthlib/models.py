@@ -1,4 +1,4 @@
-"""The reference models (shared/design/REFERENCE-MODELS.md) and the three-storey frame, written by hand, with
+"""The reference models (docs/reference-models.md) and the three-storey frame, written by hand, with
 optional hidden effects.
 
 Parameter names are exactly those of examples/mdof2/mdof2.mdl, examples/spindle/spindle.mdl and
@@ -104,7 +104,7 @@ FOOT_PATTERN = (1.0, 3.0, 1.0)   # per-foot stiffness kx : ky : kz (a levelling 
 
 
 def spindle_inertias(p):
-    """Inertias from geometry (REFERENCE-MODELS.md): hollow cylinder and solid box."""
+    """Inertias from geometry (docs/reference-models.md): hollow cylinder and solid box."""
     r2 = p["R_so"] ** 2 + p["R_si"] ** 2
     j_sxx = p["m_s"] * (3 * r2 + p["L_s"] ** 2) / 12
     j_szz = p["m_s"] * r2 / 2

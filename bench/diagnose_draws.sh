@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The diagnosis on hidden effects drawn at random: for each case, DRAWS truths drawn by the independent generator
+# (scripts/truthgen --draw N: parameter offsets and the effect's size within the case's ranges) at 40 dB SNR, each
+# diagnosed, and the outcomes counted: right (the expected extension, or no extension for a control), unexplained,
+# wrong (another extension: the worst outcome), failed. The statistical sweep behind the single-draw tests in
+# tests/diagnosis (which keep CI short).
+#   bench/diagnose_draws.sh [build-dir] [draws] [case-filter-regex]
+#   e.g. bench/diagnose_draws.sh build 5 'mdof2.*frf'
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mbgen=${1:-build}/compiler/mbgen
+draws=${2:-5}
+filter=${3:-.}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# example case kind expected [truthgen options]
+cases=(
+  "mdof2 nominal frf -"
+  "mdof2 nominal frf - --no-coherence"
+  "mdof2 compliant_ground frf compliant_ground:wall"
+  "mdof2 free_parameter frf free_parameter:c12"
+  "mdof2 resonator frf resonator:mass1"
+  "mdof2 resonator frf resonator:mass1 --no-coherence"
+  "mdof2 outside_maxwell frf not_extended"
+  "mdof2 sensor_lowpass frf sensor_dynamics:d2"
+  "mdof2 sensor_highpass frf sensor_dynamics:d2"
+  "mdof2 sensor_delay frf sensor_dynamics:d2"
+  "mdof2 nominal time -"
+  "mdof2 compliant_ground time compliant_ground:wall"
+  "mdof2 sensor_lowpass time sensor_dynamics:d2"
+  "spindle nominal frf -"
+  "spindle compliant_ground frf compliant_ground:base"
+  "spindle base_on_feet frf compliant_ground:base"
+  "spindle untie_parameter frf untie_parameter:k_hby"
+  "spindle resonator frf resonator:spindle"
+  "spindle sensor_lowpass frf sensor_dynamics:xs_front"
+  "spindle outside_maxwell frf not_extended"
+  "frame3 nominal frf -"
+  "frame3 outside_torsion frf not_extended"
+)
+
+printf '%-48s %6s %6s %12s %6s %6s %9s\n' case draws right unexplained wrong failed "s/draw"
+for entry in "${cases[@]}"; do
+  read -r example case kind expected options <<< "$entry"
+  label="$example $case $kind ${options:-}"
+  [[ "$label" =~ $filter ]] || continue
+  right=0 unexplained=0 wrong=0 failed=0
+  t0=$(date +%s)
+  for draw in $(seq 1 "$draws"); do
+    data="$work/data.csv"
+    extra=()
+    [ "$kind" = time ] && extra=(--duration 2)
+    [ "$example" = spindle ] && [ "$kind" = time ] && extra=(--duration 1)
+    # shellcheck disable=SC2086
+    python3 scripts/truthgen/truthgen.py --example "$example" --case "$case" --kind "$kind" --snr-db 40 \
+      --seed $((1000 + draw)) --draw "$draw" ${options:-} "${extra[@]}" -o "$data" > /dev/null
+    if ! "$mbgen" diagnose "examples/$example/$example.mdl" --data "$data" --json "$work/d.json" \
+         > /dev/null 2> "$work/err"; then
+      failed=$((failed + 1))
+      continue
+    fi
+    read -r verdict selected < <(python3 -c "
+import json; j = json.load(open('$work/d.json')); print(j['verdict'], (j['selected'] or ['-'])[0])")
+    if [ "$expected" = - ]; then
+      if [ "$verdict" = no_extension_justified ]; then right=$((right + 1))
+      elif [ "$verdict" = extended ]; then wrong=$((wrong + 1))
+      else unexplained=$((unexplained + 1)); fi
+    elif [ "$expected" = not_extended ]; then
+      if [ "$verdict" = extended ]; then wrong=$((wrong + 1)); else right=$((right + 1)); fi
+    elif [ "$verdict" = extended ] && [ "$selected" = "$expected" ]; then right=$((right + 1))
+    elif [ "$verdict" = extended ]; then wrong=$((wrong + 1))
+    else unexplained=$((unexplained + 1)); fi
+  done
+  per=$(( ($(date +%s) - t0) / draws ))
+  printf '%-48s %6d %6d %12d %6d %6d %9d\n' "$label" "$draws" "$right" "$unexplained" "$wrong" "$failed" "$per"
+done
