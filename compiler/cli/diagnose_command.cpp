@@ -25,6 +25,9 @@ std::string summary(const diagnosis::DiagnosisResult& r) {
   std::ostringstream out;
   out << "verdict: " << r.verdict << "\n";
   for (const std::string& id : r.selected) out << "selected: " << id << "\n";
+  if (!r.nominal.fit.converged)
+    out << "warning: the nominal model's fit did not converge (" << r.nominal.fit.stop_reason
+        << "): some findings may be the fit's, not the model's\n";
   if (!r.nominal.residual.discrepancies.empty()) out << "what the nominal model gets wrong:\n";
   for (const Discrepancy& d : r.nominal.residual.discrepancies) out << "  - " << d.text << "\n";
   if (r.verdict == "extended" && !r.final.residual.discrepancies.empty()) {

@@ -61,6 +61,8 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
   for (const ParameterEstimate& p : result.nominal.fit.parameters) nominal_params[p.name] = parameter(p);
   j["nominal"] = {{"parameters", nominal_params},
                   {"fit", fit_summary(result.nominal.fit, result.nominal.validation_nrmse)},
+                  {"fit_converged", result.nominal.fit.converged},
+                  {"fit_stop_reason", result.nominal.fit.stop_reason},
                   {"mean_normalized_residual", number(result.nominal.residual.mean_z)},
                   {"noise", noise_levels(result.nominal.channels)}};
   j["discrepancies"] = discrepancies(result.nominal.residual);

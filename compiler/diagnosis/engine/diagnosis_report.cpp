@@ -88,6 +88,9 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
     md << "Nothing beyond the noise remains: the nominal model explains the data.\n\n";
   }
 
+  if (!r.nominal.fit.converged)
+    md << "**The nominal model's fit did not converge** (" << r.nominal.fit.stop_reason
+       << "): some findings may be the fit's, not the model's.\n\n";
   md << "## What the nominal model gets wrong\n\n";
   if (r.nominal.residual.discrepancies.empty()) md << "No finding above the noise level.\n\n";
   for (const Discrepancy& d : r.nominal.residual.discrepancies) md << "- " << d.text << " (`" << d.kind << "`)\n";
