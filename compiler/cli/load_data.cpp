@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 
 #include <unistd.h>
 
@@ -24,19 +25,26 @@ std::vector<DataSet> load_data(const std::vector<std::string>& paths, const Mode
 
 Band parse_band(const std::string& option, const std::string& text) {
   const std::size_t colon = text.find(':');
+  const auto fail = [&] {
+    return CLI::ValidationError(option, "expected LO:HI in Hz with 0 <= LO < HI, either side may be left empty "
+                                        "(e.g. 20:500, :500), got `" + text + "`");
+  };
+  if (colon == std::string::npos || text.find(':', colon + 1) != std::string::npos) throw fail();
   Band band;
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+  band.hi = std::numeric_limits<double>::infinity();
+  const auto number = [&](const std::string& s, double& out) {
+    if (s.empty()) return;  // an open side
     std::size_t used = 0;
-    band.lo = std::stod(text.substr(0, colon), &used);
-    if (used != colon) throw std::invalid_argument("trailing text");
-    band.hi = std::stod(text.substr(colon + 1), &used);
-    if (used != text.size() - colon - 1) throw std::invalid_argument("trailing text");
-  } catch (const std::exception&) {
-    throw CLI::ValidationError(option, "expected LO:HI in Hz (e.g. 20:500), got `" + text + "`");
-  }
-  if (!(band.lo >= 0 && band.hi > band.lo && std::isfinite(band.hi)))
-    throw CLI::ValidationError(option, "expected 0 <= LO < HI, got `" + text + "`");
+    try {
+      out = std::stod(s, &used);
+    } catch (const std::exception&) {
+      throw fail();
+    }
+    if (used != s.size() || !std::isfinite(out)) throw fail();
+  };
+  number(text.substr(0, colon), band.lo);
+  number(text.substr(colon + 1), band.hi);
+  if (!(band.lo >= 0 && band.lo < band.hi)) throw fail();
   return band;
 }
 

@@ -12,6 +12,8 @@ std::vector<DataSet> load_data(const std::vector<std::string>& paths, const Mode
 
 // A frequency band `LO:HI` in Hz, as `--band` and `--fit-band` take it (0 <= LO < HI); CLI::ValidationError
 // naming `option` otherwise.
+// A frequency band from the command line, "LO:HI" in Hz; either side may be left empty (0 and no upper limit).
+// Bad text is a usage error (exit 2) naming `option`.
 struct Band {
   double lo = 0, hi = 0;
 };

@@ -25,30 +25,6 @@ namespace mbgen::cli {
 
 namespace {
 
-// "LO:HI", either side may be empty (open).
-FrequencyBand parse_band(const std::string& text) {
-  const std::size_t colon = text.find(':');
-  const auto fail = [&] {
-    return CLI::ValidationError("--band", "expected LO:HI in Hz with 0 <= LO < HI, got `" + text + "`");
-  };
-  if (colon == std::string::npos || text.find(':', colon + 1) != std::string::npos) throw fail();
-  FrequencyBand band;
-  const auto number = [&](const std::string& s, double& out) {
-    if (s.empty()) return;
-    std::size_t used = 0;
-    try {
-      out = std::stod(s, &used);
-    } catch (const std::exception&) {
-      throw fail();
-    }
-    if (used != s.size() || !std::isfinite(out)) throw fail();
-  };
-  number(text.substr(0, colon), band.lo_hz);
-  number(text.substr(colon + 1), band.hi_hz);
-  if (band.lo_hz < 0 || !(band.lo_hz < band.hi_hz)) throw fail();
-  return band;
-}
-
 bool is_uff_path(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -91,7 +67,11 @@ int run_modal(int argc, char** argv) {
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     options.refine = !no_refine;
-    const FrequencyBand band = band_text.empty() ? FrequencyBand{} : parse_band(band_text);
+    FrequencyBand band;
+    if (!band_text.empty()) {
+      const Band b = parse_band("--band", band_text);
+      band = {b.lo, b.hi};
+    }
     if (!sets.empty() && model_path.empty()) throw CLI::ValidationError("--set", "needs --model");
     OutputPlan plan;
     plan.files = {{"--json", json_path}};
