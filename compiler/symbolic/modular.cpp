@@ -61,20 +61,13 @@ std::uint64_t Field::from_integer(const cln::cl_I& a) const {
 }
 
 std::uint64_t Field::inverse(std::uint64_t a) const {
-  // Extended Euclid on the plain value, then back to Montgomery form.
-  std::int64_t t = 0, new_t = 1;
-  std::uint64_t r = p_, new_r = to_plain(a);
-  while (new_r != 0) {
-    const std::uint64_t q = r / new_r;
-    const std::int64_t t2 = t - static_cast<std::int64_t>(q) * new_t;
-    t = new_t;
-    new_t = t2;
-    const std::uint64_t r2 = r - q * new_r;
-    r = new_r;
-    new_r = r2;
-  }
-  if (r != 1) throw std::domain_error("Field::inverse of zero");
-  return from_small(t < 0 ? static_cast<std::uint64_t>(t + static_cast<std::int64_t>(p_)) : static_cast<std::uint64_t>(t));
+  // Fermat: a^(p-2), by squaring in Montgomery form (about 90 products and no division: faster than extended
+  // Euclid's 40 divisions; one inverse per pivot is a third of the band elimination's time).
+  if (a == 0) throw std::domain_error("Field::inverse of zero");
+  std::uint64_t r = one_;
+  for (std::uint64_t e = p_ - 2; e; e >>= 1, a = mul(a, a))
+    if (e & 1) r = mul(r, a);
+  return r;
 }
 
 std::uint64_t prime(int k) {

@@ -185,8 +185,15 @@ std::vector<int> distinct(std::vector<int> v) {
 // The transfer functions of `pairs` (indices into tfs, all on the same coordinates, numeric): exact rationals by
 // the multimodular route (pencil_determinants.hpp) when the values are rational and the block is at most
 // kMaxExactBlockSize; the GiNaC route for other exact numbers on small blocks; otherwise none (left to run time).
+std::optional<Cancellation> probable_cancellation(const SymbolicModel& sm, const TransferFunction& tf,
+                                                  const std::vector<ModularPolynomials>& images, std::size_t o,
+                                                  std::size_t u);
+
+// Over the limit, the pairs' probable cancellations go into `probable` (by index into tfs; one pencil's images
+// modulo two primes serve every pair on the same coordinates).
 void numeric_transfer_functions(const SymbolicModel& sm, std::vector<TransferFunction>& tfs,
-                                const std::vector<std::size_t>& pairs, DeterminantCache& cache) {
+                                const std::vector<std::size_t>& pairs, DeterminantCache& cache,
+                                std::map<std::size_t, std::optional<Cancellation>>& probable) {
   const std::vector<int>& coordinates = tfs[pairs.front()].coordinates;
   std::vector<int> outputs, inputs;
   for (std::size_t k : pairs) {
@@ -219,6 +226,14 @@ void numeric_transfer_functions(const SymbolicModel& sm, std::vector<TransferFun
   }
   if (n > kMaxExactBlockSize || (!rational && n > kMaxGinacBlockSize)) {
     for (std::size_t k : pairs) tfs[k].exact = false;
+    if (rational) {
+      const std::vector<ModularPolynomials> images = {modular_polynomials(rp, 0), modular_polynomials(rp, 1)};
+      for (std::size_t k : pairs) {
+        const auto o = static_cast<std::size_t>(std::find(outputs.begin(), outputs.end(), tfs[k].output) - outputs.begin());
+        const auto u = static_cast<std::size_t>(std::find(inputs.begin(), inputs.end(), tfs[k].input) - inputs.begin());
+        probable[k] = probable_cancellation(sm, tfs[k], images, o, u);
+      }
+    }
     return;
   }
   for (std::size_t k : pairs) ginac_transfer_function(sm, tfs[k], cache);
@@ -265,19 +280,19 @@ bool coprime_modulo_a_prime(const std::vector<GiNaC::ex>& num, const std::vector
 }
 
 // For a transfer function without exact coefficients (a block too large): the numerator and denominator modulo two
-// primes. Coprime modulo one that keeps the denominator's full degree proves there is no cancellation; a common
-// factor modulo both is reported as probable (its exact form is not computed).
-std::optional<Cancellation> probable_cancellation(const SymbolicModel& sm, const TransferFunction& tf) {
-  RationalPencil rp;
-  if (!rational_pencil(sm, tf.coordinates, {tf.output}, {tf.input}, rp)) return std::nullopt;
+// primes (`images`, of a pencil with the pair's output `o` and input `u` among its own). Coprime modulo one that
+// keeps the denominator's full degree proves there is no cancellation; a common factor modulo both is reported as
+// probable (its exact form is not computed).
+std::optional<Cancellation> probable_cancellation(const SymbolicModel& sm, const TransferFunction& tf,
+                                                  const std::vector<ModularPolynomials>& images, std::size_t o,
+                                                  std::size_t u) {
   int common = -1, full_degree = -1;
   std::vector<std::pair<int, int>> found;  // (denominator degree, gcd degree) per usable prime
-  for (int k = 0; k < 2; ++k) {
-    ModularPolynomials m = modular_polynomials(rp, k);
+  for (const ModularPolynomials& m : images) {
     if (!m.ok) continue;
-    std::vector<std::uint64_t>& den = m.determinant;
+    std::vector<std::uint64_t> den = m.determinant;
     while (!den.empty() && den.back() == 0) den.pop_back();
-    const std::vector<std::uint64_t>& num = m.numerators[0][0];
+    const std::vector<std::uint64_t>& num = m.numerators[o][u];
     if (std::all_of(num.begin(), num.end(), [](std::uint64_t v) { return v == 0; })) return std::nullopt;
     found.emplace_back(static_cast<int>(den.size()) - 1, gcd_degree_modulo(num, den, m.prime));
     full_degree = std::max(full_degree, found.back().first);
@@ -316,13 +331,18 @@ TransferFunction transfer_function(const SymbolicModel& sm, int output, int inpu
     tf.symbolic = true;
     ginac_transfer_function(sm, tf, cache);
   } else {
-    numeric_transfer_functions(sm, tfs, {0}, cache);
+    std::map<std::size_t, std::optional<Cancellation>> probable;
+    numeric_transfer_functions(sm, tfs, {0}, cache, probable);
   }
   return tf;
 }
 
 std::optional<Cancellation> find_cancellation(const SymbolicModel& sm, const TransferFunction& tf) {
-  if (!tf.exact) return probable_cancellation(sm, tf);
+  if (!tf.exact) {
+    RationalPencil rp;
+    if (!rational_pencil(sm, tf.coordinates, {tf.output}, {tf.input}, rp)) return std::nullopt;
+    return probable_cancellation(sm, tf, {modular_polynomials(rp, 0), modular_polynomials(rp, 1)}, 0, 0);
+  }
   const GiNaC::exmap values = sm.values();
   std::vector<GiNaC::ex> num, den;
   for (const GiNaC::ex& c : tf.numerator) num.push_back(tidy(c.subs(values)));
@@ -381,9 +401,14 @@ void add_transfer_functions(SymbolicModel& sm) {
       }
       sm.transfer_functions.push_back(std::move(tf));
     }
-  for (const auto& [coordinates, pairs] : numeric) numeric_transfer_functions(sm, sm.transfer_functions, pairs, cache);
-  for (const TransferFunction& tf : sm.transfer_functions)
-    if (auto c = find_cancellation(sm, tf)) sm.cancellations.push_back(*c);
+  std::map<std::size_t, std::optional<Cancellation>> probable;
+  for (const auto& [coordinates, pairs] : numeric)
+    numeric_transfer_functions(sm, sm.transfer_functions, pairs, cache, probable);
+  for (std::size_t k = 0; k < sm.transfer_functions.size(); ++k) {
+    const TransferFunction& tf = sm.transfer_functions[k];
+    auto c = tf.exact ? find_cancellation(sm, tf) : probable[k];
+    if (c) sm.cancellations.push_back(*c);
+  }
 }
 
 }  // namespace mbgen::symbolic
