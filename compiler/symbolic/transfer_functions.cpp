@@ -182,15 +182,15 @@ std::vector<int> distinct(std::vector<int> v) {
   return v;
 }
 
-// The transfer functions of `pairs` (indices into tfs, all on the same coordinates, numeric): exact rationals by
-// the multimodular route (pencil_determinants.hpp) when the values are rational and the block is at most
-// kMaxExactBlockSize; the GiNaC route for other exact numbers on small blocks; otherwise none (left to run time).
 std::optional<Cancellation> probable_cancellation(const SymbolicModel& sm, const TransferFunction& tf,
                                                   const std::vector<ModularPolynomials>& images, std::size_t o,
                                                   std::size_t u);
 
-// Over the limit, the pairs' probable cancellations go into `probable` (by index into tfs; one pencil's images
-// modulo two primes serve every pair on the same coordinates).
+// The transfer functions of `pairs` (indices into tfs, all on the same coordinates, numeric): exact rationals by
+// the multimodular route (pencil_determinants.hpp) when the values are rational and the block is at most
+// kMaxExactBlockSize; the GiNaC route for other exact numbers on small blocks; otherwise none (left to run time).
+// Without exact coefficients, the pairs' probable cancellations go into `probable` (by index into tfs; one pencil's
+// images modulo two primes serve every pair on the same coordinates).
 void numeric_transfer_functions(const SymbolicModel& sm, std::vector<TransferFunction>& tfs,
                                 const std::vector<std::size_t>& pairs, DeterminantCache& cache,
                                 std::map<std::size_t, std::optional<Cancellation>>& probable) {
@@ -221,10 +221,10 @@ void numeric_transfer_functions(const SymbolicModel& sm, std::vector<TransferFun
         return;
       }
     } catch (const std::domain_error&) {
-      // det P(s) vanishes identically: the GiNaC route below says so as before.
+      // det P(s) vanishes identically: on a small block the GiNaC route below says so as before.
     }
   }
-  if (n > kMaxExactBlockSize || (!rational && n > kMaxGinacBlockSize)) {
+  if (n > kMaxGinacBlockSize) {  // over the exact limit, or not rational, or a singular pencil: not exponential
     for (std::size_t k : pairs) tfs[k].exact = false;
     if (rational) {
       const std::vector<ModularPolynomials> images = {modular_polynomials(rp, 0), modular_polynomials(rp, 1)};
