@@ -57,6 +57,7 @@ std::string emit_inspect_json(const symbolic::SymbolicModel& sm) {
     e["symbolic"] = tf.symbolic;
     e["numerator"] = coefficients_json(tf.numerator);
     e["denominator"] = coefficients_json(tf.denominator);
+    if (!tf.exact) e["exact"] = false;  // a block too large for exact coefficients: both lists are empty
     tfs.push_back(e);
   }
   j["transfer_functions"] = tfs;

@@ -82,7 +82,13 @@ std::string emit_inspect_latex(const symbolic::SymbolicModel& sm) {
   for (const auto& tf : sm.transfer_functions) {
     os << "\\paragraph{" << "\\texttt{" << escape_text(n.outputs.at(static_cast<std::size_t>(tf.output))) << "} / \\texttt{"
        << escape_text(n.inputs.at(static_cast<std::size_t>(tf.input))) << "}"
-       << (tf.symbolic ? "" : " (exact numbers at the current values)") << "}\n\\begin{align*}\n";
+       << (tf.symbolic ? ""
+           : tf.exact  ? " (exact numbers at the current values)"
+                       : " (not expanded: a block of " + std::to_string(tf.coordinates.size()) +
+                             " coordinates; computed at run time)")
+       << "}\n";
+    if (!tf.exact) continue;
+    os << "\\begin{align*}\n";
     for (std::size_t k = 0; k < tf.numerator.size(); ++k)
       os << "b_{" << k << "} &= " << latex(tf.numerator[k].subs(tex)) << " \\\\\n";
     for (std::size_t k = 0; k < tf.denominator.size(); ++k)
@@ -94,7 +100,10 @@ std::string emit_inspect_latex(const symbolic::SymbolicModel& sm) {
   os << "\\subsection*{Pole-zero cancellations}\n";
   if (sm.cancellations.empty()) os << "None at the current values.\n\n";
   for (const auto& c : sm.cancellations)
-    os << "\\texttt{" << escape_text(n.outputs.at(static_cast<std::size_t>(c.output))) << "} / \\texttt{"
+    if (c.common_factor.is_zero())  // probable, not exact (a block too large for exact coefficients)
+      os << escape_text(c.text) << "\n\n";
+    else
+      os << "\\texttt{" << escape_text(n.outputs.at(static_cast<std::size_t>(c.output))) << "} / \\texttt{"
        << escape_text(n.inputs.at(static_cast<std::size_t>(c.input))) << "}: common factor $"
        << latex(c.common_factor) << "$.\n\n";
 

@@ -65,7 +65,11 @@ std::string emit_inspect_markdown(const symbolic::SymbolicModel& sm) {
   for (const auto& tf : sm.transfer_functions) {
     os << "### " << n.outputs.at(static_cast<std::size_t>(tf.output)) << " / "
        << n.inputs.at(static_cast<std::size_t>(tf.input))
-       << (tf.symbolic ? " (symbolic)" : " (exact numbers at the current values)") << "\n\n";
+       << (tf.symbolic ? " (symbolic)"
+           : tf.exact  ? " (exact numbers at the current values)"
+                       : " (not expanded: a block of " + std::to_string(tf.coordinates.size()) +
+                             " coordinates; the generated code computes the coefficients at run time)")
+       << "\n\n";
     for (std::size_t k = 0; k < tf.numerator.size(); ++k)
       os << "- b" << k << " = `" << infix_text(tf.numerator[k]) << "`\n";
     for (std::size_t k = 0; k < tf.denominator.size(); ++k)
@@ -75,10 +79,15 @@ std::string emit_inspect_markdown(const symbolic::SymbolicModel& sm) {
 
   os << "## Pole-zero cancellations\n\n";
   if (sm.cancellations.empty()) os << "None at the current values.\n";
-  for (const auto& c : sm.cancellations)
+  for (const auto& c : sm.cancellations) {
+    if (c.common_factor.is_zero()) {  // probable, not exact (a block too large for exact coefficients)
+      os << "- " << c.text << "\n";
+      continue;
+    }
     os << "- " << n.outputs.at(static_cast<std::size_t>(c.output)) << " / "
        << n.inputs.at(static_cast<std::size_t>(c.input)) << ": common factor `" << infix_text(c.common_factor)
        << "`" << (c.text.empty() ? "" : ". " + c.text) << "\n";
+  }
   os << "\n";
 
   os << "## Modes at the current values\n\n| # | f [Hz] | zeta |\n|---|---|---|\n";

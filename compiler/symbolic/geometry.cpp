@@ -30,7 +30,8 @@ Row zero_row(int n) { return Row(static_cast<size_t>(n), GiNaC::ex(0)); }
 
 Row subtract(const Row& b, const Row& a) {
   Row r(b.size());
-  for (size_t i = 0; i < b.size(); ++i) r[i] = tidy(b[i] - a[i]);
+  for (size_t i = 0; i < b.size(); ++i)
+    if (!b[i].is_zero() || !a[i].is_zero()) r[i] = tidy(b[i] - a[i]);  // most of a large model's row is zero
   return r;
 }
 

@@ -5,6 +5,7 @@
 
 #include "frontend/parser.hpp"
 #include "symbolic/derive.hpp"
+#include "symbolic/test_chain_model.hpp"
 #include "symbolic/test_support.hpp"
 #include "symbolic/to_ginac.hpp"
 
@@ -144,6 +145,10 @@ void compare_with_independent_assembly(const ir::Model& model) {
 TEST_CASE("independent route: mdof2") { compare_with_independent_assembly(load_example("mdof2")); }
 
 TEST_CASE("independent route: spindle") { compare_with_independent_assembly(load_example("spindle")); }
+
+TEST_CASE("independent route: a chain of 16 six-coordinate bodies (96 coordinates)") {
+  compare_with_independent_assembly(frontend::parse_string(chain_model_text(16), "chain16.mdl"));
+}
 
 TEST_CASE("independent route: oblique springs, a torsion element, products of inertia, symbolic geometry") {
   const ir::Model model = frontend::parse_string(R"(model oblique

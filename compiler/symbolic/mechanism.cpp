@@ -28,6 +28,16 @@ Row displacement_row(const Mechanism& m, const ir::Attachment& at, const GiNaC::
   return row;
 }
 
+std::array<Row, 3> displacement_rows(const Mechanism& m, const ir::Attachment& at) {
+  std::array<Row, 3> rows = {zero_row(m.coordinate_count), zero_row(m.coordinate_count), zero_row(m.coordinate_count)};
+  const BodyKinematics* b = m.find(at.frame);
+  if (!b) return rows;
+  const std::vector<GiNaC::matrix> jac = point_jacobian_at_rest(*b, to_column(at.point, *m.params));
+  for (size_t i = 0; i < jac.size(); ++i)
+    for (unsigned a = 0; a < 3; ++a) rows[a][b->coordinate[i]] = tidy(jac[i](a, 0));  // = displacement_row's e_a^T
+  return rows;
+}
+
 Row rotation_row(const Mechanism& m, const std::string& frame, const GiNaC::matrix& n) {
   Row row = zero_row(m.coordinate_count);
   const BodyKinematics* b = m.find(frame);

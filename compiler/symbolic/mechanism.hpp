@@ -2,6 +2,7 @@
 // that elements, inputs and outputs are built from (internal).
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@ Mechanism make_mechanism(const ir::Model& model, const ParameterTable& params);
 
 // n^T dr_p/dq at q = 0 for point `at.point` fixed to frame `at.frame` (zero for a ground).
 Row displacement_row(const Mechanism& m, const ir::Attachment& at, const GiNaC::matrix& n);
+// The same for n = e_x, e_y, e_z from one Jacobian of the point (a spring3's three axes).
+std::array<Row, 3> displacement_rows(const Mechanism& m, const ir::Attachment& at);
 // n^T d(theta)/dq, theta = the frame's rotation coordinates (rx, ry, rz; zero where it has none).
 Row rotation_row(const Mechanism& m, const std::string& frame, const GiNaC::matrix& n);
 // n^T d(omega)/d(qd) at q = 0: the generalized force of a unit moment about n.

@@ -18,12 +18,6 @@ void add_quadratic(GiNaC::matrix& mat, const GiNaC::ex& coefficient, const Row& 
   }
 }
 
-GiNaC::matrix axis_vector(int a) {
-  GiNaC::matrix n(3, 1);
-  n(a, 0) = 1;
-  return n;
-}
-
 }  // namespace
 
 void add_spring_dampers(const Mechanism& m, SymbolicModel& out) {
@@ -34,11 +28,16 @@ void add_spring_dampers(const Mechanism& m, SymbolicModel& out) {
       throw frontend::ModelError(m.model->file, e.loc,
                                  std::string(ir::to_string(e.kind)) + " `" + e.name + "` needs " +
                                      std::to_string(expected) + " stiffness (and damping) value(s)");
+    // A spring3's ends: one point Jacobian each for its three axes.
+    std::array<Row, 3> rows_b, rows_a;
+    if (e.kind == ir::ElementKind::Spring3) {
+      rows_b = displacement_rows(m, e.b);
+      rows_a = displacement_rows(m, e.a);
+    }
     for (size_t axis = 0; axis < expected; ++axis) {
       Row h;
       if (e.kind == ir::ElementKind::Spring3) {
-        const GiNaC::matrix n = axis_vector(static_cast<int>(axis));
-        h = subtract(displacement_row(m, e.b, n), displacement_row(m, e.a, n));
+        h = subtract(rows_b[axis], rows_a[axis]);
       } else {
         const GiNaC::matrix n = unit_direction(e.direction, params);
         if (e.kind == ir::ElementKind::Spring)

@@ -40,6 +40,8 @@ struct TransferFunction {
   std::vector<GiNaC::ex> numerator;    // ascending powers of s
   std::vector<GiNaC::ex> denominator;  // ascending powers of s, monic (last entry 1)
   std::vector<int> coordinates;        // the uncoupled block the pair lives in (coordinate indices)
+  bool exact = true;  // false: the block is too large for exact coefficients; numerator and denominator are empty
+                      // (the emitted code computes them at run time)
 };
 
 // An exact pole-zero cancellation found at the current parameter values (thesis Sec. 4.2, Example 1).

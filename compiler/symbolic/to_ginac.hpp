@@ -47,7 +47,7 @@ class ParameterTable {
   GiNaC::ex derived_value(const ir::Parameter& p) const;
   // Throws ModelError when a free parameter's value (`set_text`: as given by --set, else empty) lies outside its
   // declared bounds, or the bounds are reversed.
-  void check_bounds(const FreeParameter& fp, const std::string& set_text) const;
+  void check_bounds(const FreeParameter& fp, const std::string& set_text, const GiNaC::exmap& at) const;
   // Throw ModelError at `e` when a power or an exact number exceeds the limits above.
   void check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const;
   GiNaC::ex bounded(const ir::Expr& e, const GiNaC::ex& value) const;

@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "symbolic/geometry.hpp"
+#include "symbolic/modular.hpp"
+#include "symbolic/pencil_determinants.hpp"
 
 namespace mbgen::symbolic {
 
@@ -74,27 +76,26 @@ std::string describe_roots(const GiNaC::ex& factor, const GiNaC::symbol& s) {
   return text;
 }
 
-// det P of a set of coordinates, shared by every pair on the same blocks (the costly part for large blocks).
-using DeterminantCache = std::map<std::vector<int>, GiNaC::ex>;
-
-TransferFunction transfer_function(const SymbolicModel& sm, int output, int input, DeterminantCache& cache) {
-  TransferFunction tf;
-  tf.output = output;
-  tf.input = input;
+std::vector<int> pair_coordinates(const SymbolicModel& sm, int output, int input) {
   const unsigned o = static_cast<unsigned>(output), u = static_cast<unsigned>(input);
+  std::vector<int> coordinates;
   for (const std::vector<int>& block : sm.blocks)
     if (touches(block, sm.B, true, u) &&
         (touches(block, sm.Cd, false, o) || touches(block, sm.Cv, false, o) || touches(block, sm.Ca, false, o)))
-      tf.coordinates.insert(tf.coordinates.end(), block.begin(), block.end());
-  std::sort(tf.coordinates.begin(), tf.coordinates.end());
-  if (tf.coordinates.empty()) {
-    tf.symbolic = true;
-    tf.numerator = {0};
-    tf.denominator = {1};
-    return tf;
-  }
+      coordinates.insert(coordinates.end(), block.begin(), block.end());
+  std::sort(coordinates.begin(), coordinates.end());
+  return coordinates;
+}
+
+// det P of a set of coordinates, shared by every pair on the same blocks (GiNaC route only).
+using DeterminantCache = std::map<std::vector<int>, GiNaC::ex>;
+
+// The GiNaC route: determinants of the bordered matrix by GiNaC (minor expansion, exponential in the size), for
+// symbolic coefficients (blocks of up to kMaxSymbolicBlockSize) and for exact numbers that are not all rational
+// (pi, square roots: the multimodular route needs rationals).
+void ginac_transfer_function(const SymbolicModel& sm, TransferFunction& tf, DeterminantCache& cache) {
+  const unsigned o = static_cast<unsigned>(tf.output), u = static_cast<unsigned>(tf.input);
   const unsigned n = static_cast<unsigned>(tf.coordinates.size());
-  tf.symbolic = static_cast<int>(n) <= kMaxSymbolicBlockSize;
   const GiNaC::exmap values = tf.symbolic ? GiNaC::exmap{} : sm.values();
   const GiNaC::ex& s = sm.s;
   // Bordered matrix [[P, b], [c, 0]]: its determinant is -c adj(P) b.
@@ -120,23 +121,235 @@ TransferFunction transfer_function(const SymbolicModel& sm, int output, int inpu
   const GiNaC::ex lead = denominator.coeff(s, denominator.degree(s));
   tf.denominator = coefficients(denominator, sm.s, lead, tf.symbolic);
   tf.numerator = coefficients(numerator, sm.s, lead, tf.symbolic);
-  return tf;
+}
+
+// The exact rational value of a constant expression, if it is one.
+bool rational_value(const GiNaC::ex& e, cln::cl_RA& out) {
+  if (!GiNaC::is_a<GiNaC::numeric>(e)) return false;
+  const GiNaC::numeric& x = GiNaC::ex_to<GiNaC::numeric>(e);
+  if (!x.is_rational()) return false;
+  out = cln::the<cln::cl_RA>(x.to_cl_N());
+  return true;
+}
+
+// P(s), the inputs' columns and the outputs' rows on `coordinates` at the current values, if all are rational.
+bool rational_pencil(const SymbolicModel& sm, const std::vector<int>& coordinates, const std::vector<int>& outputs,
+                     const std::vector<int>& inputs, RationalPencil& rp) {
+  const GiNaC::exmap values = sm.values();
+  const int n = rp.n = static_cast<int>(coordinates.size());
+  const auto N = static_cast<std::size_t>(n);
+  rp.M.assign(N * N, 0);
+  rp.C.assign(N * N, 0);
+  rp.K.assign(N * N, 0);
+  auto value = [&](const GiNaC::ex& e, cln::cl_RA& out) { return e.is_zero() || rational_value(tidy(e.subs(values)), out); };
+  for (std::size_t r = 0; r < N; ++r)
+    for (std::size_t c = 0; c < N; ++c) {
+      const unsigned i = static_cast<unsigned>(coordinates[r]), j = static_cast<unsigned>(coordinates[c]);
+      if (!value(sm.M(i, j), rp.M[r * N + c]) || !value(sm.C_total(i, j), rp.C[r * N + c]) ||
+          !value(sm.K(i, j), rp.K[r * N + c]))
+        return false;
+    }
+  for (int u : inputs) {
+    rp.inputs.emplace_back(N, 0);
+    for (std::size_t r = 0; r < N; ++r)
+      if (!value(sm.B(static_cast<unsigned>(coordinates[r]), static_cast<unsigned>(u)), rp.inputs.back()[r])) return false;
+  }
+  for (int o : outputs) {
+    RationalPencil::OutputRow row{std::vector<cln::cl_RA>(N, 0), std::vector<cln::cl_RA>(N, 0), std::vector<cln::cl_RA>(N, 0)};
+    for (std::size_t r = 0; r < N; ++r) {
+      const unsigned i = static_cast<unsigned>(coordinates[r]), oo = static_cast<unsigned>(o);
+      if (!value(sm.Cd(oo, i), row.d[r]) || !value(sm.Cv(oo, i), row.v[r]) || !value(sm.Ca(oo, i), row.a[r]))
+        return false;
+    }
+    rp.outputs.push_back(std::move(row));
+  }
+  return true;
+}
+
+// Ascending coefficients of an exact polynomial over its denominator's leading coefficient, trailing zeros dropped
+// ({0} for zero), as the GiNaC route gives them.
+std::vector<GiNaC::ex> normalized(const std::vector<cln::cl_RA>& poly, const cln::cl_RA& lead) {
+  std::size_t size = poly.size();
+  while (size > 1 && cln::zerop(poly[size - 1])) --size;
+  std::vector<GiNaC::ex> c;
+  for (std::size_t k = 0; k < size; ++k) c.push_back(GiNaC::numeric(poly[k] / lead));
+  return c;
+}
+
+std::vector<int> distinct(std::vector<int> v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+std::optional<Cancellation> probable_cancellation(const SymbolicModel& sm, const TransferFunction& tf,
+                                                  const std::vector<ModularPolynomials>& images, std::size_t o,
+                                                  std::size_t u);
+
+// The transfer functions of `pairs` (indices into tfs, all on the same coordinates, numeric): exact rationals by
+// the multimodular route (pencil_determinants.hpp) when the values are rational and the block is at most
+// kMaxExactBlockSize; the GiNaC route for other exact numbers on small blocks; otherwise none (left to run time).
+// Without exact coefficients, the pairs' probable cancellations go into `probable` (by index into tfs; one pencil's
+// images modulo two primes serve every pair on the same coordinates).
+void numeric_transfer_functions(const SymbolicModel& sm, std::vector<TransferFunction>& tfs,
+                                const std::vector<std::size_t>& pairs, DeterminantCache& cache,
+                                std::map<std::size_t, std::optional<Cancellation>>& probable) {
+  const std::vector<int>& coordinates = tfs[pairs.front()].coordinates;
+  std::vector<int> outputs, inputs;
+  for (std::size_t k : pairs) {
+    outputs.push_back(tfs[k].output);
+    inputs.push_back(tfs[k].input);
+  }
+  outputs = distinct(outputs);
+  inputs = distinct(inputs);
+  RationalPencil rp;
+  const bool rational = rational_pencil(sm, coordinates, outputs, inputs, rp);
+  const int n = static_cast<int>(coordinates.size());
+  if (rational && n <= kMaxExactBlockSize) {
+    try {
+      const PencilPolynomials p = exact_polynomials(rp);
+      std::size_t degree = p.determinant.size() - 1;
+      while (degree > 0 && cln::zerop(p.determinant[degree])) --degree;
+      const cln::cl_RA lead = p.determinant[degree];
+      if (!cln::zerop(lead)) {
+        for (std::size_t k : pairs) {
+          const auto o = static_cast<std::size_t>(std::find(outputs.begin(), outputs.end(), tfs[k].output) - outputs.begin());
+          const auto u = static_cast<std::size_t>(std::find(inputs.begin(), inputs.end(), tfs[k].input) - inputs.begin());
+          tfs[k].denominator = normalized(p.determinant, lead);
+          tfs[k].numerator = normalized(p.numerators[o][u], lead);
+        }
+        return;
+      }
+    } catch (const std::domain_error&) {
+      // det P(s) vanishes identically: on a small block the GiNaC route below says so as before.
+    }
+  }
+  if (n > kMaxGinacBlockSize) {  // over the exact limit, or not rational, or a singular pencil: not exponential
+    for (std::size_t k : pairs) tfs[k].exact = false;
+    if (rational) {
+      const std::vector<ModularPolynomials> images = {modular_polynomials(rp, 0), modular_polynomials(rp, 1)};
+      for (std::size_t k : pairs) {
+        const auto o = static_cast<std::size_t>(std::find(outputs.begin(), outputs.end(), tfs[k].output) - outputs.begin());
+        const auto u = static_cast<std::size_t>(std::find(inputs.begin(), inputs.end(), tfs[k].input) - inputs.begin());
+        probable[k] = probable_cancellation(sm, tfs[k], images, o, u);
+      }
+    }
+    return;
+  }
+  for (std::size_t k : pairs) ginac_transfer_function(sm, tfs[k], cache);
+}
+
+// True if the rational polynomials (ascending, leading coefficients non-zero) are proven coprime by their images
+// modulo a prime that divides no denominator and neither leading coefficient: the gcd over the rationals then
+// reduces to a divisor of the gcd modulo p of the same degree, so degree 0 there means degree 0 here. GiNaC's gcd
+// of two degree-200 polynomials with thousand-digit coefficients takes minutes; this takes microseconds, and a
+// real cancellation still goes to the exact gcd below.
+bool coprime_modulo_a_prime(const std::vector<GiNaC::ex>& num, const std::vector<GiNaC::ex>& den) {
+  std::vector<cln::cl_RA> a, b;
+  cln::cl_RA x;
+  for (const GiNaC::ex& c : num) {
+    if (!rational_value(c, x)) return false;
+    a.push_back(x);
+  }
+  for (const GiNaC::ex& c : den) {
+    if (!rational_value(c, x)) return false;
+    b.push_back(x);
+  }
+  for (int k = 0; k < 3; ++k) {
+    const std::uint64_t p = modular::prime(k);
+    const cln::cl_I big_p = static_cast<cln::cl_I>(p);
+    bool usable = true;
+    auto residues = [&](const std::vector<cln::cl_RA>& poly) {
+      std::vector<std::uint64_t> r;
+      const modular::Field f(p);
+      for (const cln::cl_RA& c : poly) {
+        const cln::cl_I d = cln::mod(cln::denominator(c), big_p);
+        if (cln::zerop(d)) {
+          usable = false;
+          return r;
+        }
+        r.push_back(f.to_plain(f.mul(f.from_integer(cln::numerator(c)), f.inverse(f.from_integer(d)))));
+      }
+      if (r.back() == 0) usable = false;  // p divides the leading coefficient
+      return r;
+    };
+    const std::vector<std::uint64_t> ra = residues(a), rb = residues(b);
+    if (usable) return gcd_degree_modulo(ra, rb, p) == 0;
+  }
+  return false;
+}
+
+// For a transfer function without exact coefficients (a block too large): the numerator and denominator modulo two
+// primes (`images`, of a pencil with the pair's output `o` and input `u` among its own). Coprime modulo one that
+// keeps the denominator's full degree proves there is no cancellation; a common factor modulo both is reported as
+// probable (its exact form is not computed).
+std::optional<Cancellation> probable_cancellation(const SymbolicModel& sm, const TransferFunction& tf,
+                                                  const std::vector<ModularPolynomials>& images, std::size_t o,
+                                                  std::size_t u) {
+  int common = -1, full_degree = -1;
+  std::vector<std::pair<int, int>> found;  // (denominator degree, gcd degree) per usable prime
+  for (const ModularPolynomials& m : images) {
+    if (!m.ok) continue;
+    std::vector<std::uint64_t> den = m.determinant;
+    while (!den.empty() && den.back() == 0) den.pop_back();
+    const std::vector<std::uint64_t>& num = m.numerators[o][u];
+    if (std::all_of(num.begin(), num.end(), [](std::uint64_t v) { return v == 0; })) return std::nullopt;
+    found.emplace_back(static_cast<int>(den.size()) - 1, gcd_degree_modulo(num, den, m.prime));
+    full_degree = std::max(full_degree, found.back().first);
+  }
+  for (const auto& [degree, gcd] : found) {
+    if (degree == full_degree && gcd == 0) return std::nullopt;
+    common = common < 0 ? gcd : std::min(common, gcd);
+  }
+  if (found.size() < 2 || common <= 0) return std::nullopt;
+  Cancellation c;
+  c.output = tf.output;
+  c.input = tf.input;
+  c.common_factor = 0;
+  c.text = sm.model->outputs[tf.output].name + "/" + sm.model->inputs[tf.input].name +
+           ": numerator and denominator probably share a factor of degree " + std::to_string(common) +
+           " at the current parameter values (they do modulo two primes; the block of " +
+           std::to_string(tf.coordinates.size()) + " coordinates is too large for exact coefficients), so " +
+           std::to_string(common) + " poles probably cancel and do not show in this transfer function";
+  return c;
 }
 
 }  // namespace
 
 TransferFunction transfer_function(const SymbolicModel& sm, int output, int input) {
+  std::vector<TransferFunction> tfs(1);
+  TransferFunction& tf = tfs.front();
+  tf.output = output;
+  tf.input = input;
+  tf.coordinates = pair_coordinates(sm, output, input);
   DeterminantCache cache;
-  return transfer_function(sm, output, input, cache);
+  if (tf.coordinates.empty()) {
+    tf.symbolic = true;
+    tf.numerator = {0};
+    tf.denominator = {1};
+  } else if (static_cast<int>(tf.coordinates.size()) <= kMaxSymbolicBlockSize) {
+    tf.symbolic = true;
+    ginac_transfer_function(sm, tf, cache);
+  } else {
+    std::map<std::size_t, std::optional<Cancellation>> probable;
+    numeric_transfer_functions(sm, tfs, {0}, cache, probable);
+  }
+  return tf;
 }
 
 std::optional<Cancellation> find_cancellation(const SymbolicModel& sm, const TransferFunction& tf) {
+  if (!tf.exact) {
+    RationalPencil rp;
+    if (!rational_pencil(sm, tf.coordinates, {tf.output}, {tf.input}, rp)) return std::nullopt;
+    return probable_cancellation(sm, tf, {modular_polynomials(rp, 0), modular_polynomials(rp, 1)}, 0, 0);
+  }
   const GiNaC::exmap values = sm.values();
   std::vector<GiNaC::ex> num, den;
   for (const GiNaC::ex& c : tf.numerator) num.push_back(tidy(c.subs(values)));
   for (const GiNaC::ex& c : tf.denominator) den.push_back(tidy(c.subs(values)));
   GiNaC::ex numerator = polynomial(num, sm.s), denominator = polynomial(den, sm.s);
   if (numerator.is_zero() || denominator.degree(sm.s) == 0) return std::nullopt;
+  if (coprime_modulo_a_prime(num, den)) return std::nullopt;
   // gcd works on polynomials over the rationals: stand-in symbols for pi, square roots etc., shared by both
   // polynomials, and the constant denominators (1/pi, say, from a mass of pi) multiplied out; neither moves a root.
   GiNaC::exmap stand_ins;
@@ -168,11 +381,34 @@ void add_transfer_functions(SymbolicModel& sm) {
   sm.transfer_functions.clear();
   sm.cancellations.clear();
   DeterminantCache cache;
+  // Numeric pairs are grouped by their coordinates: one pencil's determinants serve them all.
+  std::map<std::vector<int>, std::vector<std::size_t>> numeric;
   for (size_t o = 0; o < sm.model->outputs.size(); ++o)
     for (size_t u = 0; u < sm.model->inputs.size(); ++u) {
-      sm.transfer_functions.push_back(transfer_function(sm, static_cast<int>(o), static_cast<int>(u), cache));
-      if (auto c = find_cancellation(sm, sm.transfer_functions.back())) sm.cancellations.push_back(*c);
+      TransferFunction tf;
+      tf.output = static_cast<int>(o);
+      tf.input = static_cast<int>(u);
+      tf.coordinates = pair_coordinates(sm, tf.output, tf.input);
+      if (tf.coordinates.empty()) {
+        tf.symbolic = true;
+        tf.numerator = {0};
+        tf.denominator = {1};
+      } else if (static_cast<int>(tf.coordinates.size()) <= kMaxSymbolicBlockSize) {
+        tf.symbolic = true;
+        ginac_transfer_function(sm, tf, cache);
+      } else {
+        numeric[tf.coordinates].push_back(sm.transfer_functions.size());
+      }
+      sm.transfer_functions.push_back(std::move(tf));
     }
+  std::map<std::size_t, std::optional<Cancellation>> probable;
+  for (const auto& [coordinates, pairs] : numeric)
+    numeric_transfer_functions(sm, sm.transfer_functions, pairs, cache, probable);
+  for (std::size_t k = 0; k < sm.transfer_functions.size(); ++k) {
+    const TransferFunction& tf = sm.transfer_functions[k];
+    auto c = tf.exact ? find_cancellation(sm, tf) : probable[k];
+    if (c) sm.cancellations.push_back(*c);
+  }
 }
 
 }  // namespace mbgen::symbolic

@@ -13,6 +13,14 @@ namespace mbgen::symbolic {
 // the spindle's blocks (5 and 6 coordinates) would give tens of thousands.
 constexpr int kMaxSymbolicBlockSize = 3;
 
+// Exact numbers: blocks up to this many coordinates get exact rational coefficients (multimodular determinants,
+// pencil_determinants.hpp; about 2 s for 96 coordinates, the cost growing like n^3). Larger blocks get none: the
+// emitted code computes their coefficients at run time anyway, and their cancellations are checked modulo primes.
+constexpr int kMaxExactBlockSize = 100;
+// Exact numbers that are not all rational (pi, square roots) go through GiNaC's determinants, exponential in the
+// size: up to this many coordinates.
+constexpr int kMaxGinacBlockSize = 12;
+
 // The transfer function from input `input` to output `output` of a derived model (M, C_total, K, B, Cd, Cv, Ca,
 // blocks filled). It is computed on the blocks where both the input and the output have entries; if there is
 // none it is exactly zero (numerator {0}, denominator {1}, no coordinates).
