@@ -32,7 +32,8 @@ std::string summary(const MonitorResult& r) {
   for (const MonitorChange& c : r.changes) {
     out += "change at data set " + std::to_string(c.index) + (c.time ? " (" + *c.time + ")" : "") + ": ";
     for (std::size_t i = 0; i < c.parameters.size(); ++i) out += (i ? ", " : "") + c.parameters[i];
-    if (c.structural) out += std::string(c.parameters.empty() ? "" : "; ") + "structural, cause " + (c.cause.empty() ? "not found" : c.cause);
+    if (c.structural)
+      out += std::string(c.parameters.empty() ? "" : "; ") + "structural, cause " + (c.cause.empty() ? "not found" : c.cause);
     out += "\n  " + c.text + "\n";
   }
   return out;
@@ -148,7 +149,18 @@ int run_monitor(int argc, char** argv) {
         change.cause = d.selected.front();
         change.text += " The diagnosis names " + change.cause + ".";
       } else {
-        change.text += " The diagnosis named no cause (verdict " + d.verdict + ").";
+        change.text += " The diagnosis named no cause (verdict " + d.verdict + ")";
+        std::vector<const diagnosis::CandidateOutcome*> leads;
+        for (const diagnosis::CandidateOutcome& c : d.candidates)
+          if (c.round == 1 && c.qualifies) leads.push_back(&c);
+        std::stable_sort(leads.begin(), leads.end(), [](auto* a, auto* b) { return a->delta_bic < b->delta_bic; });
+        for (std::size_t i = 0; i < leads.size(); ++i) {
+          change.qualified.push_back(leads[i]->id);
+          char gain[64];
+          std::snprintf(gain, sizeof gain, "%.4g", leads[i]->delta_bic);
+          change.text += (i ? ", " : "; qualified on their own but not confirmed: ") + leads[i]->id + " (BIC " + gain + ")";
+        }
+        change.text += ".";
       }
     }
 

@@ -9,7 +9,7 @@
 // 3. From then on, each parameter's standardized shift from its reference level feeds a two-sided CUSUM whose
 //    threshold gives one false alarm in `run_length` data sets for the whole scheme. An alarm is a change: it names
 //    the parameters whose CUSUM crossed, with the estimated onset; the reference levels are then learned afresh
-//    from the sets since the onset, so a change that persists is reported once.
+//    from the detecting set on, so a change that persists is reported once.
 // 4. A set whose misfit (MonitorOptions::misfit) stands `structural_ratio` times above the baseline's is a
 //    structural change: no parameter of the model explains it. Reported once, when it starts.
 #pragma once
@@ -68,7 +68,12 @@ struct MonitorChange {
   std::map<std::string, int> direction;  // +1 up, -1 down
   bool structural = false;
   double misfit_ratio = 0;  // the set's misfit over the baseline's largest
-  std::string cause;        // a diagnosis candidate id for a structural change, when one was found (filled by callers)
+  // For a structural change (filled by callers that run the diagnosis): `cause` the extension the diagnosis
+  // selected. When it selected none, `qualified` lists the candidates that qualified on their own (strong evidence
+  // by BIC, validation and plausibility; lowest BIC first) but that the diagnosis's final checks did not confirm:
+  // leads, not a cause (on the step-then-loose-wall test series the lowest BIC was a wrong one).
+  std::string cause;
+  std::vector<std::string> qualified;
   std::string text;
 };
 

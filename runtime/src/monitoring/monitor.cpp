@@ -153,20 +153,25 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
       change.time = here.time;
       change.structural = new_structural;
       change.misfit_ratio = ratio;
-      for (std::size_t j = 0; j < alarms.size(); ++j)
-        if (alarms[j] != 0) change.onset = std::min(change.onset, cusums[j].onset(alarms[j]));
-      // A new regime from the onset: every parameter's reference is learned afresh from the sets since then.
+      // The onset: the change point of the CUSUM with the strongest evidence (its statistic furthest beyond h). The
+      // others' can lie earlier by chance: a statistic that happened to rise from zero a set before the change.
+      double strongest = 0;
+      for (std::size_t j = 0; j < alarms.size(); ++j) {
+        if (alarms[j] == 0) continue;
+        const double statistic = alarms[j] > 0 ? cusums[j].upper() : cusums[j].lower();
+        if (statistic > strongest) {
+          strongest = statistic;
+          change.onset = cusums[j].onset(alarms[j]);
+        }
+      }
+      // A new regime: every parameter's reference is learned afresh, starting from this set alone. The sets between
+      // the estimated onset and now would estimate it better, but an onset estimated a set too early (see above)
+      // would mix the old level in, and the next set would alarm again for the same change.
       std::string moved;
       for (std::size_t j = 0; j < result.parameters.size(); ++j) {
         const std::string& name = result.parameters[j].name;
         const double before = references[j].mean();
-        Reference fresh;
-        for (int s = change.onset; s <= i; ++s)
-          if (const ParameterEstimate* e = usable(result.series[static_cast<std::size_t>(s)].fit, name)) {
-            fresh.sum += e->value;
-            ++fresh.count;
-          }
-        if (fresh.count > 0) references[j] = fresh;
+        if (const ParameterEstimate* e = usable(here.fit, name)) references[j] = {e->value, 1};
         cusums[j].reset(i);
         if (alarms[j] == 0) continue;
         change.parameters.push_back(name);

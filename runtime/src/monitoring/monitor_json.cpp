@@ -76,6 +76,7 @@ std::string monitor_result_json(const MonitorResult& r) {
     item["structural"] = c.structural;
     item["misfit_ratio"] = number(c.misfit_ratio);
     item["cause"] = c.cause.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.cause);
+    if (c.structural) item["qualified_candidates"] = c.qualified;
     item["text"] = c.text;
     changes.push_back(item);
   }

@@ -99,7 +99,14 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
   for (const MonitorChange& c : r.changes) {
     md << "- **data set " << c.index << "**" << (c.time ? " (" + markdown_text(*c.time) + ")" : "")
        << (c.structural ? ", structural" : "") << ": " << markdown_text(c.text);
-    if (c.structural) md << " Cause: " << (c.cause.empty() ? "not found" : markdown_code(c.cause)) << ".";
+    if (c.structural) {
+      md << " Cause: " << (c.cause.empty() ? "not found" : markdown_code(c.cause)) << ".";
+      if (!c.qualified.empty()) {
+        md << " Candidates that qualified but were not confirmed:";
+        for (const std::string& q : c.qualified) md << " " << markdown_code(q);
+        md << ".";
+      }
+    }
     md << "\n";
   }
   md << "\n## Baseline\n\n| parameter | mean | sigma | spread of the sets | fits' std | unit |\n|---|---|---|---|---|---|\n";
