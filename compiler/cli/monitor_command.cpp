@@ -40,20 +40,15 @@ std::string summary(const MonitorResult& r) {
 }
 
 // How badly a fitted model explains one data set, on the scale of its noise: the diagnosis's residual analysis
-// (measured vs model FRFs, a time record through Welch H1), the strongest finding's mean normalized residual, or
-// the mean over all lines when there is no finding (noise alone: about 1). A local misfit (a new resonance) stands
-// out here where a global residual sum dilutes it over all lines. Findings of a frequency shift or a damping
-// mismatch do not count: they are what the model's parameters move to explain, and after the fit they remain only
-// where a peak is narrower than the line spacing (mdof2's first mode, 0.05 Hz wide on 0.25 Hz lines, gave such a
-// finding in plain noise after a stiffness step, five times the baseline's misfit).
+// (measured vs model FRFs, a time record through Welch H1) gives the mean normalized residual over all lines, about
+// 1 where only noise remains (the noise level is estimated from each data set itself, frf_noise.hpp). It is a
+// continuous statistic with a small scatter (on mdof2's 40 dB series 0.95 to 1.07 in plain noise; a loose wall
+// 1.4 to 1.8). The strongest finding's significance was tried first: a finding in plain noise (a two-line dip,
+// mean normalized residual 4) came in about one set in eight and gave four times the baseline's misfit, as large
+// as the loose wall's own findings.
 double residual_misfit(const Model& model, const DataSet& set, const FitResult& fit, const FrfWeighting& weighting) {
   const std::vector<ChannelResidual> channels = diagnosis::channel_residuals(model, {set}, fit.values, weighting);
-  const ResidualSummary summary = analyse_residuals(channels);
-  double worst = summary.mean_z;
-  for (const Discrepancy& d : summary.discrepancies)
-    if (d.kind != "parameter_at_bound" && d.kind != "frequency_shift" && d.kind != "damping_mismatch")
-      worst = std::max(worst, d.significance);
-  return worst;
+  return analyse_residuals(channels).mean_z;
 }
 
 }  // namespace
@@ -77,6 +72,10 @@ int run_monitor(int argc, char** argv) {
   app.add_option("--run-length", options.run_length,
                  "average number of data sets between false alarms of the whole test (default 1000)")
       ->check(CLI::Range(2.0, 1e12));
+  app.add_option("--structural-ratio", options.structural_ratio,
+                 "a data set whose mean normalized residual exceeds this many times the baseline's largest is a "
+                 "structural change (default 1.25)")
+      ->check(CLI::Range(1.0001, 1e6));
   app.add_option("--json", json_path, "write the result (schema mbgen-monitor/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with parameter trend plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");

@@ -10,8 +10,8 @@
 //    threshold gives one false alarm in `run_length` data sets for the whole scheme. An alarm is a change: it names
 //    the parameters whose CUSUM crossed, with the estimated onset; the reference levels are then learned afresh
 //    from the detecting set on, so a change that persists is reported once.
-// 4. A set whose misfit (MonitorOptions::misfit) stands `structural_ratio` times above the baseline's is a
-//    structural change: no parameter of the model explains it. Reported once, when it starts.
+// 4. A set whose misfit after its fit (MonitorOptions::misfit) stands `structural_ratio` times above the baseline's
+//    is a structural change: no parameter of the model explains it. Reported once, when it starts.
 #pragma once
 
 #include "mbgen/fit.hpp"
@@ -38,11 +38,13 @@ struct MonitorOptions {
   // threshold for one false alarm in `run_length` data sets on average over all monitored parameters together.
   double reference_shift = 1.0;
   double run_length = 1000;
-  // Structural change: a set's misfit above structural_ratio times the largest of the baseline's.
-  double structural_ratio = 3.0;
+  // Structural change: a set's misfit above structural_ratio times the largest of the baseline's. The state ends
+  // (and a later rise is a new change) only when the misfit falls below halfway, 1 + (structural_ratio - 1) / 2
+  // times the baseline's: a hysteresis, so that a misfit hovering at the threshold is reported once.
+  double structural_ratio = 1.25;
   // A set's misfit, larger when the model explains the data worse. Default (empty): the fit's residual variance
-  // RSS/(n - k). `mbgen monitor` judges the residual against the noise level instead (the diagnosis's residual
-  // analysis: the strongest finding's mean normalized residual), which sees a local misfit a global sum dilutes.
+  // RSS/(n - k). `mbgen monitor` takes the mean normalized residual of the diagnosis's residual analysis instead
+  // (residual against a noise level estimated from the data set itself).
   std::function<double(const DataSet&, const FitResult&)> misfit;
   std::function<void(const MonitorProgress&)> progress;
 };

@@ -142,9 +142,9 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
     }
     const double ratio = result.baseline_misfit > 0 ? here.misfit / result.baseline_misfit
                                                     : std::numeric_limits<double>::infinity();
-    const bool structural_now = ratio > options.structural_ratio;
-    const bool new_structural = structural_now && !in_structural;
-    in_structural = structural_now;
+    const bool new_structural = !in_structural && ratio > options.structural_ratio;
+    if (new_structural) in_structural = true;
+    else if (in_structural && ratio < 1 + (options.structural_ratio - 1) / 2) in_structural = false;
 
     if (any_alarm || new_structural) {
       MonitorChange change;
