@@ -60,8 +60,11 @@ std::string trend_script(const std::string& stem, const std::string& title, cons
      << "set xlabel 'data set (time order)'\nset ylabel " << gnuplot_string(ylabel) << " noenhanced\n"
      << "set grid\nset key outside right\nset xrange [-0.5:" << r.series.size() - 0.5 << "]\nset xtics 1\n"
      << change_marks(r)
-     << "plot '" << stem << ".dat' using 1:5:6 with filledcurves fc rgb '#c6dbef' title 'reference +-2 sigma', \\\n"
-     << "     '' using 1:4 with steps lc rgb '#1f77b4' title 'reference', \\\n"
+     // Per set a box over its own reference band and a bar at its level: the reference changes only at the sets
+     // after a change, and lines between sets would draw slopes that are not there.
+     << "plot '" << stem << ".dat' using 1:4:($1-0.5):($1+0.5):5:6 with boxxyerror fs solid 0.6 noborder "
+     << "fc rgb '#c6dbef' title 'reference +-2 sigma', \\\n"
+     << "     '' using ($1-0.5):4:(1):(0) with vectors nohead lc rgb '#1f77b4' title 'reference', \\\n"
      << "     '' using 1:2:(2*$3) with yerrorbars pt 7 ps 0.5 lc rgb '#333333' title 'estimate +-2 std'\n";
   return gp.str();
 }
