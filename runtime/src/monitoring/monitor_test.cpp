@@ -36,7 +36,7 @@ MonitorOptions quick() {
 
 }  // namespace
 
-TEST_CASE("monitor: a stiffness step is one change naming it; scatter alone none", "[monitor]") {
+TEST_CASE("monitor: a stiffness step is one change naming it, scatter alone none", "[monitor]") {
   const test::LinearModel model = test::mdof2_model();
   test::Mdof2Values stepped;
   stepped.k22 *= 0.9;
