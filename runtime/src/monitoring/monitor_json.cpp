@@ -60,6 +60,9 @@ std::string monitor_result_json(const MonitorResult& r) {
                    {"misfit", number(s.misfit)},
                    {"starts", s.fit.start_costs.size()},
                    {"converged", s.fit.converged}};
+    nlohmann::json modes = nlohmann::json::array();
+    for (const Mode& m : s.fit.modes) modes.push_back({{"f_hz", number(m.f_hz)}, {"zeta", number(m.zeta)}});
+    item["modes"] = modes;
     series.push_back(item);
   }
   j["series"] = series;

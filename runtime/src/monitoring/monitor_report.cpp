@@ -4,6 +4,7 @@
 #include "mbgen/gnuplot.hpp"
 #include "mbgen/markdown.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -79,6 +80,24 @@ std::string misfit_script(const std::string& stem, const MonitorResult& r) {
      << change_marks(r)
      << "plot '" << stem << ".dat' using 1:2 with linespoints pt 7 ps 0.5 lc rgb '#333333' title 'misfit', \\\n"
      << "     '' using 1:3 with lines lc rgb '#9467bd' dt 2 title 'structural threshold'\n";
+  return gp.str();
+}
+
+// The feature map (thesis Fig. 5.34): each mode's frequency against its damping ratio, one panel per mode, the
+// data sets' estimates joined in time order and labelled with their index. A change of a parameter moves the points
+// along the direction its sensitivity gives (`mbgen sensitivity --sweep` draws those traces).
+std::string feature_map_script(const std::string& stem, std::size_t modes) {
+  std::ostringstream gp;
+  gp << "set terminal svg size " << std::max<std::size_t>(450, 420 * modes) << ",420 dynamic font 'sans,11'\n"
+     << "set output '" << stem << ".svg'\n"
+     << "set multiplot layout 1," << modes << " title 'modes at each estimate: frequency against damping ratio' "
+     << "noenhanced\nset grid\nset xlabel 'f [Hz]'\nset ylabel 'zeta'\nset format y '%.2e'\n"
+     << "set format x '%.4g'\nset xtics rotate by 30 right\n"
+     << "do for [m=0:" << modes - 1 << "] {\n"
+     << "  set title sprintf('mode %d', m + 1)\n"
+     << "  plot '" << stem << ".dat' index m using 2:3 with linespoints pt 7 ps 0.5 lc rgb '#1f77b4' notitle, \\\n"
+     << "       '' index m using 2:3:1 with labels offset 0.7,0.7 font ',8' notitle\n"
+     << "}\nunset multiplot\n";
   return gp.str();
 }
 
@@ -160,6 +179,24 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
     write_file(root / "misfit.gp", misfit_script("misfit", r));
     scripts.push_back("misfit");
     md << "![misfit](misfit.svg)\n\n";
+  }
+  // The feature map, for the modes every data set's estimate has (their number can differ when a mode turns
+  // overdamped).
+  std::size_t modes = r.series.empty() ? 0 : r.series.front().fit.modes.size();
+  for (const MonitorPoint& s : r.series) modes = std::min(modes, s.fit.modes.size());
+  if (modes > 0) {
+    std::ostringstream dat;
+    dat << std::setprecision(10) << "# per mode (gnuplot index): set f_hz zeta\n";
+    for (std::size_t m = 0; m < modes; ++m) {
+      if (m > 0) dat << "\n\n";
+      for (std::size_t i = 0; i < r.series.size(); ++i)
+        dat << i << ' ' << r.series[i].fit.modes[m].f_hz << ' ' << r.series[i].fit.modes[m].zeta << '\n';
+    }
+    write_file(root / "feature_map.dat", dat.str());
+    write_file(root / "feature_map.gp", feature_map_script("feature_map", modes));
+    scripts.push_back("feature_map");
+    md << "## Feature map\n\nEach mode of the model at each data set's estimate, frequency against damping ratio, "
+          "labelled with the data set's index.\n\n![feature map](feature_map.svg)\n\n";
   }
   md << render_gnuplot(root.string(), scripts);
   write_file(root / "report.md", md.str());
