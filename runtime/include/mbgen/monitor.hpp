@@ -9,7 +9,8 @@
 // 3. From then on, each parameter's standardized shift from its reference level feeds a two-sided CUSUM whose
 //    threshold gives one false alarm in `run_length` data sets for the whole scheme. An alarm is a change: it names
 //    the parameters whose CUSUM crossed, with the estimated onset; the reference levels are then learned afresh
-//    from the detecting set on, so a change that persists is reported once.
+//    from the detecting set on, so a change that persists is reported once. A set without a change joins the
+//    reference it was tested against (a self-starting CUSUM).
 // 4. A set whose misfit after its fit (MonitorOptions::misfit) stands `structural_ratio` times above the baseline's
 //    is a structural change: no parameter of the model explains it. Reported once, when it starts.
 #pragma once
@@ -58,7 +59,7 @@ struct MonitorPoint {
   // Per monitored parameter: the standardized shift from its reference level and the CUSUM's two sides after
   // this set (both 0 within the baseline, where nothing is tested).
   std::map<std::string, double> shift, cusum_up, cusum_down;
-  std::map<std::string, double> reference;  // the reference level tested against (baseline mean or re-learned)
+  std::map<std::string, double> reference;  // the reference level tested against (the mean of the sets it rests on)
   bool baseline = false;
 };
 
