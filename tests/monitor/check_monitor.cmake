@@ -4,9 +4,9 @@
 #   -DDATA="case:seed[:NAME=VALUE...][:time=ISO]|..."   the data sets, in the order given to `mbgen monitor`
 #       NAME=VALUE sets the truth's parameter; the `# set` line truthgen writes for it is removed, since a monitored
 #       machine's file does not know its own stiffness. time=ISO writes a `# time=` line first.
-#   -DEXPECT="INDICES:PARAMETERS:KIND|..."   the changes, in order; empty: no change at all
+#   -DEXPECT="INDICES:PARAMETERS:KIND[:ONSET]|..."   the changes, in order; empty: no change at all
 #       INDICES: the data set(s) where detection is right, e.g. 5 or 5,6; PARAMETERS: the exact list that moved,
-#       comma-separated, or * for any; KIND: param (not structural) or structural
+#       comma-separated, or * for any; KIND: param (not structural) or structural; ONSET: the estimated onset
 #   -DMONITOR_ARGS="--no-diagnosis" (optional): more arguments of `mbgen monitor`
 cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in script mode
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -110,6 +110,14 @@ foreach(e IN LISTS expected)
   if(NOT parameters STREQUAL "*" AND NOT moved STREQUAL parameters)
     message(FATAL_ERROR "change ${c} names '${moved}', expected '${parameters}'")
   endif()
+  list(LENGTH f n_fields)
+  string(JSON onset GET "${json}" changes ${c} onset)
+  if(n_fields GREATER 3)
+    list(GET f 3 expected_onset)
+    if(NOT onset EQUAL expected_onset)
+      message(FATAL_ERROR "change ${c} has its onset at data set ${onset}, expected ${expected_onset}")
+    endif()
+  endif()
   string(JSON structural GET "${json}" changes ${c} structural)
   if(kind STREQUAL "structural" AND NOT structural)
     message(FATAL_ERROR "change ${c} is not structural")
@@ -117,6 +125,6 @@ foreach(e IN LISTS expected)
     message(FATAL_ERROR "change ${c} is structural, expected a change of parameters")
   endif()
   string(JSON cause GET "${json}" changes ${c} cause)
-  message(STATUS "change ${c}: data set ${at}, parameters '${moved}', structural ${structural}, cause '${cause}'")
+  message(STATUS "change ${c}: data set ${at} (onset ${onset}), parameters '${moved}', structural ${structural}, cause '${cause}'")
   math(EXPR c "${c} + 1")
 endforeach()

@@ -41,6 +41,14 @@ class TwoSidedCusum {
   int upper_zero_ = -1, lower_zero_ = -1;
 };
 
+// The change point of a shift of unknown size in several streams of standardized values at once: `z[p][s]` for
+// stream p and data set s (0 = the first set that could be changed, the last = the set of the alarm; NaN: no value,
+// counts as 0). Returns the first changed set, argmax over t of sum_p (sum_{s >= t} z[p][s])^2 / (n - t), the
+// generalized likelihood ratio's estimate (Lai 1995). The CUSUM's own estimate (TwoSidedCusum::onset) uses the
+// reference shift k instead of the shift's size and moves the onset earlier when the sets before a large change
+// happen to lie on its side (mdof2: two sets 1 sigma low before a 470-sigma step put it two sets early).
+int change_point(const std::vector<std::vector<double>>& z);
+
 // A parameter's level and scatter learned from baseline data sets: `values` are its estimates, `stds` the fits'
 // standard deviations. sigma = max(sample standard deviation of the values, root mean square of the stds): the
 // spread the data sets really show, but never below what each fit claims (a sample std from three sets is itself

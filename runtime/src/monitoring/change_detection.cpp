@@ -45,6 +45,28 @@ void TwoSidedCusum::reset(int index) {
   upper_zero_ = lower_zero_ = index;
 }
 
+int change_point(const std::vector<std::vector<double>>& z) {
+  std::size_t n = 0;
+  for (const auto& stream : z) n = std::max(n, stream.size());
+  int best = 0;
+  double best_score = -1;
+  for (std::size_t t = 0; t < n; ++t) {
+    double score = 0;
+    for (const auto& stream : z) {
+      double sum = 0;
+      for (std::size_t s = t; s < stream.size(); ++s)
+        if (std::isfinite(stream[s])) sum += stream[s];
+      score += sum * sum;
+    }
+    score /= static_cast<double>(n - t);
+    if (score > best_score) {  // ties to the earlier set
+      best_score = score;
+      best = static_cast<int>(t);
+    }
+  }
+  return best;
+}
+
 BaselineScatter baseline_scatter(const std::vector<double>& values, const std::vector<double>& stds) {
   BaselineScatter s;
   s.count = static_cast<int>(values.size());

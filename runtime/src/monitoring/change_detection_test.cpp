@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <random>
 
 using namespace mbgen;
@@ -78,4 +79,18 @@ TEST_CASE("the baseline scatter is the larger of the sets' spread and the fits' 
   // The reference mean's own uncertainty and a noisier new fit both widen the standardization.
   CHECK(standardized_shift(2.0, 0.0, 1.0, 1.0, 4) == Approx(1 / std::sqrt(1.25)));
   CHECK(standardized_shift(3.0, 2.0, 1.0, 1.0, 1) == Approx(2 / std::sqrt(5.0)));
+}
+
+TEST_CASE("the change point of a shift of unknown size", "[monitor]") {
+  // Two sets slightly low, then a large drop: the drop's first set, where the CUSUM's own estimate says set 0.
+  CHECK(change_point({{-1.06, -0.62, -470.0}}) == 2);
+  TwoSidedCusum c(0.5, 5.0);
+  int alarm = 0;
+  const double z[] = {-1.06, -0.62, -470.0};
+  for (int i = 0; i < 3; ++i) alarm = c.update(z[i], i);
+  CHECK(c.onset(alarm) == 0);
+  // A moderate shift over several sets in two streams, one without a value at one set.
+  const double nan = std::nan("");
+  CHECK(change_point({{0.1, -0.3, 2.1, 1.8, 2.4}, {0.2, nan, 1.9, 2.2, nan}}) == 2);
+  CHECK(change_point({{0.0}}) == 0);
 }

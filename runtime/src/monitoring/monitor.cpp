@@ -67,6 +67,7 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
   std::vector<Reference> references;
   std::vector<double> sigmas;
   bool in_structural = false;
+  int regime_first = n_base;  // the first set tested against the current references
 
   for (int i = 0; i < n_sets; ++i) {
     const DataSet& set = data[static_cast<std::size_t>(i)];
@@ -153,20 +154,19 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
       change.time = here.time;
       change.structural = new_structural;
       change.misfit_ratio = ratio;
-      // The onset: the change point of the CUSUM with the strongest evidence (its statistic furthest beyond h). The
-      // others' can lie earlier by chance: a statistic that happened to rise from zero a set before the change.
-      double strongest = 0;
+      // The onset: the change point of a shift of unknown size in the parameters that alarmed, over the sets tested
+      // since the last reset (change_detection.hpp; the CUSUM's own estimate came out two sets early on a step).
+      std::vector<std::vector<double>> z;
       for (std::size_t j = 0; j < alarms.size(); ++j) {
         if (alarms[j] == 0) continue;
-        const double statistic = alarms[j] > 0 ? cusums[j].upper() : cusums[j].lower();
-        if (statistic > strongest) {
-          strongest = statistic;
-          change.onset = cusums[j].onset(alarms[j]);
-        }
+        z.emplace_back();
+        for (int s = regime_first; s <= i; ++s)
+          z.back().push_back(result.series[static_cast<std::size_t>(s)].shift.at(result.parameters[j].name));
       }
+      if (!z.empty()) change.onset = regime_first + change_point(z);
       // A new regime: every parameter's reference is learned afresh, starting from this set alone. The sets between
-      // the estimated onset and now would estimate it better, but an onset estimated a set too early (see above)
-      // would mix the old level in, and the next set would alarm again for the same change.
+      // the estimated onset and now would estimate it better, but an onset estimated a set too early would mix the
+      // old level in, and the next set would alarm again for the same change.
       std::string moved;
       for (std::size_t j = 0; j < result.parameters.size(); ++j) {
         const std::string& name = result.parameters[j].name;
@@ -189,6 +189,7 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
                        format(ratio) + " times the baseline's, beyond what any of its parameters explains (a structural "
                        "change).";
       result.changes.push_back(std::move(change));
+      regime_first = i + 1;
     } else {
       // No change: this set joins the reference (after being tested against it), which so keeps learning, the
       // baseline's as well as a re-learned one (a self-starting CUSUM, Hawkins 1987). A reference fixed at the
