@@ -82,7 +82,7 @@ int run_monitor(int argc, char** argv) {
   app.add_option("--starts", options.fit.starts, "starts of the first data set's fit (default 16)")
       ->check(CLI::PositiveNumber);
   app.add_option("--warm-starts", options.warm_starts,
-                 "starts of each later, warm-started fit (default 4: the previous estimate, the priors, 2 random)")
+                 "starts of each later, warm-started fit (default 4: the previous estimate, the priors, 2 random; at most --starts)")
       ->check(CLI::PositiveNumber);
   app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)");
   app.add_flag("--no-diagnosis", no_diagnosis, "report a structural change without running the diagnosis on it");
