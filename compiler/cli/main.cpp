@@ -1,4 +1,4 @@
-// mbgen: compile a model to C++ (`mbgen MODEL.mdl -o OUT.cpp`), or inspect, fit, diagnose it.
+// mbgen: compile a model to C++ (`mbgen MODEL.mdl -o OUT.cpp`), or inspect, fit, diagnose, monitor it.
 // Exit status: 0 success, 1 bad input (model, data, an output that must not be written), 2 bad usage, 3 internal
 // error (docs/cli.md). Nothing is written on failure.
 #include <cstring>
@@ -21,7 +21,9 @@ void print_usage() {
                "  mbgen modal --data FILE... [--band LO:HI] [--model MODEL.mdl] [--json OUT] [--report DIR]\n"
                "                                                                  experimental modal analysis of FRFs\n"
                "  mbgen sensitivity MODEL.mdl [--global] [--sweep NAME=LO:HI:N] [--json OUT] [--report DIR]\n"
-               "                                                                  how the modes depend on the parameters\n\n"
+               "                                                                  how the modes depend on the parameters\n"
+               "  mbgen monitor MODEL.mdl --data FILE... [--baseline N] [--json OUT] [--report DIR]\n"
+               "                                                                  track parameters over time, detect changes\n\n"
                "Run `mbgen COMMAND --help` for a command's options.\n";
 }
 
@@ -46,5 +48,6 @@ int main(int argc, char** argv) {
   if (first == "diagnose") return mbgen::cli::run_diagnose(argc - 1, argv + 1);
   if (first == "modal") return mbgen::cli::run_modal(argc - 1, argv + 1);
   if (first == "sensitivity") return mbgen::cli::run_sensitivity(argc - 1, argv + 1);
+  if (first == "monitor") return mbgen::cli::run_monitor(argc - 1, argv + 1);
   return mbgen::cli::run_compile(argc, argv);
 }
