@@ -314,6 +314,22 @@ std::optional<Cancellation> probable_cancellation(const SymbolicModel& sm, const
   return c;
 }
 
+// Fills tf's coordinates, and the transfer function itself when it is zero (no coordinate links the pair) or small
+// enough to be symbolic. False when it needs the numeric route (numeric_transfer_functions).
+bool zero_or_symbolic(const SymbolicModel& sm, TransferFunction& tf, DeterminantCache& cache) {
+  tf.coordinates = pair_coordinates(sm, tf.output, tf.input);
+  if (tf.coordinates.empty()) {
+    tf.symbolic = true;
+    tf.numerator = {0};
+    tf.denominator = {1};
+    return true;
+  }
+  if (static_cast<int>(tf.coordinates.size()) > kMaxSymbolicBlockSize) return false;
+  tf.symbolic = true;
+  ginac_transfer_function(sm, tf, cache);
+  return true;
+}
+
 }  // namespace
 
 TransferFunction transfer_function(const SymbolicModel& sm, int output, int input) {
@@ -321,16 +337,8 @@ TransferFunction transfer_function(const SymbolicModel& sm, int output, int inpu
   TransferFunction& tf = tfs.front();
   tf.output = output;
   tf.input = input;
-  tf.coordinates = pair_coordinates(sm, output, input);
   DeterminantCache cache;
-  if (tf.coordinates.empty()) {
-    tf.symbolic = true;
-    tf.numerator = {0};
-    tf.denominator = {1};
-  } else if (static_cast<int>(tf.coordinates.size()) <= kMaxSymbolicBlockSize) {
-    tf.symbolic = true;
-    ginac_transfer_function(sm, tf, cache);
-  } else {
+  if (!zero_or_symbolic(sm, tf, cache)) {
     std::map<std::size_t, std::optional<Cancellation>> probable;
     numeric_transfer_functions(sm, tfs, {0}, cache, probable);
   }
@@ -388,17 +396,7 @@ void add_transfer_functions(SymbolicModel& sm) {
       TransferFunction tf;
       tf.output = static_cast<int>(o);
       tf.input = static_cast<int>(u);
-      tf.coordinates = pair_coordinates(sm, tf.output, tf.input);
-      if (tf.coordinates.empty()) {
-        tf.symbolic = true;
-        tf.numerator = {0};
-        tf.denominator = {1};
-      } else if (static_cast<int>(tf.coordinates.size()) <= kMaxSymbolicBlockSize) {
-        tf.symbolic = true;
-        ginac_transfer_function(sm, tf, cache);
-      } else {
-        numeric[tf.coordinates].push_back(sm.transfer_functions.size());
-      }
+      if (!zero_or_symbolic(sm, tf, cache)) numeric[tf.coordinates].push_back(sm.transfer_functions.size());
       sm.transfer_functions.push_back(std::move(tf));
     }
   std::map<std::size_t, std::optional<Cancellation>> probable;

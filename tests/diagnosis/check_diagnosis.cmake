@@ -99,6 +99,7 @@ if(EXPECT_VARIANT)
 endif()
 # One feature is one finding: no two of the nominal model's discrepancies share kind, channel, data set and
 # frequency (a wide band and the sub-band standing out inside it were once listed twice).
+cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in script mode
 string(JSON n_found LENGTH "${json}" discrepancies)
 set(seen "")
 if(n_found GREATER 0)
@@ -109,7 +110,6 @@ if(n_found GREATER 0)
     string(JSON data_set GET "${json}" discrepancies ${i} data_set)
     string(JSON f GET "${json}" discrepancies ${i} f_hz)
     set(key "${kind} ${channel} ${data_set} ${f}")
-    cmake_policy(SET CMP0057 NEW)
     if(key IN_LIST seen)
       message(FATAL_ERROR "a finding listed twice: ${key}")
     endif()

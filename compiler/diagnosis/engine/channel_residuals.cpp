@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <tuple>
 
 #include "diagnosis/engine/data_split.hpp"
 
@@ -115,22 +116,29 @@ void keep_frf_lines_above_noise(ChannelResidual& r, const Eigen::VectorXd& extra
   keep_lines(r, [&](Eigen::Index k) { return judged[static_cast<std::size_t>(k)]; });
 }
 
-// A measured FRF's channel as the fit saw it: its frequencies and the noise level there (the full data's, looked
-// up by frequency: the fitted lines are a subset of the data's lines).
-struct FittedChannel {
-  int output = -1, input = -1;
-  std::vector<double> f_hz;
-  std::vector<double> sigma;
+// The noise level of each measured FRF channel, estimated once per call: it depends on the data alone, and both the
+// prediction variance's Fisher information and the judging use it.
+class NoiseLevels {
+ public:
+  const FrfNoise& of(const DataSet& d, const FrfData& frf, const FrfChannel& c) {
+    const auto key = std::make_tuple(d.file(), c.output, c.input);
+    auto it = levels_.find(key);
+    if (it == levels_.end()) it = levels_.emplace(key, frf_noise(frf.f_hz, c)).first;
+    return it->second;
+  }
+
+ private:
+  std::map<std::tuple<std::string, std::string, std::string>, FrfNoise> levels_;
 };
 
 // The parameters' covariance from the noise alone: the inverse Fisher information of the fitted lines,
 // sum over lines of 2 Re(j^H j) / sigma^2 (real and imaginary parts each carry half of the complex noise
-// variance sigma^2). Returns the model's prediction variance E|dH|^2 = j Cov j^H at every line of `data`'s FRFs not
-// among the fitted ones, per data set and channel (empty for records), in the order channel_residuals walks them.
+// variance sigma^2). at() gives the model's prediction variance E|dH|^2 = j Cov j^H at the lines of one data set's
+// channel that the fit did not see.
 class PredictionVariance {
  public:
   PredictionVariance(const Model& model, const std::vector<DataSet>& data, const Eigen::VectorXd& values,
-                     const FittedOn& fitted)
+                     const FittedOn& fitted, NoiseLevels& noise_levels)
       : model_(model) {
     if (!fitted.data || !fitted.estimated || fitted.estimated->empty()) return;
     for (const std::string& name : *fitted.estimated) {
@@ -155,7 +163,7 @@ class PredictionVariance {
         const int o = model.info().output_index(c.output), i = model.info().input_index(c.input);
         const FrfChannel* whole = all.find(c.output, c.input);
         if (o < 0 || i < 0 || !whole) continue;
-        const FrfNoise noise = frf_noise(all.f_hz, *whole);
+        const FrfNoise& noise = noise_levels.of(*full, all, *whole);
         const Eigen::Index row = o + i * outputs;
         Eigen::Index line = 0;
         for (std::size_t k = 0; k < f.size(); ++k) {
@@ -221,7 +229,8 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
                                                const FittedOn& fitted) {
   std::vector<ChannelResidual> out;
   const ModelInfo& info = model.info();
-  PredictionVariance prediction(model, data, values, fitted);
+  NoiseLevels noise_levels;
+  PredictionVariance prediction(model, data, values, fitted, noise_levels);
   for (const DataSet& d : data) {
     FrfData frf;
     std::optional<FrfData> model_frf;  // for a record: the model's FRFs as the same estimator sees them
@@ -293,7 +302,7 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
         keep_record_lines_above_noise(r, static_cast<double>(residual_est.segments));
       } else {
         // The noise level from the data alone, the same for every model judged against them.
-        const FrfNoise noise = frf_noise(frf.f_hz, c);
+        const FrfNoise& noise = noise_levels.of(d, frf, c);
         r.sigma = noise.sigma;
         r.noise = noise.description();
         keep_frf_lines_above_noise(r, prediction.at(d, values, f, o, i));

@@ -3,6 +3,7 @@
 
 #include "mbgen/gnuplot.hpp"
 #include "mbgen/markdown.hpp"
+#include "mbgen/report_files.hpp"
 
 #include <cmath>
 #include <complex>
@@ -17,32 +18,6 @@ namespace mbgen {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Each file is written to a temporary name and renamed, so that it appears whole or not at all.
-void write_file(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw FitError("cannot write " + tmp.string());
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw FitError("cannot write " + path.string() + ": " + ec.message());
-}
-
-std::string safe_name(const std::string& s) {
-  std::string out;
-  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '_';
-  return out;
-}
-
-std::string fmt(double x, int digits = 6) {
-  if (!std::isfinite(x)) return "n/a";
-  std::ostringstream s;
-  s << std::setprecision(digits) << x;
-  return s.str();
-}
 
 double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
 
@@ -104,9 +79,9 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   md << ".\n\n## Parameters\n\n| parameter | prior | estimate | std | relative std | identifiable | unit |\n"
      << "|---|---|---|---|---|---|---|\n";
   for (const auto& e : result.parameters) {
-    md << "| " << e.name << " | " << fmt(e.prior) << " | " << fmt(e.value) << " | "
-       << (e.identifiable ? fmt(e.std, 3) : "—") << " | "
-       << (e.identifiable && e.value != 0 ? fmt(100 * e.std / std::abs(e.value), 3) + " %" : "—") << " | "
+    md << "| " << e.name << " | " << report_number(e.prior) << " | " << report_number(e.value) << " | "
+       << (e.identifiable ? report_number(e.std, 3) : "—") << " | "
+       << (e.identifiable && e.value != 0 ? report_number(100 * e.std / std::abs(e.value), 3) + " %" : "—") << " | "
        << (e.identifiable        ? "yes"
            : e.at_bound.empty() ? "**no** (kept at prior)"
                                 : "**no**: at its " + e.at_bound + " bound");
@@ -118,17 +93,17 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   }
   md << "\n## Fit\n\n"
      << "- residuals n = " << result.residual_count << ", estimated parameters k = " << result.estimated.size() << "\n"
-     << "- weighted RSS: prior " << fmt(result.initial_cost) << ", estimate " << fmt(result.cost) << "\n"
-     << "- NRMSE (sqrt of RSS over the weighted data's sum of squares) = " << fmt(result.nrmse, 4) << "\n"
-     << "- BIC = n log(RSS/n) + k log n = " << fmt(result.bic, 8) << "\n"
-     << "- residual variance RSS/(n-k) = " << fmt(result.residual_variance, 4) << "\n"
+     << "- weighted RSS: prior " << report_number(result.initial_cost) << ", estimate " << report_number(result.cost) << "\n"
+     << "- NRMSE (sqrt of RSS over the weighted data's sum of squares) = " << report_number(result.nrmse, 4) << "\n"
+     << "- BIC = n log(RSS/n) + k log n = " << report_number(result.bic, 8) << "\n"
+     << "- residual variance RSS/(n-k) = " << report_number(result.residual_variance, 4) << "\n"
      << "- starts: " << result.start_costs.size() << ", best start " << result.best_start << "; final refinement "
      << result.iterations << " iterations, " << (result.converged ? "converged" : "not converged") << " ("
      << result.stop_reason << ")\n";
   md << "\nFinal cost of every start:";
-  for (double c : result.start_costs) md << " " << fmt(c, 5);
+  for (double c : result.start_costs) md << " " << report_number(c, 5);
   md << "\n\n## Modes at the estimate\n\n| f [Hz] | zeta |\n|---|---|\n";
-  for (const auto& m : result.modes) md << "| " << fmt(m.f_hz, 6) << " | " << fmt(m.zeta, 4) << " |\n";
+  for (const auto& m : result.modes) md << "| " << report_number(m.f_hz, 6) << " | " << report_number(m.zeta, 4) << " |\n";
   md << "\n## Correlation of the estimates\n\n|";
   for (const auto& n : result.estimated) md << " | " << n;
   md << " |\n|---";
@@ -137,11 +112,11 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   for (std::size_t i = 0; i < result.estimated.size(); ++i) {
     md << "| " << result.estimated[i];
     for (std::size_t k = 0; k < result.estimated.size(); ++k)
-      md << " | " << fmt(result.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)), 3);
+      md << " | " << report_number(result.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)), 3);
     md << " |\n";
   }
   md << "\nSingular values of the unit-column-scaled Jacobian of all candidates:";
-  for (Eigen::Index i = 0; i < result.singular_values.size(); ++i) md << " " << fmt(result.singular_values[i], 3);
+  for (Eigen::Index i = 0; i < result.singular_values.size(); ++i) md << " " << report_number(result.singular_values[i], 3);
   md << "\n\n## Data and model\n\n";
 
   std::vector<std::string> scripts;
@@ -150,7 +125,7 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
     for (const auto& [name, value] : data[d].set()) md << "- set " << name << " = " << value.text << "\n";
     for (std::size_t c = 0; c < before.channels[d].size(); ++c) {
       const std::string label = before.channel_names[d][c];
-      const std::string stem = "set" + std::to_string(d + 1) + "_" + safe_name(label);
+      const std::string stem = "set" + std::to_string(d + 1) + "_" + file_stem(label);
       std::ostringstream dat;
       dat << std::setprecision(10);
       if (data[d].is_frf()) {
@@ -162,7 +137,7 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
           dat << f.f_hz[k] << ' ' << std::abs(hd) << ' ' << phase_deg(hd) << ' ' << std::abs(hp) << ' ' << phase_deg(hp)
               << ' ' << std::abs(he) << ' ' << phase_deg(he) << ' ' << std::abs(hp - hd) << ' ' << std::abs(he - hd) << '\n';
         }
-        write_file(root / (stem + ".gp"), frf_script(stem, label));
+        write_report_file(root / (stem + ".gp"), frf_script(stem, label));
       } else {
         const TimeRecord& t = std::get<TimeRecord>(data[d].content);
         const Eigen::VectorXd& measured = t.at(label).values;
@@ -171,16 +146,16 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
           const double yd = measured[k], yp = before.channels[d][c][k].real(), ye = after.channels[d][c][k].real();
           dat << t.t[k] << ' ' << yd << ' ' << yp << ' ' << ye << ' ' << yp - yd << ' ' << ye - yd << '\n';
         }
-        write_file(root / (stem + ".gp"), time_script(stem, label));
+        write_report_file(root / (stem + ".gp"), time_script(stem, label));
       }
-      write_file(root / (stem + ".dat"), dat.str());
+      write_report_file(root / (stem + ".dat"), dat.str());
       scripts.push_back(stem);
       md << "#### " << markdown_text(label) << "\n\n![" << markdown_text(label) << "](" << stem << ".svg)\n\n";
       if (data[d].is_frf()) md << "![" << markdown_text(label) << " residual](" << stem << "_residual.svg)\n\n";
     }
   }
   md << render_gnuplot(root.string(), scripts);
-  write_file(root / "report.md", md.str());
+  write_report_file(root / "report.md", md.str());
 }
 
 }  // namespace mbgen

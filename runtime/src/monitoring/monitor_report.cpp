@@ -3,6 +3,7 @@
 
 #include "mbgen/gnuplot.hpp"
 #include "mbgen/markdown.hpp"
+#include "mbgen/report_files.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,32 +17,6 @@ namespace mbgen {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Each file is written to a temporary name and renamed, so that it appears whole or not at all.
-void write_file(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw FitError("cannot write " + tmp.string());
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw FitError("cannot write " + path.string() + ": " + ec.message());
-}
-
-std::string safe_name(const std::string& s) {
-  std::string out;
-  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '_';
-  return out;
-}
-
-std::string fmt(double x, int digits = 6) {
-  if (!std::isfinite(x)) return "n/a";
-  std::ostringstream s;
-  s << std::setprecision(digits) << x;
-  return s.str();
-}
 
 // The changes as dashed vertical lines, so that every trend shows where they were detected.
 std::string change_marks(const MonitorResult& r) {
@@ -113,9 +88,9 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
   md << "# Monitoring report: " << markdown_code(r.model) << "\n\n"
      << r.series.size() << " data sets in time order; the first " << r.baseline
      << " are the baseline. Changes are detected by a two-sided CUSUM per parameter on its standardized shift "
-     << "(k = " << fmt(r.k, 3) << ", h = " << fmt(r.h, 4) << ": one false alarm in " << fmt(r.run_length, 6)
+     << "(k = " << report_number(r.k, 3) << ", h = " << report_number(r.h, 4) << ": one false alarm in " << report_number(r.run_length, 6)
      << " data sets on average over all " << r.parameters.size() << " parameters); a data set whose misfit exceeds "
-     << fmt(r.structural_ratio, 3) << " times the baseline's largest (" << fmt(r.baseline_misfit, 4)
+     << report_number(r.structural_ratio, 3) << " times the baseline's largest (" << report_number(r.baseline_misfit, 4)
      << ") is a structural change.\n\n## Changes\n\n";
   if (r.changes.empty()) md << "None.\n";
   for (const MonitorChange& c : r.changes) {
@@ -133,13 +108,13 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
   }
   md << "\n## Baseline\n\n| parameter | mean | sigma | spread of the sets | fits' std | unit |\n|---|---|---|---|---|---|\n";
   for (const MonitoredParameter& p : r.parameters)
-    md << "| " << markdown_text(p.name) << " | " << fmt(p.mean) << " | " << fmt(p.sigma, 3) << " | "
-       << fmt(p.sample_std, 3) << " | " << fmt(p.fit_std, 3) << " | " << markdown_text(p.unit) << " |\n";
+    md << "| " << markdown_text(p.name) << " | " << report_number(p.mean) << " | " << report_number(p.sigma, 3) << " | "
+       << report_number(p.sample_std, 3) << " | " << report_number(p.fit_std, 3) << " | " << markdown_text(p.unit) << " |\n";
   md << "\n## Data sets\n\n| # | data | time | nrmse | misfit | starts |\n|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < r.series.size(); ++i) {
     const MonitorPoint& s = r.series[i];
     md << "| " << i << (s.baseline ? " (baseline)" : "") << " | " << markdown_code(s.file) << " | "
-       << (s.time ? markdown_text(*s.time) : "—") << " | " << fmt(s.fit.nrmse, 4) << " | " << fmt(s.misfit, 4) << " | "
+       << (s.time ? markdown_text(*s.time) : "—") << " | " << report_number(s.fit.nrmse, 4) << " | " << report_number(s.misfit, 4) << " | "
        << s.fit.start_costs.size() << " |\n";
   }
   md << "\n## Trends\n\nEach estimate with its 2-std bar; the reference level the test compares with (the baseline's "
@@ -148,7 +123,7 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
 
   std::vector<std::string> scripts;
   for (const MonitoredParameter& p : r.parameters) {
-    const std::string stem = "trend_" + safe_name(p.name);
+    const std::string stem = "trend_" + file_stem(p.name);
     std::ostringstream dat;
     dat << std::setprecision(10) << "# set value std reference reference-2sigma reference+2sigma\n";
     for (std::size_t i = 0; i < r.series.size(); ++i) {
@@ -164,8 +139,8 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
       dat << i << ' ' << value << ' ' << sd << ' ' << level << ' ' << level - 2 * p.sigma << ' ' << level + 2 * p.sigma
           << '\n';
     }
-    write_file(root / (stem + ".dat"), dat.str());
-    write_file(root / (stem + ".gp"),
+    write_report_file(root / (stem + ".dat"), dat.str());
+    write_report_file(root / (stem + ".gp"),
                trend_script(stem, p.name, p.unit.empty() ? p.name : p.name + " [" + p.unit + "]", r));
     scripts.push_back(stem);
     md << "![" << markdown_text(p.name) << "](" << stem << ".svg)\n\n";
@@ -175,8 +150,8 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
     dat << std::setprecision(10) << "# set misfit threshold\n";
     for (std::size_t i = 0; i < r.series.size(); ++i)
       dat << i << ' ' << r.series[i].misfit << ' ' << r.structural_ratio * r.baseline_misfit << '\n';
-    write_file(root / "misfit.dat", dat.str());
-    write_file(root / "misfit.gp", misfit_script("misfit", r));
+    write_report_file(root / "misfit.dat", dat.str());
+    write_report_file(root / "misfit.gp", misfit_script("misfit", r));
     scripts.push_back("misfit");
     md << "![misfit](misfit.svg)\n\n";
   }
@@ -192,14 +167,14 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
       for (std::size_t i = 0; i < r.series.size(); ++i)
         dat << i << ' ' << r.series[i].fit.modes[m].f_hz << ' ' << r.series[i].fit.modes[m].zeta << '\n';
     }
-    write_file(root / "feature_map.dat", dat.str());
-    write_file(root / "feature_map.gp", feature_map_script("feature_map", modes));
+    write_report_file(root / "feature_map.dat", dat.str());
+    write_report_file(root / "feature_map.gp", feature_map_script("feature_map", modes));
     scripts.push_back("feature_map");
     md << "## Feature map\n\nEach mode of the model at each data set's estimate, frequency against damping ratio, "
           "labelled with the data set's index.\n\n![feature map](feature_map.svg)\n\n";
   }
   md << render_gnuplot(root.string(), scripts);
-  write_file(root / "report.md", md.str());
+  write_report_file(root / "report.md", md.str());
 }
 
 }  // namespace mbgen
