@@ -75,11 +75,12 @@ int run_fit(int argc, char** argv) {
     const auto evaluator = evaluator::make_evaluator(model, derive);
     std::vector<DataSet> data = load_data(data_paths, evaluator->info());
     if (!band.empty()) data = within_band(data, parse_band("--band", band));
+    // A named method that cannot use the data is bad input (status 1), as docs/interfaces.md says.
     for (const DataSet& d : data) {
       if (method == "frf-output-error" && !d.is_frf())
-        throw CLI::ValidationError("--method", "frf-output-error needs FRF data, but " + d.file() + " is a time record");
+        throw FitError(d.file() + ": error: --method frf-output-error needs FRF data, but this is a time record");
       if (method == "time-output-error" && d.is_frf())
-        throw CLI::ValidationError("--method", "time-output-error needs time records, but " + d.file() + " holds FRFs");
+        throw FitError(d.file() + ": error: --method time-output-error needs time records, but this file holds FRFs");
     }
     options.progress = [](const FitProgress& p) {
       progress_line("fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +

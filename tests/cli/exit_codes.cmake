@@ -49,3 +49,10 @@ file(WRITE "${WORK}/power.mdl" "model power\nparam a = 2\nparam m1 = a^a\nground
            "output y displacement of b along x\n")
 expect_run(STATUS 1 STDERR "^power.mdl: error: cannot fit or simulate this model: a power whose exponent depends"
   ARGS fit power.mdl --data one_frf.csv --starts 1)
+
+# A named method that cannot use the data is bad input (status 1, naming the file), not a usage error.
+expect_run(STATUS 1 STDERR "^one_frf.csv: error: --method time-output-error needs time records"
+  ARGS ${FAST_FIT} --method time-output-error)
+file(WRITE "${WORK}/rec.csv" "t,F,y\n0,1,0\n0.001,1,0.0001\n0.002,1,0.0002\n0.003,1,0.0003\n")
+expect_run(STATUS 1 STDERR "^rec.csv: error: --method frf-output-error needs FRF data"
+  ARGS fit one.mdl --data rec.csv --starts 1 --method frf-output-error)

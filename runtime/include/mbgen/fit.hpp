@@ -150,6 +150,10 @@ struct FitResult {
 
   std::vector<Mode> modes;  // of the model at the estimate (without per-data-set values)
 
+  // Results particular to the method that ran (docs/methods.md): member name -> a JSON text, written under
+  // "method_details" in mbgen-fit/1. Empty for the output-error methods.
+  std::map<std::string, std::string> method_details;
+
   int iterations = 0;                // LM iterations of the final refinement
   std::vector<double> cost_history;  // cost per accepted iteration: best start's search, then refinement
   std::vector<double> start_costs;   // final cost of every start (search stage; for time records, on their H1)

@@ -66,6 +66,11 @@ std::string fit_result_json(const FitResult& r) {
   nlohmann::json history = nlohmann::json::array();
   for (double c : r.cost_history) history.push_back(number(c));
   j["cost_history"] = history;
+  if (!r.method_details.empty()) {
+    nlohmann::json details = nlohmann::json::object();
+    for (const auto& [name, text] : r.method_details) details[name] = nlohmann::json::parse(text);
+    j["method_details"] = details;
+  }
   // Invalid UTF-8 (a file name in another encoding) cannot be JSON text: such bytes become U+FFFD.
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
