@@ -1,14 +1,22 @@
 // `mbgen monitor MODEL.mdl --data FILE [--data FILE ...] [--baseline N] [--json OUT] [--report DIR]`: one machine
 // measured again and again; each data set fitted, changes of its parameters detected against a baseline, and a
 // structural change (one no parameter explains) diagnosed (runtime/include/mbgen/monitor.hpp, docs/monitor.md).
+// `mbgen monitor --manifest FLEET.csv --out DIR [--item I | --count]`: many machines, each an idempotent item
+// (fleet_manifest.hpp, docs/fleets.md).
 #include <mbgen/measurement_time.hpp>
 #include <mbgen/monitor_report.hpp>
 
+#include <mbgen/report_files.hpp>
+
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/fleet_manifest.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
@@ -51,22 +59,159 @@ double residual_misfit(const Model& model, const DataSet& set, const FitResult& 
   return analyse_residuals(channels).mean_z;
 }
 
+// The settings of one monitoring run, apart from its model and data.
+struct MonitorSettings {
+  MonitorOptions options;
+  std::vector<std::string> sets;
+  bool no_diagnosis = false;
+};
+
+// Monitors one machine: its model (path, or "-" for standard input) and its data sets, ordered by time.
+MonitorResult monitor_machine(const std::string& model_path, const std::vector<std::string>& data_paths,
+                              MonitorSettings settings) {
+  MonitorOptions& options = settings.options;
+  const std::vector<std::string>& sets = settings.sets;
+  const bool no_diagnosis = settings.no_diagnosis;
+  // The text is read once (standard input cannot be read twice): the model is parsed from it.
+  const std::string text = frontend::read_model_text(model_path);
+  const ir::Model parsed = frontend::parse_string(text, model_path);
+  symbolic::DeriveOptions derive;
+  derive.set = parse_set_options(sets);
+  const auto evaluator = evaluator::make_evaluator(parsed, derive);
+
+  std::vector<std::optional<MeasurementTime>> stamps;
+  for (const std::string& path : data_paths) stamps.push_back(read_measurement_time(path));
+  const std::vector<std::size_t> order = time_order(data_paths, stamps);
+  std::vector<std::string> ordered_paths;
+  std::vector<std::optional<std::string>> times;
+  for (std::size_t i : order) {
+    ordered_paths.push_back(data_paths[i]);
+    times.push_back(stamps[i] ? std::optional<std::string>(stamps[i]->text) : std::nullopt);
+  }
+  const std::vector<DataSet> data = load_data(ordered_paths, evaluator->info());
+  if (static_cast<int>(data.size()) <= options.baseline)
+    throw CLI::ValidationError("--data", "monitoring needs more data sets than the baseline's " +
+                                             std::to_string(options.baseline) + " (--baseline)");
+
+  const FrfWeighting weighting = options.fit.frf_weighting;
+  options.misfit = [&](const DataSet& set, const FitResult& fit) {
+    return residual_misfit(*evaluator, set, fit, weighting);
+  };
+  options.fit.progress = [](const FitProgress& p) {
+    progress_line("  fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
+                  ", iteration " + std::to_string(p.iteration));
+  };
+  options.progress = [](const MonitorProgress& p) {
+    if (p.stage == "fitting") return;
+    progress_done();
+    std::cerr << "monitor: data set " << p.index << "/" << p.count << " " << p.file << ": " << p.stage << "\n";
+  };
+  MonitorResult result = monitor(*evaluator, data, times, options);
+  result.model = model_path;
+
+  // A structural change: the diagnosis of that data set against the model names the cause where it can.
+  for (MonitorChange& change : result.changes) {
+    if (!change.structural || no_diagnosis) continue;
+    std::cerr << "monitor: diagnosing data set " << change.index << " (a structural change)\n";
+    diagnosis::DiagnoseOptions dopts;
+    dopts.set = derive.set;
+    dopts.fit.starts = options.warm_starts;
+    dopts.fit.seed = options.fit.seed;
+    for (const MonitoredParameter& p : result.parameters) dopts.fit.also_start_at[p.name] = p.mean;
+    dopts.fit.progress = options.fit.progress;
+    const diagnosis::DiagnosisResult d =
+        diagnosis::diagnose(parsed, text, {data[static_cast<std::size_t>(change.index)]}, dopts);
+    progress_done();
+    if (d.verdict == "extended" && !d.selected.empty()) {
+      change.cause = d.selected.front();
+      change.text += " The diagnosis names " + change.cause + ".";
+    } else {
+      change.text += " The diagnosis named no cause (verdict " + d.verdict + ")";
+      std::vector<const diagnosis::CandidateOutcome*> leads;
+      for (const diagnosis::CandidateOutcome& c : d.candidates)
+        if (c.round == 1 && c.qualifies) leads.push_back(&c);
+      std::stable_sort(leads.begin(), leads.end(), [](auto* a, auto* b) { return a->delta_bic < b->delta_bic; });
+      for (std::size_t i = 0; i < leads.size(); ++i) {
+        change.qualified.push_back(leads[i]->id);
+        char gain[64];
+        std::snprintf(gain, sizeof gain, "%.4g", leads[i]->delta_bic);
+        change.text += (i ? ", " : "; qualified on their own but not confirmed: ") + leads[i]->id + " (BIC " + gain + ")";
+      }
+      change.text += ".";
+    }
+  }
+
+  return result;
+}
+
+// Everything a fleet item's result depends on, one fact per line: when it equals the digest written with the item's
+// last result, the item is up to date.
+std::string item_digest(const FleetItem& item, const MonitorSettings& s) {
+  std::ostringstream d;
+  d << version_text() << "\n"
+    << "baseline " << s.options.baseline << ", run-length " << s.options.run_length << ", structural-ratio "
+    << s.options.structural_ratio << ", starts " << s.options.fit.starts << ", warm-starts " << s.options.warm_starts
+    << ", seed " << s.options.fit.seed << (s.no_diagnosis ? ", no diagnosis" : "") << "\n";
+  std::vector<std::string> sets = s.sets;
+  std::sort(sets.begin(), sets.end());
+  for (const std::string& set : sets) d << "set " << set << "\n";
+  d << "model " << item.model << " " << file_digest(item.model) << "\n";
+  for (const std::string& f : item.data) d << "data " << f << " " << file_digest(f) << "\n";
+  return d.str();
+}
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return in ? text.str() : std::string();
+}
+
+// Runs one item of a fleet into OUT/MACHINE unless its digest says the result there is current. Returns true when
+// it ran.
+bool run_fleet_item(const FleetItem& item, const std::string& out_dir, const MonitorSettings& settings) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(out_dir) / item.machine;
+  const std::string digest = item_digest(item, settings);
+  std::error_code ec;
+  if (fs::exists(dir / "monitor.json", ec) && read_text_file((dir / "inputs.digest").string()) == digest) {
+    std::cerr << "monitor: " << item.machine << ": up to date\n";
+    return false;
+  }
+  std::cerr << "monitor: " << item.machine << ": " << item.data.size() << " data sets\n";
+  OutputPlan plan;
+  plan.report_dir = dir.string();
+  plan.inputs = item.data;
+  plan.inputs.push_back(item.model);
+  plan.check();
+  MonitorResult result = monitor_machine(item.model, item.data, settings);
+  OutputFiles out;
+  const fs::path staged = out.stage_directory(dir.string());
+  write_report_file((staged / "monitor.json").string(), monitor_result_json(result));
+  write_monitor_report((staged / "report").string(), result);
+  write_report_file((staged / "inputs.digest").string(), digest);
+  out.commit();
+  std::cout << item.machine << ": " << summary(result);
+  return true;
+}
+
 }  // namespace
 
 int run_monitor(int argc, char** argv) {
   CLI::App app{"Fit each of a machine's data sets in time order, learn the parameters' scatter from a baseline, and "
                "report when and which parameters changed (a CUSUM with a stated false-alarm rate), or that the model "
-               "no longer fits (a structural change, then diagnosed).",
+               "no longer fits (a structural change, then diagnosed). With --manifest, a fleet of machines as "
+               "independent items for a batch engine (docs/fleets.md).",
                "mbgen monitor"};
-  std::string model_path, json_path, report_dir;
-  std::vector<std::string> data_paths, sets;
-  MonitorOptions options;
-  bool no_diagnosis = false;
-  app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
+  std::string model_path, json_path, report_dir, manifest_path, item_selector, out_dir;
+  std::vector<std::string> data_paths;
+  MonitorSettings settings;
+  MonitorOptions& options = settings.options;
+  bool count = false;
+  app.add_option("model", model_path, "model file (.mdl); - reads standard input (not with --manifest)");
   app.add_option("--data", data_paths,
                  "measured data sets: CSV (time or FRF) or UFF 58; repeatable, ordered by their `# time=` lines "
-                 "(argument order when none has one)")
-      ->required();
+                 "(argument order when none has one)");
   app.add_option("--baseline", options.baseline, "the first N data sets are the baseline (default 3, at least 2)")
       ->check(CLI::Range(2, 1000000));
   app.add_option("--run-length", options.run_length,
@@ -78,90 +223,64 @@ int run_monitor(int argc, char** argv) {
       ->check(CLI::Range(1.0001, 1e6));
   app.add_option("--json", json_path, "write the result (schema mbgen-monitor/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with parameter trend plots)");
-  app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
+  app.add_option("--set", settings.sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("--starts", options.fit.starts, "starts of the first data set's fit (default 16)")
       ->check(CLI::PositiveNumber);
   app.add_option("--warm-starts", options.warm_starts,
                  "starts of each later, warm-started fit (default 4: the previous estimate, the priors, 2 random; at most --starts)")
       ->check(CLI::PositiveNumber);
   app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)");
-  app.add_flag("--no-diagnosis", no_diagnosis, "report a structural change without running the diagnosis on it");
+  app.add_flag("--no-diagnosis", settings.no_diagnosis, "report a structural change without running the diagnosis on it");
+  app.add_option("--manifest", manifest_path,
+                 "a fleet: CSV `machine,model,data` (docs/fleets.md); each machine is an item written to OUT/MACHINE");
+  app.add_option("--item", item_selector,
+                 "with --manifest: run only this item, by 0-based index (a job array's index) or machine name");
+  app.add_option("--out", out_dir, "with --manifest: the directory of the items' results");
+  app.add_flag("--count", count, "with --manifest: print the number of items and exit");
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
+    if (!manifest_path.empty()) {
+      if (!model_path.empty() || !data_paths.empty() || !json_path.empty() || !report_dir.empty())
+        throw CLI::ValidationError("--manifest", "the manifest names the models and data; MODEL, --data, --json and "
+                                                 "--report are for one machine");
+      const std::vector<FleetItem> items = read_fleet_manifest(manifest_path);
+      if (count) {
+        std::cout << items.size() << "\n";
+        return 0;
+      }
+      if (out_dir.empty()) throw CLI::ValidationError("--out", "--manifest needs --out DIR for the items' results");
+      const FleetItem* selected = item_selector.empty() ? nullptr : &select_fleet_item(items, item_selector);
+      std::error_code ec;
+      std::filesystem::create_directories(out_dir, ec);  // items of a job array may race here: that is harmless
+      if (!std::filesystem::is_directory(out_dir, ec)) throw OutputError(out_dir + ": error: cannot create the directory");
+      if (selected) {
+        run_fleet_item(*selected, out_dir, settings);
+        return 0;
+      }
+      // Every item in turn; one that fails is reported and the others still run (rerun to retry: done items skip).
+      int status = 0;
+      for (const FleetItem& item : items) {
+        try {
+          run_fleet_item(item, out_dir, settings);
+        } catch (...) {
+          progress_done();
+          std::cerr << "monitor: " << item.machine << " (" << manifest_path << ":" << item.line << ") failed:\n";
+          status = std::max(status, report_current_exception());
+        }
+      }
+      return status;
+    }
+    if (!item_selector.empty() || !out_dir.empty() || count)
+      throw CLI::ValidationError("--item", "--item, --out and --count go with --manifest");
+    if (model_path.empty()) throw CLI::ValidationError("model", "a model file is required (or --manifest)");
+    if (data_paths.empty()) throw CLI::ValidationError("--data", "at least one --data file is required");
     OutputPlan plan;
     plan.files = {{"--json", json_path}};
     plan.report_dir = report_dir;
     plan.inputs = data_paths;
     plan.inputs.push_back(model_path);
     plan.check();
-    // The text is read once (standard input cannot be read twice): the model is parsed from it.
-    const std::string text = frontend::read_model_text(model_path);
-    const ir::Model parsed = frontend::parse_string(text, model_path);
-    symbolic::DeriveOptions derive;
-    derive.set = parse_set_options(sets);
-    const auto evaluator = evaluator::make_evaluator(parsed, derive);
-
-    std::vector<std::optional<MeasurementTime>> stamps;
-    for (const std::string& path : data_paths) stamps.push_back(read_measurement_time(path));
-    const std::vector<std::size_t> order = time_order(data_paths, stamps);
-    std::vector<std::string> ordered_paths;
-    std::vector<std::optional<std::string>> times;
-    for (std::size_t i : order) {
-      ordered_paths.push_back(data_paths[i]);
-      times.push_back(stamps[i] ? std::optional<std::string>(stamps[i]->text) : std::nullopt);
-    }
-    const std::vector<DataSet> data = load_data(ordered_paths, evaluator->info());
-    if (static_cast<int>(data.size()) <= options.baseline)
-      throw CLI::ValidationError("--data", "monitoring needs more data sets than the baseline's " +
-                                               std::to_string(options.baseline) + " (--baseline)");
-
-    const FrfWeighting weighting = options.fit.frf_weighting;
-    options.misfit = [&](const DataSet& set, const FitResult& fit) {
-      return residual_misfit(*evaluator, set, fit, weighting);
-    };
-    options.fit.progress = [](const FitProgress& p) {
-      progress_line("  fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
-                    ", iteration " + std::to_string(p.iteration));
-    };
-    options.progress = [](const MonitorProgress& p) {
-      if (p.stage == "fitting") return;
-      progress_done();
-      std::cerr << "monitor: data set " << p.index << "/" << p.count << " " << p.file << ": " << p.stage << "\n";
-    };
-    MonitorResult result = monitor(*evaluator, data, times, options);
-    result.model = model_path;
-
-    // A structural change: the diagnosis of that data set against the model names the cause where it can.
-    for (MonitorChange& change : result.changes) {
-      if (!change.structural || no_diagnosis) continue;
-      std::cerr << "monitor: diagnosing data set " << change.index << " (a structural change)\n";
-      diagnosis::DiagnoseOptions dopts;
-      dopts.set = derive.set;
-      dopts.fit.starts = options.warm_starts;
-      dopts.fit.seed = options.fit.seed;
-      for (const MonitoredParameter& p : result.parameters) dopts.fit.also_start_at[p.name] = p.mean;
-      dopts.fit.progress = options.fit.progress;
-      const diagnosis::DiagnosisResult d =
-          diagnosis::diagnose(parsed, text, {data[static_cast<std::size_t>(change.index)]}, dopts);
-      progress_done();
-      if (d.verdict == "extended" && !d.selected.empty()) {
-        change.cause = d.selected.front();
-        change.text += " The diagnosis names " + change.cause + ".";
-      } else {
-        change.text += " The diagnosis named no cause (verdict " + d.verdict + ")";
-        std::vector<const diagnosis::CandidateOutcome*> leads;
-        for (const diagnosis::CandidateOutcome& c : d.candidates)
-          if (c.round == 1 && c.qualifies) leads.push_back(&c);
-        std::stable_sort(leads.begin(), leads.end(), [](auto* a, auto* b) { return a->delta_bic < b->delta_bic; });
-        for (std::size_t i = 0; i < leads.size(); ++i) {
-          change.qualified.push_back(leads[i]->id);
-          char gain[64];
-          std::snprintf(gain, sizeof gain, "%.4g", leads[i]->delta_bic);
-          change.text += (i ? ", " : "; qualified on their own but not confirmed: ") + leads[i]->id + " (BIC " + gain + ")";
-        }
-        change.text += ".";
-      }
-    }
+    MonitorResult result = monitor_machine(model_path, data_paths, settings);
 
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, monitor_result_json(result));

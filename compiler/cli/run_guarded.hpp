@@ -23,22 +23,10 @@ inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitInternal = 3;
 
-template <typename Body>
-int run_guarded(CLI::App& app, int argc, char** argv, Body body) {
+// Inside a catch block: prints the exception in flight as run_guarded does and returns its exit status.
+inline int report_current_exception() {
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    std::cout << app.help();
-    return 0;
-  } catch (const CLI::CallForVersion& e) {
-    std::cout << e.what() << "\n";
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "mbgen: " << e.what() << "\nRun with --help for usage.\n";
-    return kExitUsage;
-  }
-  try {
-    return body();
+    throw;
   } catch (const CLI::ParseError& e) {  // usage problems found after parsing (e.g. a malformed --set)
     std::cerr << "mbgen: " << e.what() << "\n";
     return kExitUsage;
@@ -59,8 +47,32 @@ int run_guarded(CLI::App& app, int argc, char** argv, Body body) {
               << "\nThis is a bug in mbgen, not a problem with the input; please report it with the command line and "
                  "its input files.\n";
     return kExitInternal;
+  } catch (...) {
+    std::cerr << "mbgen: internal error: an exception of unknown type\nThis is a bug in mbgen; please report it.\n";
+    return kExitInternal;
   }
   return kExitBadInput;
+}
+
+template <typename Body>
+int run_guarded(CLI::App& app, int argc, char** argv, Body body) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForVersion& e) {
+    std::cout << e.what() << "\n";
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "mbgen: " << e.what() << "\nRun with --help for usage.\n";
+    return kExitUsage;
+  }
+  try {
+    return body();
+  } catch (...) {
+    return report_current_exception();
+  }
 }
 
 }  // namespace mbgen::cli
