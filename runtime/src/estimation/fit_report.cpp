@@ -30,7 +30,7 @@ std::string frf_script(const std::string& stem, const std::string& title) {
      << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
      << "     '' using 1:4 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
      << "     '' using 1:6 with lines lc rgb '#d62728' title 'model, estimate'\n"
-     << "unset logscale y\nset ylabel 'phase [deg]'\nset xlabel 'f [Hz]'\nset yrange [-180:180]\nset ytics 90\n"
+     << "unset logscale y\nset format y '%g'\nset ylabel 'phase [deg]'\nset xlabel 'f [Hz]'\nset yrange [-180:180]\nset ytics 90\n"
      << "plot '" << stem << ".dat' using 1:3 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
      << "     '' using 1:5 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
      << "     '' using 1:7 with lines lc rgb '#d62728' title 'model, estimate'\n"
