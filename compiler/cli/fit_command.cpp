@@ -1,6 +1,8 @@
 // `mbgen fit MODEL.mdl --data FILE [--data FILE ...] [--method NAME] [--json OUT.json] [--report DIR]`:
 // estimates the model's `estimate` parameters from measured FRFs or time records (runtime/include/mbgen/fit.hpp).
 #include <mbgen/fit_report.hpp>
+#include <mbgen/methods/arx_two_stage.hpp>
+#include <mbgen/methods/ekf.hpp>
 
 #include <cstdio>
 #include <iostream>
@@ -53,14 +55,17 @@ int run_fit(int argc, char** argv) {
   FitOptions options;
   app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable, fitted jointly")->required();
-  app.add_option("--method", method, "auto (by the data), frf-output-error or time-output-error")
-      ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error"}));
+  app.add_option("--method", method, "auto (by the data), frf-output-error, time-output-error, ekf, arx-two-stage (docs/methods.md)")
+      ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "ekf", "arx-two-stage"}));
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("--starts", options.starts, "number of starts of the global search (default 16)")->check(CLI::PositiveNumber);
   app.add_option("--seed", options.seed, "seed of the global search (default 1)");
   app.add_option("--band", band, "fit only the FRF lines within LO:HI Hz (the band the model is meant to represent)");
+  EkfOptions ekf;
+  app.add_option("--ekf-drift", ekf.drift, "ekf: each parameter's random walk, its relative std over the whole data "
+                 "(default 0.05; 0: constant parameters)")->check(CLI::NonNegativeNumber);
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     symbolic::DeriveOptions derive;
@@ -86,7 +91,9 @@ int run_fit(int argc, char** argv) {
       progress_line("fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
                     ", iteration " + std::to_string(p.iteration) + ", cost " + std::to_string(p.cost));
     };
-    FitResult result = fit(*evaluator, data, options);
+    FitResult result = method == "ekf"             ? fit_ekf(*evaluator, data, options, ekf)
+                       : method == "arx-two-stage" ? fit_arx_two_stage(*evaluator, data, options)
+                                                   : fit(*evaluator, data, options);
     progress_done();
     result.model = model_path;
 

@@ -1,0 +1,379 @@
+#include "mbgen/methods/arx_two_stage.hpp"
+
+#include "method_setup.hpp"
+
+#include "../estimation/levenberg_marquardt.hpp"
+
+#include "mbgen/identifiability.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <Eigen/SVD>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+namespace mbgen {
+
+namespace {
+
+using methods::MethodSetup;
+
+const char* const kMethod = "arx-two-stage";
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+// The measured displacement outputs of a record and the map from them to the coordinates, q = G y.
+struct Coordinates {
+  std::vector<int> outputs;  // model output indices (pure displacement outputs present in the record)
+  Eigen::MatrixXd G;         // n x outputs
+};
+
+Coordinates coordinates_from(const Model& model, const MethodSetup& setup, const ModelMatrices& m,
+                             const ModelDerivatives& d, const TimeRecord& t) {
+  const ModelInfo& info = model.info();
+  const auto n = static_cast<Eigen::Index>(info.coordinates.size());
+  const std::set<int> estimated(setup.estimated.begin(), setup.estimated.end());
+  Coordinates c;
+  std::vector<std::string> dependent;
+  for (std::size_t o = 0; o < info.outputs.size(); ++o) {
+    const auto row = static_cast<Eigen::Index>(o);
+    if (!t.find(info.outputs[o]) || m.Cd.row(row).isZero(0) || !m.Cv.row(row).isZero(0) || !m.Ca.row(row).isZero(0))
+      continue;
+    bool depends = false;
+    for (const DerivativeEntry& e : d.Cd)
+      if (e.row == static_cast<int>(o) && estimated.count(e.param)) depends = true;
+    if (depends) {
+      dependent.push_back(info.outputs[o]);
+      continue;
+    }
+    c.outputs.push_back(static_cast<int>(o));
+  }
+  if (!dependent.empty())
+    throw FitError(t.file + ": error: --method arx-two-stage: the outputs " + join(dependent) +
+                   " depend on estimated parameters, so the coordinates cannot be read from them");
+  Eigen::MatrixXd Cd(static_cast<Eigen::Index>(c.outputs.size()), n);
+  for (std::size_t i = 0; i < c.outputs.size(); ++i) Cd.row(static_cast<Eigen::Index>(i)) = m.Cd.row(c.outputs[i]);
+  // Which coordinates the measured displacements determine: those in the row space of their output matrix.
+  std::vector<std::string> missing;
+  if (Cd.rows() == 0) {
+    missing = info.coordinates;
+  } else {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Cd, Eigen::ComputeFullV);
+    const Eigen::Index rank = (svd.singularValues().array() > 1e-10 * svd.singularValues()[0]).count();
+    const Eigen::MatrixXd V = svd.matrixV().leftCols(rank);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::VectorXd e = Eigen::VectorXd::Unit(n, i);
+      if ((e - V * (V.transpose() * e)).norm() > 1e-8) missing.push_back(info.coordinates[static_cast<std::size_t>(i)]);
+    }
+  }
+  if (!missing.empty()) {
+    std::vector<std::string> used;
+    for (int o : c.outputs) used.push_back(info.outputs[static_cast<std::size_t>(o)]);
+    throw FitError(t.file + ": error: --method arx-two-stage needs every coordinate measured as a displacement; " +
+                   (used.empty() ? std::string("the record has no displacement output of the model")
+                                 : "its displacement outputs (" + join(used) + ")") +
+                   " do not determine " + std::to_string(missing.size()) + " of the " + std::to_string(n) +
+                   " coordinates: " + join(missing));
+  }
+  c.G = Cd.completeOrthogonalDecomposition().pseudoInverse();
+  return c;
+}
+
+double rms(const Eigen::VectorXd& v) { return std::sqrt(v.squaredNorm() / double(std::max<Eigen::Index>(v.size(), 1))); }
+
+// Least squares X = argmin |A X - B| with A's columns scaled to unit RMS first (coordinates, velocities and forces
+// differ by orders of magnitude).
+Eigen::MatrixXd scaled_least_squares(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  Eigen::VectorXd s(A.cols());
+  for (Eigen::Index j = 0; j < A.cols(); ++j) s[j] = rms(A.col(j)) > 0 ? 1 / rms(A.col(j)) : 1.0;
+  const Eigen::MatrixXd X = (A * s.asDiagonal()).colPivHouseholderQr().solve(B);
+  return s.asDiagonal() * X;
+}
+
+nlohmann::json matrix_json(const Eigen::MatrixXd& X) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < X.rows(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index j = 0; j < X.cols(); ++j) row.push_back(X(i, j));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data, const FitOptions& options,
+                            const ArxTwoStageOptions& arx) {
+  const MethodSetup setup = methods::method_setup(model, data, options, kMethod);
+  if (arx.lags < 2 || arx.lags > 8 || arx.free_response_samples < 20)
+    throw FitError("fit: --method arx-two-stage: lags must be 2 to 8 and the free response at least 20 samples");
+  const ModelInfo& info = model.info();
+  const auto n = static_cast<Eigen::Index>(info.coordinates.size());
+  const auto ni = static_cast<Eigen::Index>(info.inputs.size());
+  const Eigen::Index L = arx.lags;
+  auto same_sets = [](const SetMap& a, const SetMap& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
+             return x.first == y.first && x.second.value == y.second.value;
+           });
+  };
+  for (const DataSet& d : data)
+    if (!same_sets(d.set(), data.front().set()))
+      throw FitError(d.file() + ": error: --method arx-two-stage fits one ARX model to all records, so they must "
+                     "share their `# set` values (this one differs from " + data.front().file() + ")");
+  const Eigen::VectorXd base = methods::values_for(model, data.front(), setup.prior);
+  ModelMatrices m;
+  ModelDerivatives d;
+  model.evaluate(base, m);
+  model.derivatives(base, d);
+  {
+    std::set<std::string> in_mass;
+    for (const DerivativeEntry& e : d.M)
+      if (std::find(setup.estimated.begin(), setup.estimated.end(), e.param) != setup.estimated.end() && e.value != 0)
+        in_mass.insert(info.parameters[static_cast<std::size_t>(e.param)].name);
+    if (!in_mass.empty())
+      throw FitError("fit: --method arx-two-stage needs the mass matrix known (C = -M F1, K = -M F2; the free response "
+                     "determines only M^-1 C and M^-1 K): the estimated parameters " +
+                     join(std::vector<std::string>(in_mass.begin(), in_mass.end())) +
+                     " enter M; make them known (with their values, e.g. --set)");
+  }
+
+  // Stage 1: q_t = sum_{i=1..L} A_i q_{t-i} + sum_{i=0..L} E_i u_{t-i}, all records in one regression.
+  const Eigen::Index cols = n * L + ni * (L + 1);
+  std::vector<Eigen::MatrixXd> qs;
+  Eigen::Index rows = 0;
+  double dt = 0;
+  for (const DataSet& ds : data) {
+    const TimeRecord& t = std::get<TimeRecord>(ds.content);
+    require_inputs(t, info.inputs);
+    const Coordinates c = coordinates_from(model, setup, m, d, t);
+    Eigen::MatrixXd y(t.samples(), static_cast<Eigen::Index>(c.outputs.size()));
+    for (std::size_t o = 0; o < c.outputs.size(); ++o)
+      y.col(static_cast<Eigen::Index>(o)) = t.at(info.outputs[static_cast<std::size_t>(c.outputs[o])]).values;
+    qs.push_back(y * c.G.transpose());
+    if (dt == 0) dt = t.dt();
+    if (std::abs(t.dt() / dt - 1) > 1e-6)
+      throw FitError(ds.file() + ": error: --method arx-two-stage fits one ARX model to all records, so they must "
+                     "share their sampling interval");
+    if (t.samples() <= L + cols)
+      throw FitError(ds.file() + ": error: --method arx-two-stage: the record is too short for the regression (" +
+                     std::to_string(cols) + " coefficients per coordinate)");
+    rows += t.samples() - L;
+  }
+  Eigen::MatrixXd Phi(rows, cols), target(rows, n);
+  {
+    Eigen::Index row = 0;
+    for (std::size_t r = 0; r < data.size(); ++r) {
+      const TimeRecord& t = std::get<TimeRecord>(data[r].content);
+      const Eigen::MatrixXd& q = qs[r];
+      for (Eigen::Index k = L; k < t.samples(); ++k, ++row) {
+        for (Eigen::Index i = 1; i <= L; ++i) Phi.block(row, (i - 1) * n, 1, n) = q.row(k - i);
+        for (Eigen::Index i = 0; i <= L; ++i)
+          for (Eigen::Index j = 0; j < ni; ++j) Phi(row, n * L + i * ni + j) = t.at(info.inputs[static_cast<std::size_t>(j)]).values[k - i];
+        target.row(row) = q.row(k);
+      }
+    }
+  }
+  const Eigen::MatrixXd theta = scaled_least_squares(Phi, target);  // cols x n
+  const Eigen::MatrixXd arx_residual = target - Phi * theta;
+  std::vector<Eigen::MatrixXd> A;  // A_i = coefficient block of q_{t-i}
+  for (Eigen::Index i = 1; i <= L; ++i) A.push_back(theta.block((i - 1) * n, 0, n, n).transpose());
+
+  // Stage 2: free responses of the AR part from each coordinate displaced and from each given a velocity, sized
+  // like the measured motion; velocities and accelerations by 4th-order central differences.
+  Eigen::VectorXd q_scale(n), v_scale(n);
+  {
+    Eigen::MatrixXd all(rows + static_cast<Eigen::Index>(data.size()) * L, n);
+    Eigen::Index at = 0;
+    for (const auto& q : qs) {
+      all.middleRows(at, q.rows()) = q;
+      at += q.rows();
+    }
+    for (Eigen::Index j = 0; j < n; ++j) {
+      q_scale[j] = std::max(rms(all.col(j)), 1e-300);
+      const Eigen::VectorXd diff = (all.col(j).tail(all.rows() - 1) - all.col(j).head(all.rows() - 1)) / dt;
+      v_scale[j] = std::max(rms(diff), 1e-300);
+    }
+  }
+  const Eigen::Index P = arx.free_response_samples;
+  std::vector<Eigen::VectorXd> z_rows, a_rows;
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (int kind = 0; kind < 2; ++kind) {
+      Eigen::MatrixXd q = Eigen::MatrixXd::Zero(P + L, n);  // q.row(L - 1) is t = 0
+      for (Eigen::Index i = 0; i < L; ++i)
+        q(L - 1 - i, j) = kind == 0 ? q_scale[j] : -double(i) * dt * v_scale[j];
+      for (Eigen::Index t = L; t < P + L; ++t)
+        for (Eigen::Index i = 1; i <= L; ++i) q.row(t) += (A[static_cast<std::size_t>(i - 1)] * q.row(t - i).transpose()).transpose();
+      for (Eigen::Index t = L + 1; t + 2 < P + L; ++t) {
+        const Eigen::VectorXd v = (-q.row(t + 2) + 8 * q.row(t + 1) - 8 * q.row(t - 1) + q.row(t - 2)).transpose() / (12 * dt);
+        const Eigen::VectorXd a =
+            (-q.row(t + 2) + 16 * q.row(t + 1) - 30 * q.row(t) + 16 * q.row(t - 1) - q.row(t - 2)).transpose() / (12 * dt * dt);
+        Eigen::VectorXd z(2 * n);
+        z << v, q.row(t).transpose();
+        // Each instant weighted by the size of its state (in the measured motion's units), so that decaying or
+        // growing responses count alike: z' = F z holds instant by instant, at any scale.
+        Eigen::VectorXd zs(2 * n);
+        zs << v.cwiseQuotient(v_scale), q.row(t).transpose().cwiseQuotient(q_scale);
+        const double w = zs.norm() > 0 ? 1 / zs.norm() : 0.0;
+        z_rows.push_back(w * z);
+        a_rows.push_back(w * a);
+      }
+    }
+  Eigen::MatrixXd Zt(static_cast<Eigen::Index>(z_rows.size()), 2 * n), At(Zt.rows(), n);
+  for (std::size_t i = 0; i < z_rows.size(); ++i) {
+    Zt.row(static_cast<Eigen::Index>(i)) = z_rows[i].transpose();
+    At.row(static_cast<Eigen::Index>(i)) = a_rows[i].transpose();
+  }
+  // F^T = (Z^T)^+ Z'^T: only F's upper block row is unknown (its lower one is [I 0]), q'' = F1 q' + F2 q.
+  const Eigen::MatrixXd Ftop = scaled_least_squares(Zt, At).transpose();  // n x 2n
+  const Eigen::MatrixXd F1 = Ftop.leftCols(n), F2 = Ftop.rightCols(n);
+  const Eigen::MatrixXd C_id = -m.M * F1, K_id = -m.M * F2;
+
+  // Stage 3: the estimated parameters whose K(p), C(p) reproduce K_id and C_id, each matrix relative to its norm.
+  const double k_norm = std::max(K_id.norm(), 1e-300), c_norm = std::max(C_id.norm(), 1e-300);
+  std::vector<int> free = setup.estimated;
+  auto residual = [&](const std::vector<int>& params, const Eigen::VectorXd& th, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    Eigen::VectorXd p = base;
+    for (std::size_t j = 0; j < params.size(); ++j)
+      p[params[j]] = setup.transforms[static_cast<std::size_t>(params[j])].to_physical(th[static_cast<Eigen::Index>(j)]);
+    ModelMatrices mp;
+    model.evaluate(p, mp);
+    r.resize(2 * n * n);
+    r.head(n * n) = Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(mp.K - K_id).data(), n * n) / k_norm;
+    r.tail(n * n) = Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(mp.C - C_id).data(), n * n) / c_norm;
+    if (J) {
+      ModelDerivatives dp;
+      model.derivatives(p, dp);
+      J->setZero(2 * n * n, static_cast<Eigen::Index>(params.size()));
+      for (std::size_t j = 0; j < params.size(); ++j) {
+        const double g = setup.transforms[static_cast<std::size_t>(params[j])].derivative(th[static_cast<Eigen::Index>(j)]);
+        for (const DerivativeEntry& e : dp.K)
+          if (e.param == params[j]) (*J)(e.col * n + e.row, static_cast<Eigen::Index>(j)) += e.value * g / k_norm;
+        for (const DerivativeEntry& e : dp.C)
+          if (e.param == params[j]) (*J)(n * n + e.col * n + e.row, static_cast<Eigen::Index>(j)) += e.value * g / c_norm;
+      }
+    }
+    return r.allFinite();
+  };
+  auto internal = [&](const std::vector<int>& params, const Eigen::VectorXd& p) {
+    Eigen::VectorXd th(static_cast<Eigen::Index>(params.size()));
+    for (std::size_t j = 0; j < params.size(); ++j)
+      th[static_cast<Eigen::Index>(j)] = setup.transforms[static_cast<std::size_t>(params[j])].to_internal(p[params[j]]);
+    return th;
+  };
+  // What K and C cannot determine (a parameter in neither, or only in a combination) stays at its prior.
+  std::vector<bool> identifiable(setup.estimated.size(), true);
+  std::vector<std::vector<std::string>> confounded(setup.estimated.size());
+  {
+    Eigen::VectorXd r;
+    Eigen::MatrixXd J;
+    const Eigen::VectorXd th0 = internal(free, base);
+    residual(free, th0, r, &J);
+    for (std::size_t j = 0; j < free.size(); ++j) {  // relative sensitivities: columns times |p| / (dp/dtheta)
+      const ParameterTransform& t = setup.transforms[static_cast<std::size_t>(free[j])];
+      const double size = base[free[j]] != 0 ? std::abs(base[free[j]]) : t.scale;
+      J.col(static_cast<Eigen::Index>(j)) *= size / t.derivative(th0[static_cast<Eigen::Index>(j)]);
+    }
+    const IdentifiabilityAnalysis a = analyse_identifiability(J);
+    for (std::size_t j = 0; j < free.size(); ++j) {
+      identifiable[j] = a.identifiable[j];
+      for (int o : a.confounded_with[j]) confounded[j].push_back(info.parameters[static_cast<std::size_t>(free[static_cast<std::size_t>(o)])].name);
+    }
+  }
+  std::vector<int> fitted;
+  for (std::size_t j = 0; j < free.size(); ++j)
+    if (identifiable[j]) fitted.push_back(free[j]);
+  Eigen::VectorXd values = base;
+  estimation::LmResult lm;
+  if (!fitted.empty()) {
+    lm = estimation::levenberg_marquardt(
+        [&](const Eigen::VectorXd& th, Eigen::VectorXd& r, Eigen::MatrixXd* J) { return residual(fitted, th, r, J); },
+        internal(fitted, base), estimation::LmOptions{});
+    for (std::size_t j = 0; j < fitted.size(); ++j)
+      values[fitted[j]] = setup.transforms[static_cast<std::size_t>(fitted[j])].to_physical(lm.x[static_cast<Eigen::Index>(j)]);
+  }
+  for (const auto& [name, v] : data.front().set()) values[info.parameter_index(name)] = setup.prior[info.parameter_index(name)];
+  // A parameter the matrix fit drove onto a bound (e.g. a damping pushed to its upper bound by a biased C): reported
+  // there, not identifiable (parameterization.hpp; no std to compare the distance with, so any within tolerance).
+  std::map<int, std::string> at_bound;
+  for (int i : fitted) {
+    const ParameterTransform& t = setup.transforms[static_cast<std::size_t>(i)];
+    const std::string side = bound_reached(t, values[i], std::numeric_limits<double>::infinity());
+    if (side.empty()) continue;
+    at_bound[i] = side;
+    values[i] = side == "lower" ? t.lower : t.upper;
+  }
+
+  FitResult result;
+  methods::fill_common(model, data, setup, values, kMethod, result);
+  result.estimated.clear();
+  for (std::size_t j = 0; j < setup.estimated.size(); ++j) {
+    ParameterEstimate& e = result.parameters[j];
+    const auto bound = at_bound.find(setup.estimated[j]);
+    e.identifiable = identifiable[j] && bound == at_bound.end();
+    if (bound != at_bound.end()) e.at_bound = bound->second;
+    e.confounded_with = confounded[j];
+    e.std = std::numeric_limits<double>::quiet_NaN();
+    if (e.identifiable) result.estimated.push_back(e.name);
+  }
+  const auto k = static_cast<Eigen::Index>(result.estimated.size());
+  result.covariance = Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::quiet_NaN());
+  result.correlation = result.covariance;
+  result.iterations = lm.iterations;
+  result.converged = fitted.empty() || lm.converged;
+  result.stop_reason = fitted.empty() ? "nothing to fit" : lm.stop_reason;
+  result.cost_history = lm.history;
+
+  nlohmann::json j;
+  j["lags"] = L;
+  j["free_response_samples"] = P;
+  nlohmann::json fit_residual = nlohmann::json::object();
+  for (Eigen::Index c = 0; c < n; ++c)
+    fit_residual[info.coordinates[static_cast<std::size_t>(c)]] = rms(arx_residual.col(c)) / std::max(rms(target.col(c)), 1e-300);
+  j["arx_relative_residual"] = fit_residual;  // per coordinate: RMS of the one-step residual over RMS of q
+  j["coordinates"] = info.coordinates;
+  j["K"] = matrix_json(K_id);
+  j["C"] = matrix_json(C_id);
+  j["M"] = matrix_json(m.M);
+  j["matrix_fit_relative_residual"] = lm.history.empty() ? 0.0 : std::sqrt(lm.cost / 2);
+  // Modes of F (z = [q'; q]): frequencies and damping ratios of the identified system.
+  Eigen::MatrixXd Fm = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  Fm.topRows(n) = Ftop;
+  Fm.block(n, 0, n, n).setIdentity();
+  nlohmann::json modes = nlohmann::json::array();
+  {
+    const Eigen::EigenSolver<Eigen::MatrixXd> es(Fm, false);
+    std::vector<std::complex<double>> poles;
+    for (Eigen::Index i = 0; i < 2 * n; ++i)
+      if (es.eigenvalues()[i].imag() > 0) poles.push_back(es.eigenvalues()[i]);
+    std::sort(poles.begin(), poles.end(), [](auto a, auto b) { return std::abs(a) < std::abs(b); });
+    // The paper's modal damping ratios (its Eqs. 21-22): the undamped modes of M and K, mass-normalised,
+    // Gamma = Phi^T C Phi, zeta_i = Gamma_ii / (2 omega_i).
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ge(0.5 * (K_id + K_id.transpose()), m.M);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      nlohmann::json mode;
+      const double w2 = ge.eigenvalues()[i];
+      const Eigen::VectorXd phi = ge.eigenvectors().col(i);
+      mode["f_undamped_hz"] = w2 > 0 ? std::sqrt(w2) / (2 * std::acos(-1.0)) : 0.0;
+      mode["zeta_modal"] = w2 > 0 ? phi.dot(C_id * phi) / (2 * std::sqrt(w2)) : std::numeric_limits<double>::quiet_NaN();
+      if (static_cast<std::size_t>(i) < poles.size()) {
+        mode["f_hz"] = std::abs(poles[static_cast<std::size_t>(i)]) / (2 * std::acos(-1.0));
+        mode["zeta"] = -poles[static_cast<std::size_t>(i)].real() / std::abs(poles[static_cast<std::size_t>(i)]);
+      }
+      modes.push_back(mode);
+    }
+  }
+  j["modes"] = modes;
+  result.method_details["arx_two_stage"] = j.dump();
+  return result;
+}
+
+}  // namespace mbgen
