@@ -1,7 +1,6 @@
 #include "direct_solve.hpp"
 
 #include <Eigen/SVD>
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/QR>
 
@@ -96,7 +95,7 @@ Eigen::MatrixXd take_rows(const Eigen::MatrixXd& X, const std::vector<int>& rows
 
 DirectSolution solve_direct(const Model& model, const std::vector<DataSet>& data, const DirectEquations& eq,
                             const Eigen::VectorXd& reference, const std::vector<int>& free,
-                            const IdentifiabilityOptions& id_options, bool use_total) {
+                            const IdentifiabilityOptions& id_options, bool instrumental) {
   const auto k = static_cast<Eigen::Index>(free.size());
   const auto nc = static_cast<Eigen::Index>(eq.coordinates.size());
   const Eigen::Index E = 2 * nc * eq.nuisance_groups;
@@ -107,11 +106,10 @@ DirectSolution solve_direct(const Model& model, const std::vector<DataSet>& data
 
   long complex_rows = 0;
   for (const EquationBlock& b : eq.blocks) complex_rows += static_cast<long>(b.rows.size());
-  // The whitened equations, real parts over imaginary parts, kept as a tall matrix: a QR factorisation of it
-  // (instead of the normal matrix) keeps the condition number from being squared, which a lightly damped
-  // resonance (whitening weights 1/(2 zeta) times the others') makes large.
-  Eigen::MatrixXd Aw(2 * complex_rows, total);
-  Eigen::MatrixXd Sigma = Eigen::MatrixXd::Zero(k + 1, k + 1);  // free parameters, then the constant column
+  // The whitened equations (and instruments), real parts over imaginary parts, kept as tall matrices: QR
+  // factorisations of them (instead of normal matrices) keep the condition number from being squared, which a
+  // lightly damped resonance (whitening weights 1/(2 zeta) times the others') makes large.
+  Eigen::MatrixXd Aw(2 * complex_rows, total), Hw = Eigen::MatrixXd::Zero(2 * complex_rows, total);
   std::vector<Eigen::MatrixXcd> raw;  // unwhitened columns per block, for the relative equation error
   std::vector<double> rhs_norm2;
   Eigen::Index row = 0;
@@ -126,49 +124,43 @@ DirectSolution solve_direct(const Model& model, const std::vector<DataSet>& data
     const Eigen::MatrixXcd Zref = Z(s.M, s.C, s.K);
     const Eigen::VectorXcd rhs = pw * (take_rows(s.B, b.rows).cast<cd>() * b.force);
     const Eigen::MatrixXcd whiten = Eigen::PartialPivLU<Eigen::MatrixXcd>(Zref * b.noise).inverse();
-    Eigen::MatrixXcd A = Eigen::MatrixXcd::Zero(n, total);
-    Eigen::MatrixXcd P(n * n, k + 1);  // noise of each whitened column: P_i xi, xi white
+    // The instruments' motion: the reference model's response to the measured force, free of measurement noise.
+    const Eigen::VectorXcd x_model = Eigen::PartialPivLU<Eigen::MatrixXcd>(Zref).solve(rhs);
+    Eigen::MatrixXcd A = Eigen::MatrixXcd::Zero(n, total), H = Eigen::MatrixXcd::Zero(n, total);
     Eigen::VectorXcd c0 = Zref * b.x - rhs;
-    Eigen::MatrixXcd Z0 = Zref;
     for (Eigen::Index j = 0; j < k; ++j) {
       const auto js = static_cast<std::size_t>(j);
       const Eigen::MatrixXcd Zj = Z(s.dM[js], s.dC[js], s.dK[js]);
-      const Eigen::VectorXcd cj = Zj * b.x - pw * (take_rows(s.dB[js], b.rows).cast<cd>() * b.force);
-      const double pj = s.p[free[js]];
-      c0 -= pj * cj;
-      Z0 -= pj * Zj;
-      A.col(j) = cj;
-      const Eigen::MatrixXcd Pj = whiten * Zj * b.noise;
-      P.col(j) = Eigen::Map<const Eigen::VectorXcd>(Pj.data(), n * n);
+      const Eigen::VectorXcd force_part = pw * (take_rows(s.dB[js], b.rows).cast<cd>() * b.force);
+      A.col(j) = Zj * b.x - force_part;
+      H.col(j) = Zj * x_model - force_part;
+      c0 -= s.p[free[js]] * A.col(j);
     }
     A.col(cconst) = c0;
-    {
-      const Eigen::MatrixXcd P0 = whiten * Z0 * b.noise;
-      P.col(k) = Eigen::Map<const Eigen::VectorXcd>(P0.data(), n * n);
-    }
     if (b.nuisance >= 0)
       for (Eigen::Index l = 0; l < n; ++l) {
         const Eigen::Index col = k + 2 * (b.nuisance * nc + b.rows[static_cast<std::size_t>(l)]);
-        A(l, col) = iw;     // i w a_l
-        A(l, col + 1) = 1;  // b_l
+        A(l, col) = H(l, col) = iw;  // i w a_l
+        A(l, col + 1) = H(l, col + 1) = 1;  // b_l
       }
     raw.push_back(A);
     rhs_norm2.push_back(rhs.squaredNorm());
-    const Eigen::MatrixXcd W = whiten * A;
+    const Eigen::MatrixXcd W = whiten * A, WH = whiten * H;
     Aw.middleRows(row, n) = W.real();
     Aw.middleRows(row + n, n) = W.imag();
+    Hw.middleRows(row, n) = WH.real();
+    Hw.middleRows(row + n, n) = WH.imag();
     row += 2 * n;
-    Sigma += (P.adjoint() * P).real();
   }
 
-  // Columns scaled to unit norm; the end-term columns that occur first, so that the trailing block of R is the
-  // parameters' and constant's part with the end terms eliminated (their Schur complement).
+  // Columns scaled to unit norm. The unknowns in the order: end terms that occur, then the parameters (so that the
+  // trailing block of the R factor is the parameters' with the end terms eliminated).
   Eigen::VectorXd D(total);
   for (Eigen::Index j = 0; j < total; ++j) {
     const double norm = Aw.col(j).norm();
     D[j] = norm > 0 ? 1 / norm : 1.0;
   }
-  std::vector<int> order;  // columns of the factorised matrix
+  std::vector<int> order;
   Eigen::Index e_used = 0;
   for (Eigen::Index j = k; j < k + E; ++j)
     if (Aw.col(j).squaredNorm() > 0) {
@@ -176,81 +168,62 @@ DirectSolution solve_direct(const Model& model, const std::vector<DataSet>& data
       ++e_used;
     }
   for (Eigen::Index j = 0; j < k; ++j) order.push_back(static_cast<int>(j));
-  order.push_back(static_cast<int>(cconst));
-  const auto m_cols = static_cast<Eigen::Index>(order.size());
-  Eigen::MatrixXd As(Aw.rows(), m_cols);
-  for (Eigen::Index c = 0; c < m_cols; ++c) As.col(c) = Aw.col(order[static_cast<std::size_t>(c)]) * D[order[static_cast<std::size_t>(c)]];
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(As);
-  const Eigen::MatrixXd Rfull = qr.matrixQR().topRows(std::min(m_cols, As.rows())).template triangularView<Eigen::Upper>();
-  if (Rfull.rows() < m_cols) throw FitError("fit: --method direct: fewer equations than unknowns");
-  const Eigen::MatrixXd R22 = Rfull.bottomRightCorner(k + 1, k + 1);  // theta_R's part, end terms eliminated
-  Eigen::VectorXd DR(k + 1);
-  for (Eigen::Index j = 0; j < k; ++j) DR[j] = D[j];
-  DR[k] = D[cconst];
-  const Eigen::MatrixXd Sr = DR.asDiagonal() * Sigma * DR.asDiagonal();
+  const auto m = static_cast<Eigen::Index>(order.size());
+  if (Aw.rows() < m + 1) throw FitError("fit: --method direct: fewer equations than unknowns");
+  Eigen::MatrixXd Au(Aw.rows(), m), Hu(Aw.rows(), m);
+  for (Eigen::Index c = 0; c < m; ++c) {
+    const int j = order[static_cast<std::size_t>(c)];
+    Au.col(c) = Aw.col(j) * D[j];
+    Hu.col(c) = Hw.col(j) * D[j];
+  }
+  const Eigen::VectorXd Ac = Aw.col(cconst);  // the constant column, coefficient 1
 
   DirectSolution out;
   out.equations = 2 * complex_rows;
-  const Eigen::MatrixXd Rpp = R22.topLeftCorner(k, k);
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Au);
+  const Eigen::MatrixXd R = qr.matrixQR().topRows(m).triangularView<Eigen::Upper>();
+  const Eigen::MatrixXd Rpp = R.bottomRightCorner(k, k);
   if (k > 0) {
     out.identifiability = analyse_identifiability(Rpp, id_options);
     const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(Rpp).singularValues();
     out.condition = sv[k - 1] > 0 ? sv[0] / sv[k - 1] : std::numeric_limits<double>::infinity();
   }
-  // theta_R in scaled units, the constant's entry fixed so that its physical coefficient is 1.
-  const double theta_c = 1 / DR[k];
-  Eigen::VectorXd ls(k + 1);
-  ls[k] = theta_c;
-  if (k > 0)
-    ls.head(k) = -Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Rpp).solve(Eigen::VectorXd(R22.topRightCorner(k, 1))) * theta_c;
-  Eigen::VectorXd theta = ls;
-  // Total least squares: the largest eigenvalue mu of R^-T Sigma R^-1 (mu = 1 / lambda), when the equations do not
-  // hold exactly (then R22 is regular; exact equations are solved exactly by LS).
-  const double r_cc = std::abs(R22(k, k));
-  if (use_total && k > 0 && Sr.norm() > 0 && r_cc > 1e-12 * R22.norm()) {
-    const Eigen::MatrixXd Rinv = R22.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(k + 1, k + 1));
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Rinv.transpose() * Sr * Rinv);
-    const double mu = es.eigenvalues()[k];
-    const Eigen::VectorXd v = Rinv * es.eigenvectors().col(k);
-    // A usable total solution needs the constant column in it (else the equations have no scale).
-    if (mu > 0 && std::abs(v[k]) > 1e-12 * v.norm()) {
-      theta = v * (theta_c / v[k]);
-      out.total = true;
-      out.noise_scale = 1 / mu;
+  const Eigen::VectorXd ls = -qr.solve(Ac);
+  Eigen::VectorXd u = ls;
+  Eigen::MatrixXd Minv;  // covariance shape of u: lambda/2 Minv Minv^T
+  if (instrumental && k > 0) {
+    // Instrumental variables: the equations projected on the instruments' span, Q_H^T (A u + a_c) = 0.
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qh(Hu);
+    const Eigen::MatrixXd Q = qh.householderQ() * Eigen::MatrixXd::Identity(Hu.rows(), m);
+    const Eigen::MatrixXd M = Q.transpose() * Au;
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> solver(M);
+    if (solver.rank() == m) {
+      u = -solver.solve(Q.transpose() * Ac);
+      Minv = solver.inverse();
+      out.instrumental = true;
     }
   }
-  const double rss = (R22 * theta).squaredNorm();
+  if (!out.instrumental) Minv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(m, m));
+  const double rss = (Au * u + Ac).squaredNorm();
+  const double dof = double(out.equations) - double(m);
+  out.noise_scale = dof > 0 ? 2 * rss / dof : 0;  // per complex equation
   out.equation_rms = complex_rows > 0 ? std::sqrt(rss / double(complex_rows)) : 0;
-  if (!out.total) {
-    const double dof = double(out.equations) - double(k) - double(e_used);
-    out.noise_scale = dof > 0 ? 2 * rss / dof : 0;  // the same lambda: complex variance
-  }
   out.values = reference;
   out.ls_values = reference;
   for (Eigen::Index j = 0; j < k; ++j) {
-    out.values[free[static_cast<std::size_t>(j)]] = DR[j] * theta[j];
-    out.ls_values[free[static_cast<std::size_t>(j)]] = DR[j] * ls[j];
+    out.values[free[static_cast<std::size_t>(j)]] = D[j] * u[e_used + j];
+    out.ls_values[free[static_cast<std::size_t>(j)]] = D[j] * ls[e_used + j];
   }
   if (k > 0) {
-    // First order: the whitened equation errors have variance lambda/2 per real part; the normal matrix of the
-    // noise-free regressors is estimated by G - lambda Sigma (GTLS) or G (LS), G = Rpp^T Rpp.
-    Eigen::MatrixXd info = Rpp.transpose() * Rpp;
-    if (out.total) info -= out.noise_scale * Sr.topLeftCorner(k, k);
-    const Eigen::MatrixXd cs = 0.5 * out.noise_scale * Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(info).pseudoInverse();
-    const Eigen::VectorXd Dp = DR.head(k);
-    out.covariance = Dp.asDiagonal() * cs * Dp.asDiagonal();
-  }
-  // End terms at their optimum for theta: R11 e + R12 theta = 0.
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(total);
-  for (Eigen::Index j = 0; j < k; ++j) full[j] = theta[j];
-  full[cconst] = theta[k];
-  if (e_used > 0) {
-    const Eigen::VectorXd e = -Rfull.topLeftCorner(e_used, e_used).triangularView<Eigen::Upper>().solve(
-        Rfull.topRightCorner(e_used, k + 1) * theta);
-    for (Eigen::Index j = 0; j < e_used; ++j) full[order[static_cast<std::size_t>(j)]] = e[j];
+    // First order, the whitened equation errors white with variance lambda/2 per real part.
+    const Eigen::MatrixXd cu = 0.5 * out.noise_scale * Minv * Minv.transpose();
+    const Eigen::VectorXd Dp = D.head(k);
+    out.covariance = Dp.asDiagonal() * cu.bottomRightCorner(k, k) * Dp.asDiagonal();
   }
   // Unweighted equation error at the solution.
-  full = D.asDiagonal() * full;
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(total);
+  for (Eigen::Index c = 0; c < m; ++c) full[order[static_cast<std::size_t>(c)]] = D[order[static_cast<std::size_t>(c)]] * u[c];
+  full[cconst] = 1;
   double e2 = 0, r2 = 0;
   for (std::size_t b = 0; b < raw.size(); ++b) {
     e2 += (raw[b] * full.cast<cd>()).squaredNorm();
