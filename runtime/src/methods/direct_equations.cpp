@@ -138,7 +138,7 @@ void add_frf_blocks(const ModelInfo& info, const DataSet& d, int set, const Mode
     std::vector<Eigen::VectorXd> sigma;
     // The noise level from the data's line-to-line scatter (frf_noise.hpp), without the coherence: a file's
     // coherence is rounded (truthgen writes 6 digits), and at a sharp resonance 1 - coh falls below the rounding,
-    // so its shape there is wrong by orders of magnitude, and total least squares needs the shape right.
+    // so its shape there is wrong by orders of magnitude, which sets the weights.
     for (const FrfChannel* c : channels) {
       FrfChannel plain = *c;
       plain.coherence.reset();
