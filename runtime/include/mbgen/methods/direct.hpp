@@ -1,6 +1,6 @@
 // The "direct" method (Nickel 1999, Sec. 3.6.1; docs/methods.md#direct): the equations of motion
 // M q'' + C q' + K q = B u as algebraic equations in the physical parameters, given the measured forces and the
-// motion of every coordinate the forces move, solved by (generalized total) least squares in the frequency domain.
+// motion of every coordinate the forces move, solved in the frequency domain by instrumental variables.
 //
 //   FitResult r = mbgen::fit_direct(model, data, options);   // r.method == "direct"
 //
