@@ -2,7 +2,9 @@
 // estimates the model's `estimate` parameters from measured FRFs or time records (runtime/include/mbgen/fit.hpp).
 #include <mbgen/fit_report.hpp>
 #include <mbgen/methods/arx_two_stage.hpp>
+#include <mbgen/methods/direct.hpp>
 #include <mbgen/methods/ekf.hpp>
+#include <mbgen/methods/hybrid.hpp>
 
 #include <cstdio>
 #include <iostream>
@@ -55,8 +57,9 @@ int run_fit(int argc, char** argv) {
   FitOptions options;
   app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable, fitted jointly")->required();
-  app.add_option("--method", method, "auto (by the data), frf-output-error, time-output-error, ekf, arx-two-stage (docs/methods.md)")
-      ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "ekf", "arx-two-stage"}));
+  app.add_option("--method", method, "auto (by the data), frf-output-error, time-output-error, direct, hybrid, ekf or "
+                 "arx-two-stage (docs/methods.md)")
+      ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "direct", "hybrid", "ekf", "arx-two-stage"}));
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
@@ -91,9 +94,12 @@ int run_fit(int argc, char** argv) {
       progress_line("fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
                     ", iteration " + std::to_string(p.iteration) + ", cost " + std::to_string(p.cost));
     };
-    FitResult result = method == "ekf"             ? fit_ekf(*evaluator, data, options, ekf)
-                       : method == "arx-two-stage" ? fit_arx_two_stage(*evaluator, data, options)
-                                                   : fit(*evaluator, data, options);
+    FitResult result;
+    if (method == "direct") result = fit_direct(*evaluator, data, options);
+    else if (method == "hybrid") result = fit_hybrid(*evaluator, data, options);
+    else if (method == "ekf") result = fit_ekf(*evaluator, data, options, ekf);
+    else if (method == "arx-two-stage") result = fit_arx_two_stage(*evaluator, data, options);
+    else result = fit(*evaluator, data, options);
     progress_done();
     result.model = model_path;
 
