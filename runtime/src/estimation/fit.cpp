@@ -1,5 +1,6 @@
 #include "mbgen/fit.hpp"
 
+#include "fit_inputs.hpp"
 #include "levenberg_marquardt.hpp"
 #include "multistart.hpp"
 #include "output_error.hpp"
@@ -27,23 +28,6 @@ using estimation::ResidualFunction;
 using estimation::ResidualKind;
 
 namespace {
-
-std::vector<int> candidate_parameters(const ModelInfo& info, const FitOptions& options) {
-  std::vector<int> out;
-  if (options.estimate.empty()) {
-    for (std::size_t i = 0; i < info.parameters.size(); ++i)
-      if (info.parameters[i].role == ParameterRole::Estimate) out.push_back(static_cast<int>(i));
-    return out;
-  }
-  for (const auto& name : options.estimate) {
-    const int idx = info.parameter_index(name);
-    if (idx < 0) throw FitError("fit: the model has no parameter " + name + " (asked to estimate it)");
-    out.push_back(idx);
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
 
 // The fit over one set of free parameters, in internal coordinates.
 class Estimator {
@@ -113,16 +97,8 @@ std::vector<int> select(const std::vector<int>& cols, const std::vector<bool>& k
 
 FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options) {
   const ModelInfo& info = model.info();
-  Eigen::VectorXd prior = info.default_values();
-  for (const auto& [name, value] : options.values) {
-    const int idx = info.parameter_index(name);
-    if (idx < 0) throw FitError("fit: --set " + name + ": the model has no parameter " + name);
-    prior[idx] = value;
-  }
-  estimation::check_parameter_values(model, prior, options.values.empty() ? "the model's values" : "the values set");
-  estimation::check_data_set_values(model, prior, data);
-  estimation::check_measured_signals(model, data);
-  const std::vector<int> candidates = candidate_parameters(info, options);
+  const Eigen::VectorXd prior = estimation::checked_prior(model, data, options);
+  const std::vector<int> candidates = estimation::candidate_parameters(info, options);
   std::vector<ParameterTransform> transforms(info.parameters.size());
   for (int i : candidates) {
     try {

@@ -2,6 +2,7 @@
 // prior values, and the output-error numbers of its estimate, so that methods compare on one scale. Internal header.
 #pragma once
 
+#include "../estimation/fit_inputs.hpp"
 #include "mbgen/fit.hpp"
 
 #include <Eigen/Core>
@@ -10,12 +11,9 @@
 
 namespace mbgen::methods {
 
-// The model's values with FitOptions::values over them, checked as mbgen::fit checks them (bounds, a positive
-// definite mass matrix, the data sets' `# set` values, signals that are not zero throughout). Throws FitError.
-Eigen::VectorXd checked_prior(const Model& model, const std::vector<DataSet>& data, const FitOptions& options);
-
-// The candidates for estimation, in model order: FitOptions::estimate, or else the parameters of role Estimate.
-std::vector<int> candidate_parameters(const ModelInfo& info, const FitOptions& options);
+// The prior values, checked, and the parameters to estimate: as mbgen::fit takes them (fit_inputs.hpp).
+using estimation::candidate_parameters;
+using estimation::checked_prior;
 
 // The output-error cost (weighted residual sum of squares, as mbgen::fit's) at `values`.
 double output_error_cost(const Model& model, const std::vector<DataSet>& data, const FitOptions& options,
