@@ -268,4 +268,19 @@ TransferFunctionJacobian<Scalar> transfer_function_jacobian(
   return out;
 }
 
+// Compiled once, in the runtime library (src/dynamics/transfer_function.cpp), for double and long double: generated
+// code calls these for every run-time pair, and instantiating Eigen's complex LU for both types in each generated
+// translation unit took most of its compile time (18 of 28 s of CPU for the spindle). Other Scalar types (e.g.
+// mpfr::mpreal) are instantiated from the definitions above where they are used.
+#define MBGEN_TRANSFER_FUNCTION_INSTANTIATIONS(EXTERN, Scalar)                                                    \
+  EXTERN template TransferFunctionCoefficients<Scalar> transfer_function_coefficients<Scalar>(                  \
+      const TransferFunctionSystem<Scalar>&, const std::vector<int>&);                                          \
+  EXTERN template TransferFunctionJacobian<Scalar> transfer_function_jacobian<Scalar>(                          \
+      const TransferFunctionSystem<Scalar>&, const std::vector<TransferFunctionSystem<Scalar>>&,                \
+      const std::vector<int>&);
+#ifndef MBGEN_TRANSFER_FUNCTION_INSTANTIATE
+MBGEN_TRANSFER_FUNCTION_INSTANTIATIONS(extern, double)
+MBGEN_TRANSFER_FUNCTION_INSTANTIATIONS(extern, long double)
+#endif
+
 }  // namespace mbgen
