@@ -79,11 +79,13 @@ double BandLu::factor() {
       for (Eigen::Index c = j; c <= ju; ++c) std::swap(at(j + jp, c), at(j, c));
     const cd inv = reciprocal(ab_(kv_, j));
     inverse_[static_cast<std::size_t>(j)] = inv;
-    for (Eigen::Index i = 1; i <= km; ++i) ab_(kv_ + i, j) *= inv;
+    cd* const l = &ab_(kv_, j);  // l[i] = L(j + i, j): contiguous in the column
+    for (Eigen::Index i = 1; i <= km; ++i) l[i] *= inv;
     for (Eigen::Index c = j + 1; c <= ju; ++c) {
-      const cd u = at(j, c);
+      cd* const a = &at(j, c);   // a[i] = entry (j + i, c): contiguous too
+      const cd u = a[0];
       if (u == 0.0) continue;
-      for (Eigen::Index i = 1; i <= km; ++i) at(j + i, c) -= ab_(kv_ + i, j) * u;
+      for (Eigen::Index i = 1; i <= km; ++i) a[i] -= l[i] * u;
     }
   }
   if (n_ == 0) return 1;
@@ -98,11 +100,15 @@ void BandLu::solve(Matrix& x) const {
       const Eigen::Index p = pivot_[static_cast<std::size_t>(j)];
       if (p != j) std::swap(b[p], b[j]);
       const Eigen::Index km = std::min(kl, n_ - 1 - j);
-      for (Eigen::Index i = 1; i <= km; ++i) b[j + i] -= ab_(kv_ + i, j) * b[j];
+      const cd* const l = &ab_(kv_, j);
+      const cd bj = b[j];
+      for (Eigen::Index i = 1; i <= km; ++i) b[j + i] -= l[i] * bj;
     }
     for (Eigen::Index j = n_ - 1; j >= 0; --j) {  // U, upper band kv
       b[j] *= inverse_[static_cast<std::size_t>(j)];
-      for (Eigen::Index i = std::max<Eigen::Index>(0, j - kv_); i < j; ++i) b[i] -= ab_(kv_ + i - j, j) * b[j];
+      const cd* const u = column_offset(j);  // u[i] = U(i, j) for i >= j - kv
+      const cd bj = b[j];
+      for (Eigen::Index i = std::max<Eigen::Index>(0, j - kv_); i < j; ++i) b[i] -= u[i] * bj;
     }
   }
 }
@@ -113,13 +119,15 @@ void BandLu::solve_transposed(Matrix& x) const {
     cd* b = &x(0, col);
     for (Eigen::Index j = 0; j < n_; ++j) {  // U^T z = b
       cd s = b[j];
-      for (Eigen::Index i = std::max<Eigen::Index>(0, j - kv_); i < j; ++i) s -= ab_(kv_ + i - j, j) * b[i];
+      const cd* const u = column_offset(j);  // u[i] = U(i, j) for i >= j - kv
+      for (Eigen::Index i = std::max<Eigen::Index>(0, j - kv_); i < j; ++i) s -= u[i] * b[i];
       b[j] = s * inverse_[static_cast<std::size_t>(j)];
     }
     for (Eigen::Index j = n_ - 1; j >= 0; --j) {  // L^T, the interchanges undone in reverse
       const Eigen::Index km = std::min(kl, n_ - 1 - j);
       cd s = b[j];
-      for (Eigen::Index i = 1; i <= km; ++i) s -= ab_(kv_ + i, j) * b[j + i];
+      const cd* const l = &ab_(kv_, j);
+      for (Eigen::Index i = 1; i <= km; ++i) s -= l[i] * b[j + i];
       b[j] = s;
       const Eigen::Index p = pivot_[static_cast<std::size_t>(j)];
       if (p != j) std::swap(b[p], b[j]);

@@ -40,6 +40,10 @@ class BandLu {
   void solve_transposed(Matrix& x) const;
 
  private:
+  // Column j shifted so that [i] is entry (i, j) of the matrix (valid for i within the band; the pointer stays
+  // inside the buffer: j (rows - 1) + kv >= 0).
+  const std::complex<double>* column_offset(Eigen::Index j) const { return ab_.data() + j * ab_.rows() + kv_ - j; }
+
   Eigen::Index n_ = 0, kv_ = 0;  // kv = lower + upper: the band of U after the row interchanges
   Bandwidth band_;
   Matrix ab_;                    // (2 lower + upper + 1) x n: entry (r, c) at (kv + r - c, c)
