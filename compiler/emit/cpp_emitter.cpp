@@ -467,7 +467,10 @@ CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
       {"transfer_functions", transfer_functions},
       {"operations_before_cse", std::to_string(emitter.counts.before_cse)},
       {"operations_after_cse", std::to_string(emitter.counts.after_cse)},
-      {"max_function_operations", std::to_string(options.max_function_operations)},
+      {"function_bound", options.max_function_operations == 0
+                             ? std::string("Function size not bounded.")
+                             : "Functions of at most " + std::to_string(options.max_function_operations) +
+                                   " operations and\n// stores before it (longer ones are split into pieces)."},
       {"parts_line", parts_line},
       {"part_files", part_files},
       {"chunk_section", chunk_section},
