@@ -165,7 +165,7 @@ TEST_CASE("chain16: the split code equals the derivation and the in-process eval
 
   // The runtime adapter against the evaluator at drawn parameters: matrices and derivative entries.
   const auto generated_model = split::make_model();
-  const auto evaluator = mbgen::evaluator::make_evaluator(ir);
+  const auto evaluator = mbgen::evaluator::make_evaluator(ir, {{}, false});
   const std::vector<double> drawn = parameters<double>(3);
   const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(drawn.data(), static_cast<Eigen::Index>(drawn.size()));
   mbgen::ModelMatrices x, y;
