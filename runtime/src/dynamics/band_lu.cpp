@@ -1,5 +1,7 @@
 #include "band_lu.hpp"
 
+#include "pivot_arithmetic.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,18 +9,7 @@
 
 namespace mbgen::detail {
 
-namespace {
-
 using cd = std::complex<double>;
-
-double norm2(cd z) { return z.real() * z.real() + z.imag() * z.imag(); }
-
-cd reciprocal(cd z) {
-  const double d = norm2(z);
-  return {z.real() / d, -z.imag() / d};
-}
-
-}  // namespace
 
 Bandwidth bandwidth_of(const std::vector<const Eigen::MatrixXd*>& matrices) {
   Bandwidth b;
