@@ -1,7 +1,10 @@
-// The C++ emitter: a SymbolicModel -> one header and one source, from the templates templates/cpp/*.tmpl.
+// The C++ emitter: a SymbolicModel -> one header and one source (plus part sources with `parts`), from the
+// templates templates/cpp/*.tmpl. Machine-scale models (docs/scale.md): dynamic-size matrices above
+// kMaxFixedSizeCoordinates, functions of bounded size, several translation units.
 //
-// The generated code depends on Eigen and the runtime headers mbgen/model.hpp and mbgen/transfer_function.hpp
-// only. See templates/cpp/model.hpp.tmpl for what it declares (metadata, M, C, G, K, B, Cd, Cv, Ca and their
+// The generated code depends on Eigen and the runtime headers mbgen/model.hpp, mbgen/transfer_function.hpp and
+// mbgen/state_space_form.hpp only (and links the runtime library, which instantiates their routines for double
+// and long double). See templates/cpp/model.hpp.tmpl for what it declares (metadata, M, C, G, K, B, Cd, Cv, Ca and their
 // sparse parameter Jacobians, state space, transfer-function coefficients and Jacobians, make_model()).
 // Output is deterministic: no timestamps, no directories, the same text for the same input.
 #pragma once
