@@ -118,24 +118,93 @@ struct MatrixSpec {
   const char* type;
   const char* description;
   const GiNaC::matrix* matrix;
-  bool in_model;  // part of mbgen::ModelMatrices
+  bool in_model;     // part of mbgen::ModelMatrices
+  const char* dims;  // its size in the generated constants, for dynamic-size matrices
 };
 
-TemplateDict matrix_dict(const SymbolicModel& sm, const FunctionContext& ctx, const MatrixSpec& spec) {
+// A piece of an emitted function (a function of bounded size), defined in the main source or in a part file.
+struct Chunk {
+  std::string name, params, param_types, body;
+  std::size_t operations = 0;  // after CSE: how the pieces are spread over the parts
+};
+
+// What every emitted function body shares: the parameters' names, the size bound, the pieces made so far and
+// the operation counts of the banner.
+struct BodyEmitter {
+  const FunctionContext& ctx;
+  std::size_t max_operations;  // per function before CSE; 0: no bound
+  bool always_chunk;           // several parts: every function's work goes to pieces the parts can hold
+  std::vector<Chunk> chunks;
+  OperationCounts counts;
+  OperationCounter counter;
+
+  // Consecutive runs of assignments of at most max_operations each: an assignment costs its operations before CSE
+  // plus one (the store: a run of many constant entries is long too). A single larger assignment is a run of its
+  // own.
+  std::vector<std::vector<CxxAssignment>> groups(const std::vector<CxxAssignment>& values) {
+    std::vector<std::vector<CxxAssignment>> out(1);
+    std::size_t ops = 0;
+    for (const auto& a : values) {
+      const std::size_t n = 1 + counter.count(a.rhs);
+      if (max_operations > 0 && !out.back().empty() && ops + n > max_operations) {
+        out.emplace_back();
+        ops = 0;
+      }
+      out.back().push_back(a);
+      ops += n;
+    }
+    return out;
+  }
+
+  // The body of `function`: `prelude`, then the assignments. When they exceed the bound (or parts are wanted),
+  // they go to pieces `detail::FUNCTION_chunk_K(args)`, each with its own CSE, and the body calls them in order.
+  // Rows in order keep the pieces local: a chain's body i fills rows of its own, so little sharing is lost.
+  std::string body(const std::string& function, const std::string& params, const std::string& param_types,
+                   const std::string& args, const std::string& prelude, const std::vector<CxxAssignment>& values,
+                   const std::string& if_empty) {
+    std::vector<GiNaC::ex> used;
+    for (const auto& a : values) used.push_back(a.rhs);
+    const auto runs = groups(values);
+    if (values.empty() || (runs.size() == 1 && !always_chunk))
+      return ctx.prologue(used) + prelude + (values.empty() ? if_empty : "") +
+             cxx_assignments(values, ctx.names(), "  ", &counts);
+    std::string out = prelude;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      std::vector<GiNaC::ex> run_used;
+      for (const auto& a : runs[k]) run_used.push_back(a.rhs);
+      OperationCounts run_counts;
+      Chunk c;
+      c.name = function + "_chunk_" + std::to_string(k);
+      c.params = params;
+      c.param_types = param_types;
+      c.body = ctx.prologue(run_used) + cxx_assignments(runs[k], ctx.names(), "  ", &run_counts);
+      c.operations = run_counts.after_cse;
+      counts.before_cse += run_counts.before_cse;
+      counts.after_cse += run_counts.after_cse;
+      out += "  detail::" + c.name + "(" + args + ");\n";
+      chunks.push_back(std::move(c));
+    }
+    return out;
+  }
+};
+
+TemplateDict matrix_dict(const SymbolicModel& sm, const FunctionContext& ctx, const MatrixSpec& spec,
+                         BodyEmitter& emitter, bool dynamic_size) {
   const GiNaC::matrix& m = *spec.matrix;
-  std::vector<GiNaC::ex> entries;
   std::vector<CxxAssignment> values;
   for (unsigned r = 0; r < m.rows(); ++r)
     for (unsigned c = 0; c < m.cols(); ++c)
-      if (!m(r, c).is_zero()) {
-        entries.push_back(m(r, c));
+      if (!m(r, c).is_zero())
         values.push_back({std::string(spec.symbol) + "(" + std::to_string(r) + ", " + std::to_string(c) + ")", m(r, c)});
-      }
-  std::string body = ctx.prologue(entries) + "  " + spec.symbol + ".setZero();\n" + cxx_assignments(values, ctx.names(), "  ");
+  const std::string matrix_type = std::string(spec.type) + "<Scalar>&";
+  const std::string set_zero =
+      "  " + std::string(spec.symbol) + ".setZero(" + (dynamic_size ? spec.dims : "") + ");\n";
+  std::string body = emitter.body(spec.function, "const Scalar* p, " + matrix_type + " " + spec.symbol,
+                                  "const Scalar*, " + matrix_type, std::string("p, ") + spec.symbol, set_zero, values,
+                                  "");
 
   std::vector<std::string> pattern;
   std::vector<CxxAssignment> derivatives;
-  std::vector<GiNaC::ex> derivative_exprs;
   // Parameter-major, then row and column, as before; each parameter visits only the entries that contain it.
   std::vector<std::vector<std::pair<unsigned, unsigned>>> entries_with(sm.parameters.size());
   for (unsigned r = 0; r < m.rows(); ++r)
@@ -147,12 +216,11 @@ TemplateDict matrix_dict(const SymbolicModel& sm, const FunctionContext& ctx, co
       const GiNaC::ex d = m(r, c).diff(sm.parameters[j].sym);
       if (d.is_zero()) continue;
       derivatives.push_back({"values[" + std::to_string(pattern.size()) + "]", d});
-      derivative_exprs.push_back(d);
       pattern.push_back("JacobianEntry{" + std::to_string(j) + ", " + std::to_string(r) + ", " + std::to_string(c) + "}");
     }
-  std::string jacobian_body = ctx.prologue(derivative_exprs);
-  if (derivatives.empty()) jacobian_body += "  static_cast<void>(values);\n";
-  jacobian_body += cxx_assignments(derivatives, ctx.names(), "  ");
+  std::string jacobian_body =
+      emitter.body(std::string(spec.function) + "_jacobian", "const Scalar* p, Scalar* values", "const Scalar*, Scalar*",
+                   "p, values", "", derivatives, "  static_cast<void>(values);\n");
 
   TemplateList in_model;
   if (spec.in_model) in_model.emplace_back();
@@ -169,7 +237,7 @@ TemplateDict matrix_dict(const SymbolicModel& sm, const FunctionContext& ctx, co
 
 // Emitted expressions for a transfer function whose coefficients are exact expressions (or exactly zero).
 void symbolic_tf_bodies(const SymbolicModel& sm, const FunctionContext& ctx, const symbolic::TransferFunction& tf,
-                        std::string& body, std::string& jacobian_body) {
+                        std::string& body, std::string& jacobian_body, OperationCounts& counts) {
   std::vector<CxxAssignment> values;
   std::vector<GiNaC::ex> all;
   for (std::size_t k = 0; k < tf.numerator.size(); ++k) {
@@ -182,7 +250,7 @@ void symbolic_tf_bodies(const SymbolicModel& sm, const FunctionContext& ctx, con
   }
   body = ctx.prologue(all) + "  numerator.resize(" + std::to_string(tf.numerator.size()) + ");\n" +
          "  denominator.resize(" + std::to_string(tf.denominator.size()) + ");\n" +
-         cxx_assignments(values, ctx.names(), "  ");
+         cxx_assignments(values, ctx.names(), "  ", &counts);
 
   const std::size_t nn = tf.numerator.size(), nd = tf.denominator.size(), np = sm.parameters.size();
   std::vector<CxxAssignment> derivatives;
@@ -200,11 +268,12 @@ void symbolic_tf_bodies(const SymbolicModel& sm, const FunctionContext& ctx, con
   add(tf.denominator, "d_denominator", nd);
   jacobian_body = ctx.prologue(used) + "  d_numerator.assign(" + std::to_string(np * nn) + ", Scalar(0));\n" +
                   "  d_denominator.assign(" + std::to_string(np * nd) + ", Scalar(0));\n" +
-                  cxx_assignments(derivatives, ctx.names(), "  ");
+                  cxx_assignments(derivatives, ctx.names(), "  ", &counts);
 }
 
 TemplateList transfer_function_dicts(const SymbolicModel& sm, const FunctionContext& ctx,
-                                     const std::vector<std::string>& inputs, const std::vector<std::string>& outputs) {
+                                     const std::vector<std::string>& inputs, const std::vector<std::string>& outputs,
+                                     OperationCounts& counts) {
   TemplateList list;
   for (std::size_t i = 0; i < sm.transfer_functions.size(); ++i) {
     const auto& tf = sm.transfer_functions[i];
@@ -214,7 +283,7 @@ TemplateList transfer_function_dicts(const SymbolicModel& sm, const FunctionCont
     std::string body, jacobian_body, comment;
     std::size_t nn = tf.numerator.size(), nd = tf.denominator.size();
     if (emitted) {
-      symbolic_tf_bodies(sm, ctx, tf, body, jacobian_body);
+      symbolic_tf_bodies(sm, ctx, tf, body, jacobian_body, counts);
       comment = ": exact expressions";
     } else {
       const TemplateDict d = {{"output", std::to_string(tf.output)}, {"input", std::to_string(tf.input)},
@@ -265,6 +334,15 @@ std::vector<std::pair<double, double>> bounds_of(const SymbolicModel& sm) {
 
 const char* mbgen_version() { return MBGEN_VERSION; }
 
+std::string part_file_name(const std::string& source_file, int k) {
+  const std::size_t slash = source_file.find_last_of("/\\");
+  const std::size_t dot = source_file.find_last_of('.');
+  const bool has_extension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  const std::string stem = has_extension ? source_file.substr(0, dot) : source_file;
+  const std::string extension = has_extension ? source_file.substr(dot) : ".cpp";
+  return stem + "_part" + std::to_string(k) + extension;
+}
+
 CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
   std::string model_name = options.model_name;
   if (model_name.empty()) {
@@ -297,18 +375,53 @@ CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
   for (const auto& c : sm.coordinates) coordinates.push_back(c.name());
 
   FunctionContext ctx(sm);
+  const char* const kSquare = "num_coordinates, num_coordinates";
   const MatrixSpec specs[] = {
-      {"mass_matrix", "M", "CoordinateMatrix", "Mass matrix M.", &sm.M, true},
-      {"damping_matrix", "C", "CoordinateMatrix", "Damping matrix C, including the gyroscopic matrix G.", &sm.C_total, true},
-      {"gyroscopic_matrix", "G", "CoordinateMatrix", "Gyroscopic matrix G alone (skew-symmetric, part of C).", &sm.G, false},
-      {"stiffness_matrix", "K", "CoordinateMatrix", "Stiffness matrix K.", &sm.K, true},
-      {"input_matrix", "B", "InputMatrix", "Input matrix B.", &sm.B, true},
-      {"output_displacement_matrix", "Cd", "OutputMatrix", "Output map of displacements Cd.", &sm.Cd, true},
-      {"output_velocity_matrix", "Cv", "OutputMatrix", "Output map of velocities Cv.", &sm.Cv, true},
-      {"output_acceleration_matrix", "Ca", "OutputMatrix", "Output map of accelerations Ca.", &sm.Ca, true},
+      {"mass_matrix", "M", "CoordinateMatrix", "Mass matrix M.", &sm.M, true, kSquare},
+      {"damping_matrix", "C", "CoordinateMatrix", "Damping matrix C, including the gyroscopic matrix G.", &sm.C_total, true, kSquare},
+      {"gyroscopic_matrix", "G", "CoordinateMatrix", "Gyroscopic matrix G alone (skew-symmetric, part of C).", &sm.G, false, kSquare},
+      {"stiffness_matrix", "K", "CoordinateMatrix", "Stiffness matrix K.", &sm.K, true, kSquare},
+      {"input_matrix", "B", "InputMatrix", "Input matrix B.", &sm.B, true, "num_coordinates, num_inputs"},
+      {"output_displacement_matrix", "Cd", "OutputMatrix", "Output map of displacements Cd.", &sm.Cd, true, "num_outputs, num_coordinates"},
+      {"output_velocity_matrix", "Cv", "OutputMatrix", "Output map of velocities Cv.", &sm.Cv, true, "num_outputs, num_coordinates"},
+      {"output_acceleration_matrix", "Ca", "OutputMatrix", "Output map of accelerations Ca.", &sm.Ca, true, "num_outputs, num_coordinates"},
   };
+  if (options.parts < 1) throw std::invalid_argument("emit_cpp: parts must be at least 1");
+  const bool dynamic_size = sm.coordinates.size() > kMaxFixedSizeCoordinates;
+  BodyEmitter emitter{ctx, options.max_function_operations, options.parts > 1, {}, {}, {}};
   TemplateList matrices;
-  for (const auto& spec : specs) matrices.push_back(matrix_dict(sm, ctx, spec));
+  for (const auto& spec : specs) matrices.push_back(matrix_dict(sm, ctx, spec, emitter, dynamic_size));
+  const TemplateList transfer_functions = transfer_function_dicts(sm, ctx, inputs, outputs, emitter.counts);
+
+  // The pieces: in the main source when it is the only one; otherwise spread over the parts (each piece to the
+  // part with the fewest operations so far, in order: deterministic), the main source declaring them.
+  const int parts = options.parts;
+  std::vector<TemplateList> part_chunks(static_cast<std::size_t>(parts));
+  std::vector<std::size_t> part_load(static_cast<std::size_t>(parts), 0);
+  TemplateList declarations;
+  for (const Chunk& c : emitter.chunks) {
+    std::size_t target = 0;
+    if (parts > 1) {
+      target = 1;
+      for (std::size_t k = 2; k < part_load.size(); ++k)
+        if (part_load[k] < part_load[target]) target = k;
+      declarations.push_back({{"name", c.name}, {"params", c.params}});
+    }
+    part_load[target] += c.operations;
+    part_chunks[target].push_back(
+        {{"name", c.name}, {"params", c.params}, {"param_types", c.param_types}, {"body", c.body}});
+  }
+  TemplateList chunk_section, part_files, fixed_size, dynamic_size_list;
+  if (!emitter.chunks.empty()) chunk_section.emplace_back();
+  std::vector<std::string> part_names;
+  for (int k = 1; k < parts; ++k) {
+    part_names.push_back(base_name(part_file_name(options.source_file, k)));
+    part_files.push_back({{"file", cxx_comment_text(part_names.back())}});
+  }
+  (dynamic_size ? dynamic_size_list : fixed_size).emplace_back();
+  std::string parts_line;
+  if (parts > 1) parts_line = "// Split into " + std::to_string(parts) + " translation units: this file and " +
+                              cxx_comment_text(join(part_names)) + ".\n";
 
   TemplateList parameters;
   std::vector<std::string> names, roles, units, lower, upper;
@@ -351,9 +464,30 @@ CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
       {"output_names", quoted(outputs)},
       {"matrices", matrices},
       {"num_transfer_functions", std::to_string(sm.transfer_functions.size())},
-      {"transfer_functions", transfer_function_dicts(sm, ctx, inputs, outputs)},
+      {"transfer_functions", transfer_functions},
+      {"operations_before_cse", std::to_string(emitter.counts.before_cse)},
+      {"operations_after_cse", std::to_string(emitter.counts.after_cse)},
+      {"function_bound", options.max_function_operations == 0
+                             ? std::string("Function size not bounded.")
+                             : "Functions of at most " + std::to_string(options.max_function_operations) +
+                                   " operations and\n// stores before it (longer ones are split into pieces)."},
+      {"parts_line", parts_line},
+      {"part_files", part_files},
+      {"chunk_section", chunk_section},
+      {"chunk_declarations", declarations},
+      {"chunks", part_chunks[0]},
+      {"fixed_size", fixed_size},
+      {"max_fixed_size_coordinates", std::to_string(kMaxFixedSizeCoordinates)},
+      {"dynamic_size", dynamic_size_list},
   };
-  return {render_embedded("cpp/model.hpp.tmpl", values), render_embedded("cpp/model.cpp.tmpl", values)};
+  CppEmitResult result{render_embedded("cpp/model.hpp.tmpl", values), render_embedded("cpp/model.cpp.tmpl", values), {}};
+  for (int k = 1; k < parts; ++k) {
+    TemplateDict part = values;
+    part["part"] = std::to_string(k);
+    part["part_chunks"] = part_chunks[static_cast<std::size_t>(k)];
+    result.parts.push_back(render_embedded("cpp/model_part.cpp.tmpl", part));
+  }
+  return result;
 }
 
 }  // namespace mbgen::emit

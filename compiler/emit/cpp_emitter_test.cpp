@@ -60,3 +60,62 @@ TEST_CASE("numbers are Scalar arithmetic and defaults round-trip") {
   // The gyroscopic matrix is zero: its function reads no parameter.
   CHECK(r.source.find("  static_cast<void>(p);\n  G.setZero();\n}") != std::string::npos);
 }
+
+TEST_CASE("the banner counts operations before and after CSE") {
+  test::Mdof2 a;
+  const CppEmitResult r = emit_cpp(a.sm, options());
+  const std::regex counts("// Operations \\(additions, multiplications, divisions, powers, calls\\): ([0-9]+) in the "
+                          "derived expressions,\n// ([0-9]+) after common-subexpression elimination\\.");
+  std::smatch m;
+  REQUIRE(std::regex_search(r.source, m, counts));
+  const long before = std::stol(m[1].str()), after = std::stol(m[2].str());
+  CHECK(after > 0);
+  CHECK(after < before);  // the transfer functions share the denominator's products
+}
+
+TEST_CASE("long functions are split into pieces, and pieces over translation units") {
+  test::Mdof2 a;
+  CppEmitOptions o = options();
+  const CppEmitResult whole = emit_cpp(a.sm, o);
+  CHECK(whole.source.find("_chunk_") == std::string::npos);
+  CHECK(whole.parts.empty());
+
+  // A bound of 3 (operations plus one store per assignment): K's entries k11 + k12, -k12, -k12, k12 + k22 cost
+  // 2, 2, 2, 2, so K is filled by four pieces, each with its own prologue.
+  o.max_function_operations = 3;
+  const CppEmitResult pieces = emit_cpp(a.sm, o);
+  CHECK(pieces.parts.empty());
+  for (int k = 0; k < 4; ++k)
+    CHECK(pieces.source.find("void stiffness_matrix_chunk_" + std::to_string(k) + "(const Scalar* p, "
+                             "CoordinateMatrix<Scalar>& K) {") != std::string::npos);
+  CHECK(pieces.source.find("stiffness_matrix_chunk_4") == std::string::npos);
+  CHECK(pieces.source.find("  K.setZero();\n  detail::stiffness_matrix_chunk_0(p, K);\n  detail::stiffness_matrix_chunk_1(p, K);\n") !=
+        std::string::npos);
+
+  // Three translation units: the main source declares the pieces, the parts define and instantiate them.
+  o.max_function_operations = 2000;
+  o.parts = 3;
+  const CppEmitResult parts = emit_cpp(a.sm, o);
+  REQUIRE(parts.parts.size() == 2);
+  CHECK(parts.source.find("// Split into 3 translation units: this file and mdof2_part1.cpp, mdof2_part2.cpp.\n") !=
+        std::string::npos);
+  CHECK(parts.source.find("void stiffness_matrix_chunk_0(const Scalar* p, CoordinateMatrix<Scalar>& K);\n") !=
+        std::string::npos);
+  CHECK(parts.header.find("//   #include \"mdof2_part2.cpp\"\n") != std::string::npos);
+  const std::string both = parts.parts[0] + parts.parts[1];
+  CHECK(both.find("void stiffness_matrix_chunk_0(const Scalar* p, CoordinateMatrix<Scalar>& K) {") != std::string::npos);
+  CHECK(both.find("template void detail::stiffness_matrix_chunk_0<Scalar>(const Scalar*, CoordinateMatrix<Scalar>&);") !=
+        std::string::npos);
+  for (const std::string& part : parts.parts) {
+    CHECK(part.find("#include \"mdof2.hpp\"") != std::string::npos);
+    CHECK(part.find("void ") != std::string::npos);  // each part got work
+  }
+  o.parts = 0;
+  CHECK_THROWS_AS(emit_cpp(a.sm, o), std::invalid_argument);
+}
+
+TEST_CASE("part file names") {
+  CHECK(part_file_name("out/chain_model.cpp", 2) == "out/chain_model_part2.cpp");
+  CHECK(part_file_name("chain.cc", 1) == "chain_part1.cc");
+  CHECK(part_file_name("dir.v2/chain", 1) == "dir.v2/chain_part1.cpp");
+}

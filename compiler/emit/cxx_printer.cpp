@@ -229,7 +229,7 @@ std::string cxx_number(const GiNaC::numeric& n) { return print_number(n).text; }
 std::string cxx_expression(const GiNaC::ex& e, const SymbolNames& names) { return Printer(names).print(e).text; }
 
 std::string cxx_assignments(const std::vector<CxxAssignment>& assignments, const SymbolNames& names,
-                            const std::string& indent) {
+                            const std::string& indent, OperationCounts* counts) {
   std::vector<GiNaC::ex> rhs;
   rhs.reserve(assignments.size());
   bool uses_pi = false;
@@ -247,6 +247,12 @@ std::string cxx_assignments(const std::vector<CxxAssignment>& assignments, const
     out += indent + "const Scalar " + sym.get_name() + " = " + printer.print(def).text + ";\n";
   for (std::size_t i = 0; i < assignments.size(); ++i)
     out += indent + assignments[i].lhs + " = " + printer.print(cse.outputs[i]).text + ";\n";
+  if (counts) {
+    OperationCounter before, after;
+    for (const auto& e : rhs) counts->before_cse += before.count(e);
+    for (const auto& [sym, def] : cse.temporaries) counts->after_cse += after.count(def);
+    for (const auto& e : cse.outputs) counts->after_cse += after.count(e);
+  }
   return out;
 }
 

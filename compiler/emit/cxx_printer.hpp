@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "emit/operation_count.hpp"
+
 namespace mbgen::emit {
 
 // Symbol -> C++ identifier. A symbol absent from the map is an error (std::logic_error).
@@ -28,8 +30,9 @@ struct CxxAssignment {
 
 // Statements computing all assignments with common subexpressions hoisted:
 //   `const Scalar c_pi = ...;` (if pi is used), `const Scalar tN = ...;`, then `lhs = rhs;`.
-// Every line starts with `indent` and ends with '\n'.
+// Every line starts with `indent` and ends with '\n'. With `counts`, adds the assignments' operations before and
+// after the elimination to it (operation_count.hpp).
 std::string cxx_assignments(const std::vector<CxxAssignment>& assignments, const SymbolNames& names,
-                            const std::string& indent);
+                            const std::string& indent, OperationCounts* counts = nullptr);
 
 }  // namespace mbgen::emit

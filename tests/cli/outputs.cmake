@@ -46,3 +46,20 @@ endif()
 
 # Standard input may be read once.
 expect_run(STATUS 2 STDERR "standard input \\(-\\) can be read only once" ARGS fit - --data - --starts 1)
+
+# `--parts N` writes OUT.cpp and OUT_part1.cpp .. OUT_part<N-1>.cpp; a part that collides with another output is
+# refused before any work; `-o -` cannot hold several translation units (usage).
+expect_run(STATUS 0 ARGS m.mdl -o split.cpp --parts 3)
+foreach(f split.cpp split.hpp split_part1.cpp split_part2.cpp)
+  if(NOT EXISTS "${WORK}/${f}")
+    message(SEND_ERROR "--parts 3 did not write ${f}")
+  endif()
+endforeach()
+if(EXISTS "${WORK}/split_part3.cpp")
+  message(SEND_ERROR "--parts 3 wrote a fourth source")
+endif()
+tree_state(before "${WORK}")
+expect_run(STATUS 2 STDERR "several translation units need a file name" ARGS m.mdl -o - --parts 2)
+expect_run(STATUS 2 STDERR "x_part1.cpp is also the output of" ARGS m.mdl -o x.cpp --header x_part1.cpp --parts 2)
+expect_run(STATUS 2 ARGS m.mdl -o y.cpp --parts 0)
+expect_unchanged("${before}" "${WORK}" "refused --parts")

@@ -26,7 +26,10 @@
 
 #include <cmath>
 #include <complex>
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace mbgen {
@@ -82,18 +85,78 @@ Scalar pi() {
   return Scalar(4) * atan(Scalar(1));
 }
 
-// Frequency scale of the block: (|det K| / |det M|)^(1/(2 nb)), with fallbacks for singular K (rigid-body
-// motion): sqrt(trace K / trace M), then 1.
+// A number as mantissa * 2^exponent: determinants of hundreds of rows (det K of a 96-coordinate chain is about
+// 1e630) overflow every floating type's exponent long before their mantissas lose anything. Scaling by powers of
+// two is exact, so a product formed this way rounds exactly like the plain one wherever that one is finite.
+template <typename T>
+struct Scaled {
+  T mantissa;
+  long exponent = 0;
+};
+
+template <typename Scalar>
+long exponent_of(Scalar x) {
+  using std::frexp;
+  int e = 0;
+  frexp(x, &e);
+  return e;
+}
+
+template <typename Scalar>
+void normalize(Scaled<Scalar>& x) {
+  using std::abs;
+  using std::ldexp;
+  if (x.mantissa == Scalar(0)) return;
+  const long e = exponent_of(abs(x.mantissa));
+  x.mantissa = ldexp(x.mantissa, static_cast<int>(-e));
+  x.exponent += e;
+}
+
+template <typename Scalar>
+void normalize(Scaled<std::complex<Scalar>>& x) {
+  using std::abs;
+  using std::ldexp;
+  const Scalar big = std::max(abs(x.mantissa.real()), abs(x.mantissa.imag()));
+  if (big == Scalar(0)) return;
+  const long e = exponent_of(big);
+  x.mantissa = {ldexp(x.mantissa.real(), static_cast<int>(-e)), ldexp(x.mantissa.imag(), static_cast<int>(-e))};
+  x.exponent += e;
+}
+
+// The determinant of an LU factorization, scaled: the pivots' product with the permutation's sign.
+template <typename Matrix>
+Scaled<typename Matrix::Scalar> scaled_determinant(const Eigen::PartialPivLU<Matrix>& lu) {
+  using T = typename Matrix::Scalar;
+  Scaled<T> d{T(lu.permutationP().determinant()), 0};
+  const Matrix& f = lu.matrixLU();
+  for (Eigen::Index i = 0; i < f.rows(); ++i) {
+    d.mantissa *= f(i, i);
+    normalize(d);
+  }
+  return d;
+}
+
+// log |x| of a scaled real number.
+template <typename Scalar>
+Scalar log_abs(const Scaled<Scalar>& x) {
+  using std::abs;
+  using std::log;
+  return log(abs(x.mantissa)) + Scalar(x.exponent) * log(Scalar(2));
+}
+
+// Frequency scale of the block: (|det K| / |det M|)^(1/(2 nb)) (from scaled determinants: finite however large
+// the block), with fallbacks for singular K (rigid-body motion): sqrt(trace K / trace M), then 1.
 template <typename Scalar>
 Scalar frequency_scale(const DenseMatrix<Scalar>& Mb, const DenseMatrix<Scalar>& Kb) {
   using std::abs;
+  using std::exp;
   using std::isfinite;
-  using std::pow;
   using std::sqrt;
-  const Scalar dm = abs(Mb.determinant()), dk = abs(Kb.determinant());
+  const Scaled<Scalar> dm = scaled_determinant(Eigen::PartialPivLU<DenseMatrix<Scalar>>(Mb));
+  const Scaled<Scalar> dk = scaled_determinant(Eigen::PartialPivLU<DenseMatrix<Scalar>>(Kb));
   const Scalar n2 = Scalar(2 * Mb.rows());
-  if (dm > Scalar(0) && dk > Scalar(0)) {
-    Scalar rho = pow(dk / dm, Scalar(1) / n2);
+  if (dm.mantissa != Scalar(0) && dk.mantissa != Scalar(0)) {
+    const Scalar rho = exp((log_abs(dk) - log_abs(dm)) / n2);
     if (isfinite(rho) && rho > Scalar(0)) return rho;
   }
   const Scalar tm = abs(Mb.trace()), tk = abs(Kb.trace());
@@ -120,6 +183,21 @@ struct CircleSampling {
       const Scalar theta = two_pi * (Scalar(m) + Scalar(1) / Scalar(2)) / Scalar(N);
       points.emplace_back(rho * cos(theta), rho * sin(theta));
     }
+  }
+
+  // a_k rho^k (the coefficients of f(rho sigma) in sigma = s / rho): of similar size for a well chosen rho.
+  std::vector<Scalar> scaled_coefficients(const std::vector<std::complex<Scalar>>& samples) const {
+    using std::cos;
+    using std::sin;
+    std::vector<Scalar> a(static_cast<std::size_t>(N));
+    const Scalar phi = pi<Scalar>() / Scalar(N);
+    for (int k = 0; k < N; ++k) {
+      std::complex<Scalar> sum(0, 0);
+      for (int j = 0; j < N; ++j) sum += samples[static_cast<std::size_t>(j)] * roots[static_cast<std::size_t>((j * k) % N)];
+      const std::complex<Scalar> shift(cos(Scalar(k) * phi), -sin(Scalar(k) * phi));
+      a[static_cast<std::size_t>(k)] = (sum * shift).real() / Scalar(N);
+    }
+    return a;
   }
 
   std::vector<Scalar> coefficients(const std::vector<std::complex<Scalar>>& samples) const {
@@ -181,27 +259,115 @@ BlockSystem<Scalar> restrict_to_block(const TransferFunctionSystem<Scalar>& sys,
 
 }  // namespace detail
 
-// Coefficients of the pair's transfer function. Throws std::invalid_argument for inconsistent sizes and
-// std::domain_error when det M_b = 0 (no monic normalisation).
+namespace detail {
+
+// rho^j as a scaled number: rho = m 2^e, m in [0.5, 1), so m^j stays representable for any block size here.
 template <typename Scalar>
-TransferFunctionCoefficients<Scalar> transfer_function_coefficients(const TransferFunctionSystem<Scalar>& sys,
-                                                                    const std::vector<int>& block) {
+Scaled<Scalar> scaled_power(Scalar rho, int j) {
+  using std::frexp;
+  using std::pow;
+  int e = 0;
+  const Scalar m = frexp(rho, &e);
+  Scaled<Scalar> r{pow(m, Scalar(j)), static_cast<long>(e) * j};
+  normalize(r);
+  return r;
+}
+
+// Coefficients in sigma of sum_k c_k sigma^k = f(rho sigma) / (det M_b rho^n) from scaled samples of f: finite for
+// any block size (the samples are brought to a common exponent first; those far below the largest underflow to
+// zero, as they would be lost in the sum anyway).
+template <typename Scalar>
+std::vector<Scalar> normalized_coefficients(const CircleSampling<Scalar>& circle,
+                                            const std::vector<Scaled<std::complex<Scalar>>>& samples,
+                                            const Scaled<Scalar>& lead_rho_n) {
+  using std::ldexp;
+  long top = std::numeric_limits<long>::min();
+  for (const auto& x : samples)
+    if (x.mantissa != std::complex<Scalar>(0)) top = std::max(top, x.exponent);
+  std::vector<std::complex<Scalar>> f;
+  for (const auto& x : samples) {
+    const long shift = x.mantissa == std::complex<Scalar>(0) ? 0 : x.exponent - top;
+    const int e = static_cast<int>(std::max<long>(shift, -100000));
+    f.emplace_back(ldexp(x.mantissa.real(), e), ldexp(x.mantissa.imag(), e));
+  }
+  std::vector<Scalar> c = circle.scaled_coefficients(f);
+  if (top == std::numeric_limits<long>::min()) return c;  // all samples zero
+  const long e = top - lead_rho_n.exponent;
+  for (auto& x : c) x = ldexp(x / lead_rho_n.mantissa, static_cast<int>(std::max<long>(std::min<long>(e, 100000), -100000)));
+  return c;
+}
+
+}  // namespace detail
+
+// The pair's transfer function in the normalised variable sigma = s / rho, G(s) = N(sigma) / D(sigma), rho the
+// block's frequency scale (the geometric mean of its undamped natural frequencies), D monic: the coefficients are
+// of moderate size at any block size, where those in s are not (a_0 of a 96-coordinate chain, the product of the
+// squared natural frequencies, is about 1e630: beyond double, within long double). All determinants are formed
+// as mantissa and exponent (detail::Scaled), so nothing overflows on the way.
+template <typename Scalar>
+struct ScaledTransferFunction {
+  Scalar rho = Scalar(1);
+  std::vector<Scalar> numerator;    // ascending powers of sigma, 2 nb + 1 entries
+  std::vector<Scalar> denominator;  // ascending powers of sigma, 2 nb + 1 entries, last = 1
+};
+
+// Throws std::invalid_argument for inconsistent sizes and std::domain_error when det M_b = 0.
+template <typename Scalar>
+ScaledTransferFunction<Scalar> transfer_function_scaled(const TransferFunctionSystem<Scalar>& sys,
+                                                        const std::vector<int>& block) {
+  using Complex = std::complex<Scalar>;
   const detail::BlockSystem<Scalar> bs = detail::restrict_to_block(sys, block);
   const int nb = static_cast<int>(block.size());
   const detail::CircleSampling<Scalar> circle(2 * nb + 1, detail::frequency_scale(bs.M, bs.K));
-  std::vector<std::complex<Scalar>> den_samples, num_samples;
+  std::vector<detail::Scaled<Complex>> den_samples, num_samples;
   for (const auto& s : circle.points) {
-    den_samples.push_back(Eigen::PartialPivLU<detail::ComplexMatrix<Scalar>>(bs.P(s)).determinant());
-    num_samples.push_back(-Eigen::PartialPivLU<detail::ComplexMatrix<Scalar>>(bs.Q(s)).determinant());
+    den_samples.push_back(detail::scaled_determinant(Eigen::PartialPivLU<detail::ComplexMatrix<Scalar>>(bs.P(s))));
+    detail::Scaled<Complex> q =
+        detail::scaled_determinant(Eigen::PartialPivLU<detail::ComplexMatrix<Scalar>>(bs.Q(s)));
+    q.mantissa = -q.mantissa;
+    num_samples.push_back(q);
   }
-  TransferFunctionCoefficients<Scalar> out;
-  out.denominator = circle.coefficients(den_samples);
-  out.numerator = circle.coefficients(num_samples);
-  const Scalar lead = bs.M.determinant();
-  if (lead == Scalar(0)) throw std::domain_error("transfer_function_coefficients: singular mass matrix block");
-  for (auto& a : out.denominator) a /= lead;
-  for (auto& a : out.numerator) a /= lead;
+  const detail::Scaled<Scalar> lead = detail::scaled_determinant(Eigen::PartialPivLU<DenseMatrix<Scalar>>(bs.M));
+  if (lead.mantissa == Scalar(0)) throw std::domain_error("transfer_function_coefficients: singular mass matrix block");
+  const detail::Scaled<Scalar> rho_n = detail::scaled_power(circle.rho, 2 * nb);
+  detail::Scaled<Scalar> lead_rho_n{lead.mantissa * rho_n.mantissa, lead.exponent + rho_n.exponent};
+  detail::normalize(lead_rho_n);
+  ScaledTransferFunction<Scalar> out;
+  out.rho = circle.rho;
+  out.denominator = detail::normalized_coefficients(circle, den_samples, lead_rho_n);
+  out.numerator = detail::normalized_coefficients(circle, num_samples, lead_rho_n);
   out.denominator.back() = Scalar(1);  // exactly monic
+  return out;
+}
+
+// Coefficients of the pair's transfer function in s: those of transfer_function_scaled times rho^(n - k).
+// Throws std::invalid_argument for inconsistent sizes, std::domain_error when det M_b = 0, and
+// std::overflow_error when a coefficient exceeds the range of Scalar (double beyond roughly 150 coordinates of
+// stiff machine structure: use long double, transfer_function_scaled, or the FRF from M, C, K).
+template <typename Scalar>
+TransferFunctionCoefficients<Scalar> transfer_function_coefficients(const TransferFunctionSystem<Scalar>& sys,
+                                                                    const std::vector<int>& block) {
+  using std::isfinite;
+  using std::ldexp;
+  const ScaledTransferFunction<Scalar> scaled = transfer_function_scaled(sys, block);
+  const int n = static_cast<int>(scaled.denominator.size()) - 1;
+  TransferFunctionCoefficients<Scalar> out;
+  auto unscale = [&](const std::vector<Scalar>& c, std::vector<Scalar>& a) {
+    for (int k = 0; k <= n; ++k) {
+      const detail::Scaled<Scalar> r = detail::scaled_power(scaled.rho, n - k);
+      const Scalar x = c[static_cast<std::size_t>(k)] * r.mantissa;
+      const long e = std::max<long>(std::min<long>(r.exponent, 100000), -100000);
+      a.push_back(ldexp(x, static_cast<int>(e)));
+      if (!isfinite(a.back()))
+        throw std::overflow_error("transfer_function_coefficients: coefficient " + std::to_string(k) + " of a " +
+                                  std::to_string(block.size()) +
+                                  "-coordinate block exceeds the range of this floating type; use long double, "
+                                  "transfer_function_scaled (coefficients in s / rho) or the FRF");
+    }
+  };
+  unscale(scaled.denominator, out.denominator);
+  unscale(scaled.numerator, out.numerator);
+  out.denominator.back() = Scalar(1);
   return out;
 }
 
@@ -262,10 +428,34 @@ TransferFunctionJacobian<Scalar> transfer_function_jacobian(
       jd[k] = (dden[k] * lead - den[k] * dlead) / (lead * lead);
     }
     jd.back() = Scalar(0);
+    using std::isfinite;
+    for (std::size_t k = 0; k < N; ++k)
+      if (!isfinite(jn[k]) || !isfinite(jd[k]))
+        throw std::overflow_error("transfer_function_jacobian: the coefficients' derivatives of a " +
+                                  std::to_string(block.size()) +
+                                  "-coordinate block exceed the range of this floating type; use long double or "
+                                  "the FRF's Jacobian");
     out.numerator.push_back(std::move(jn));
     out.denominator.push_back(std::move(jd));
   }
   return out;
 }
+
+// Compiled once, in the runtime library (src/dynamics/transfer_function.cpp), for double and long double: generated
+// code calls these for every run-time pair, and instantiating Eigen's complex LU for both types in each generated
+// translation unit took most of its compile time (18 of 28 s of CPU for the spindle). Other Scalar types (e.g.
+// mpfr::mpreal) are instantiated from the definitions above where they are used.
+#define MBGEN_TRANSFER_FUNCTION_INSTANTIATIONS(EXTERN, Scalar)                                                    \
+  EXTERN template ScaledTransferFunction<Scalar> transfer_function_scaled<Scalar>(                              \
+      const TransferFunctionSystem<Scalar>&, const std::vector<int>&);                                          \
+  EXTERN template TransferFunctionCoefficients<Scalar> transfer_function_coefficients<Scalar>(                  \
+      const TransferFunctionSystem<Scalar>&, const std::vector<int>&);                                          \
+  EXTERN template TransferFunctionJacobian<Scalar> transfer_function_jacobian<Scalar>(                          \
+      const TransferFunctionSystem<Scalar>&, const std::vector<TransferFunctionSystem<Scalar>>&,                \
+      const std::vector<int>&);
+#ifndef MBGEN_TRANSFER_FUNCTION_INSTANTIATE
+MBGEN_TRANSFER_FUNCTION_INSTANTIATIONS(extern, double)
+MBGEN_TRANSFER_FUNCTION_INSTANTIATIONS(extern, long double)
+#endif
 
 }  // namespace mbgen

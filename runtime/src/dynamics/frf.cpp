@@ -1,9 +1,11 @@
 #include "mbgen/frf.hpp"
 
 #include "model_checks.hpp"
+#include "band_lu.hpp"
 #include "small_lu.hpp"
 #include "mbgen/dynamics_error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -14,15 +16,24 @@ namespace {
 using cd = std::complex<double>;
 constexpr double two_pi = 6.283185307179586476925286766559;
 
-// Buffers for one FRF evaluation, reused at every frequency.
+// Buffers for one FRF evaluation, reused at every frequency. P is factored dense, or in band storage when M, C
+// and K together are banded narrowly enough to pay (band_lu.hpp: a chain of bodies; models of 32 coordinates or
+// more only).
 struct Workspace {
   detail::SmallLu lu;
+  detail::BandLu band_lu;
+  bool banded = false;
   Eigen::MatrixXcd B, Cout, X, Yt, H, J;
   Eigen::Index n = 0, inputs = 0, outputs = 0;
 
   explicit Workspace(const ModelMatrices& m)
       : B(m.B.cast<cd>()), n(m.M.rows()), inputs(m.B.cols()), outputs(m.Cd.rows()) {
-    lu.resize(n);
+    const detail::Bandwidth band = detail::bandwidth_of({&m.M, &m.C, &m.K});
+    banded = detail::band_pays(n, band);
+    if (banded)
+      band_lu.resize(n, band);
+    else
+      lu.resize(n);
     Cout.resize(outputs, n);
     X.resize(n, inputs);
     Yt.resize(n, outputs);
@@ -32,10 +43,19 @@ struct Workspace {
   // P(jw) = K - w^2 M + jw C, factorised; throws if singular to working precision.
   void factor(const ModelMatrices& m, double f_hz, const char* where) {
     const double w = two_pi * f_hz, w2 = w * w;
-    Eigen::MatrixXcd& P = lu.matrix();
-    for (Eigen::Index c = 0; c < n; ++c)
-      for (Eigen::Index r = 0; r < n; ++r) P(r, c) = cd(m.K(r, c) - w2 * m.M(r, c), w * m.C(r, c));
-    const double ratio = lu.factor();
+    double ratio = 0;
+    if (banded) {
+      const detail::Bandwidth& b = band_lu.band();
+      for (Eigen::Index c = 0; c < n; ++c)
+        for (Eigen::Index r = std::max<Eigen::Index>(0, c - b.upper); r <= std::min(n - 1, c + b.lower); ++r)
+          band_lu.at(r, c) = cd(m.K(r, c) - w2 * m.M(r, c), w * m.C(r, c));
+      ratio = band_lu.factor();
+    } else {
+      Eigen::MatrixXcd& P = lu.matrix();
+      for (Eigen::Index c = 0; c < n; ++c)
+        for (Eigen::Index r = 0; r < n; ++r) P(r, c) = cd(m.K(r, c) - w2 * m.M(r, c), w * m.C(r, c));
+      ratio = lu.factor();
+    }
     if (!(ratio > static_cast<double>(n) * std::numeric_limits<double>::epsilon())) {
       std::ostringstream msg;
       msg << where << ": dynamic stiffness K - w^2 M + jw C is singular at " << f_hz
@@ -50,10 +70,13 @@ struct Workspace {
       for (Eigen::Index r = 0; r < outputs; ++r) Cout(r, c) = cd(m.Cd(r, c) - w * w * m.Ca(r, c), w * m.Cv(r, c));
   }
 
+  void solve(Eigen::MatrixXcd& x) const { banded ? band_lu.solve(x) : lu.solve(x); }
+  void solve_transposed(Eigen::MatrixXcd& x) const { banded ? band_lu.solve_transposed(x) : lu.solve_transposed(x); }
+
   // X = P^-1 B, H = Cout X.
   void response() {
     X = B;
-    lu.solve(X);
+    solve(X);
     H.noalias() = Cout * X;
   }
 };
@@ -115,7 +138,7 @@ FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int para
     ws.response();
     // Adjoint solve P^T Y^T = Cout^T; Yt = Y^T (n x outputs) is used directly: Y(o, r) = Yt(r, o).
     ws.Yt = ws.Cout.transpose();
-    ws.lu.solve_transposed(ws.Yt);
+    ws.solve_transposed(ws.Yt);
     work.lu_factorizations += 1;
     work.solved_columns += static_cast<std::size_t>(inputs + outputs);
 

@@ -1,5 +1,7 @@
 #include "small_lu.hpp"
 
+#include "pivot_arithmetic.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,19 +9,7 @@
 
 namespace mbgen::detail {
 
-namespace {
-
 using cd = std::complex<double>;
-
-double norm2(cd z) { return z.real() * z.real() + z.imag() * z.imag(); }
-
-// 1 / z without the library's overflow-guarded complex division (z is a pivot: non-zero, finite, of moderate size).
-cd reciprocal(cd z) {
-  const double d = norm2(z);
-  return {z.real() / d, -z.imag() / d};
-}
-
-}  // namespace
 
 void SmallLu::resize(Eigen::Index n) {
   lu_.resize(n, n);

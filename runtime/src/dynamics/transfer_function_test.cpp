@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <Eigen/Cholesky>
+
 #include <cmath>
 
 namespace {
@@ -142,4 +144,75 @@ TEST_CASE("coefficient Jacobians agree with central finite differences") {
     }
     CHECK(jac.denominator[j].back() == 0);
   }
+}
+
+// A line of n masses (springs to the neighbours and the ground, proportional damping) whose coefficients in s
+// overflow double beyond about 50 masses: a_0 = det K / det M is the product of the squared natural frequencies
+// (here ~(2 pi 300 Hz)^2 ~ 4e6 each).
+template <typename Scalar>
+mbgen::TransferFunctionSystem<Scalar> mass_line(int n) {
+  using Mat = mbgen::DenseMatrix<Scalar>;
+  mbgen::TransferFunctionSystem<Scalar> sys;
+  sys.M = Mat::Zero(n, n);
+  sys.K = Mat::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    sys.M(i, i) = Scalar(1) + Scalar(i % 3) / Scalar(4);
+    sys.K(i, i) += Scalar(2e6);
+    if (i + 1 < n) {
+      sys.K(i, i) += Scalar(3e6);
+      sys.K(i + 1, i + 1) += Scalar(3e6);
+      sys.K(i, i + 1) -= Scalar(3e6);
+      sys.K(i + 1, i) -= Scalar(3e6);
+    }
+  }
+  sys.C = Scalar(1e-5) * sys.K + Scalar(2) * sys.M;
+  sys.b = mbgen::DenseVector<Scalar>::Zero(n);
+  sys.b(n - 1) = 1;
+  sys.cd = mbgen::DenseRowVector<Scalar>::Zero(n);
+  sys.cd(0) = 1;
+  sys.cv = mbgen::DenseRowVector<Scalar>::Zero(n);
+  sys.ca = mbgen::DenseRowVector<Scalar>::Zero(n);
+  return sys;
+}
+
+TEST_CASE("coefficients beyond double's range: scaled form in double, a clear error, long double unscaled") {
+  const int n = 60;
+  std::vector<int> block(n);
+  for (int i = 0; i < n; ++i) block[static_cast<std::size_t>(i)] = i;
+  const auto sd = mbgen::transfer_function_scaled(mass_line<double>(n), block);
+  const auto sl = mbgen::transfer_function_scaled(mass_line<long double>(n), block);
+  REQUIRE(sd.denominator.size() == 121);
+  CHECK(sd.denominator.back() == 1.0);
+  // The scaled coefficients are finite and moderate in double and agree with long double's: relative to the
+  // largest, as the routine's accuracy is stated.
+  double scale = 0, worst = 0;
+  for (std::size_t k = 0; k < sd.denominator.size(); ++k) {
+    REQUIRE(std::isfinite(sd.denominator[k]));
+    scale = std::max(scale, static_cast<double>(std::fabs(sl.denominator[k])));
+  }
+  for (std::size_t k = 0; k < sd.denominator.size(); ++k)
+    worst = std::max(worst, std::fabs(sd.denominator[k] - static_cast<double>(sl.denominator[k])) / scale);
+  CHECK(worst < 1e-10);
+  CHECK(scale < 1e60);  // a_0 itself is ~1e390
+  CHECK(std::fabs(static_cast<double>(sl.rho / sd.rho) - 1) < 1e-12);
+
+  // In s: long double holds them (each the scaled one times rho^(n - k), n = 120); double cannot and says so
+  // instead of returning infinities. (a_0 itself is accurate only relative to the largest scaled coefficient,
+  // ~1e-20 here for 60 masses: the stated measure of the routine, not checked digit by digit.)
+  const auto tl = mbgen::transfer_function_coefficients(mass_line<long double>(n), block);
+  CHECK(std::log10(tl.denominator[0]) > 300);
+  for (std::size_t k = 0; k < tl.denominator.size(); ++k) {
+    const long double expected = sl.denominator[k] * std::pow(sl.rho, static_cast<long double>(120 - k));
+    CHECK(std::fabs(static_cast<double>((tl.denominator[k] - expected) / expected)) < 1e-15);
+  }
+  // The exact a_0 = det K / det M, by the product of Cholesky pivots, to the accuracy stated in the scaled measure.
+  const auto K = mass_line<long double>(n).K, M = mass_line<long double>(n).M;
+  long double log_det_k = 0, log_det_m = 0;
+  const Eigen::LLT<mbgen::DenseMatrix<long double>> llt(K);
+  for (int i = 0; i < n; ++i) log_det_k += 2 * std::log(llt.matrixL()(i, i)), log_det_m += std::log(M(i, i));
+  const long double a0 = std::exp(log_det_k - log_det_m);
+  CHECK(std::fabs(static_cast<double>((tl.denominator[0] - a0) / (scale * std::pow(sl.rho, 120.0L)))) < 1e-15);
+  CHECK_THROWS_AS(mbgen::transfer_function_coefficients(mass_line<double>(n), block), std::overflow_error);
+  // A small line still fits double: no error there.
+  CHECK_NOTHROW(mbgen::transfer_function_coefficients(mass_line<double>(10), std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
 }
