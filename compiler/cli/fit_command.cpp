@@ -60,7 +60,8 @@ int run_fit(int argc, char** argv) {
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable, fitted jointly")->required();
   app.add_option("--method", method, "auto (by the data), frf-output-error, time-output-error, direct, hybrid, ekf, "
                  "arx-two-stage or modal (docs/methods.md)")
-      ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "direct", "hybrid", "ekf", "arx-two-stage", "modal"}));
+      ->check(CLI::IsMember(
+          {"auto", "frf-output-error", "time-output-error", "direct", "hybrid", "ekf", "arx-two-stage", "modal"}));
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");

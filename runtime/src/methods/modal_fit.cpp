@@ -1,22 +1,19 @@
 // fit_modal: the parameters fitted to modes identified from FRFs, after Ellinger & Zaeh 2022 (docs/methods.md#modal).
 // Reference modes and the per-mode objectives are in modal_objectives.cpp; here the refusals, the Sobol partition,
 // the repeated local optimisation of each subproblem, the damping least squares, and the result.
-#include "mbgen/methods/modal.hpp"
-
-#include "../estimation/levenberg_marquardt.hpp"
-#include "method_result.hpp"
-#include "modal_objectives.hpp"
-
-#include "mbgen/modal_pairing.hpp"
-#include "mbgen/sensitivity.hpp"
-
 #include <Eigen/QR>
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <set>
+
+#include "../estimation/levenberg_marquardt.hpp"
+#include "mbgen/methods/modal.hpp"
+#include "mbgen/modal_pairing.hpp"
+#include "mbgen/sensitivity.hpp"
+#include "method_result.hpp"
+#include "modal_objectives.hpp"
 
 namespace mbgen {
 
@@ -117,7 +114,8 @@ void classify(const Model& model, const Eigen::VectorXd& prior, const std::vecto
   model.derivatives(prior, d);
   const ModelInfo& info = model.info();
   auto touches = [](const std::vector<DerivativeEntry>& list, int i) {
-    return std::any_of(list.begin(), list.end(), [&](const DerivativeEntry& e) { return e.param == i && e.value != 0; });
+    return std::any_of(list.begin(), list.end(),
+                       [&](const DerivativeEntry& e) { return e.param == i && e.value != 0; });
   };
   for (int i : candidates) {
     const std::string& name = info.parameters[static_cast<std::size_t>(i)].name;
@@ -126,13 +124,17 @@ void classify(const Model& model, const Eigen::VectorXd& prior, const std::vecto
       throw FitError("fit: error: --method modal fits mass, stiffness and damping parameters to modes, but " + name +
                      " enters the input or output map");
     if (mk && c)
-      throw FitError("fit: error: --method modal needs each parameter to act on damping alone or on mass/stiffness "
-                     "alone (Ellinger & Zaeh's assumption A1), but " + name + " acts on both");
+      throw FitError(
+          "fit: error: --method modal needs each parameter to act on damping alone or on mass/stiffness "
+          "alone (Ellinger & Zaeh's assumption A1), but " +
+          name + " acts on both");
     if (!mk && !c)
       throw FitError("fit: error: --method modal: " + name + " acts on none of M, C, K at its prior value");
     if (mk && !(prior[i] > 0))
-      throw FitError("fit: error: --method modal searches mass/stiffness parameters on a log scale and needs a "
-                     "positive prior, but " + name + " = " + std::to_string(prior[i]));
+      throw FitError(
+          "fit: error: --method modal searches mass/stiffness parameters on a log scale and needs a "
+          "positive prior, but " +
+          name + " = " + std::to_string(prior[i]));
     (mk ? structural : damping).push_back(i);
   }
 }
@@ -148,9 +150,9 @@ std::string hz_list(const std::vector<IdentifiedMode>& modes) {
 }
 
 struct Subproblem {
-  int mode = 0;                // the mode whose parameters these are
+  int mode = 0;                 // the mode whose parameters these are
   std::vector<int> parameters;  // model indices
-  std::vector<int> modes;      // objectives: the mode and, where it has too few, the next most influenced
+  std::vector<int> modes;       // objectives: the mode and, where it has too few, the next most influenced
 };
 
 // The spread of one subproblem's repetitions. The paper's test: the standard deviation of each parameter over all
@@ -199,10 +201,12 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   std::vector<FrfData> frfs;
   for (const DataSet& d : data) {
     if (!d.is_frf())
-      throw FitError(d.file() + ": error: --method modal needs FRFs (it identifies modes from them), but this is a "
+      throw FitError(d.file() +
+                     ": error: --method modal needs FRFs (it identifies modes from them), but this is a "
                      "time record");
     if (!d.set().empty())
-      throw FitError(d.file() + ": error: --method modal fits one configuration: data sets with `# set` values are "
+      throw FitError(d.file() +
+                     ": error: --method modal fits one configuration: data sets with `# set` values are "
                      "not supported");
     frfs.push_back(std::get<FrfData>(d.content));
   }
@@ -234,11 +238,14 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   if (information < static_cast<int>(structural.size()))
     throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" + hz_list(ref) +
                    ") on " + std::to_string(channels) + " channel(s), which give " + std::to_string(information) +
-                   " numbers (per mode: frequency, " + std::to_string(channels - 1) + " shape ratio(s), scale), fewer "
-                   "than the " + std::to_string(structural.size()) + " mass/stiffness parameters to estimate");
+                   " numbers (per mode: frequency, " + std::to_string(channels - 1) +
+                   " shape ratio(s), scale), fewer "
+                   "than the " +
+                   std::to_string(structural.size()) + " mass/stiffness parameters to estimate");
   if (nr < static_cast<int>(damping.size()))
     throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" + hz_list(ref) +
-                   "), fewer than the " + std::to_string(damping.size()) + " damping parameters to estimate (one "
+                   "), fewer than the " + std::to_string(damping.size()) +
+                   " damping parameters to estimate (one "
                    "modal damping ratio per mode)");
   const Problem pr{model, md, ref};
   if (!methods::compare_modes(model, prior, md, ref).ok)
@@ -249,8 +256,11 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   nlohmann::json details;
   nlohmann::json jref = nlohmann::json::array();
   for (const IdentifiedMode& m : ref)
-    jref.push_back({{"f_hz", m.f_hz}, {"zeta", m.zeta}, {"f_std_hz", std::isfinite(m.f_std_hz) ? m.f_std_hz : 0.0},
-                    {"mpc", m.mpc}, {"support", m.support}});
+    jref.push_back({{"f_hz", m.f_hz},
+                    {"zeta", m.zeta},
+                    {"f_std_hz", std::isfinite(m.f_std_hz) ? m.f_std_hz : 0.0},
+                    {"mpc", m.mpc},
+                    {"support", m.support}});
   details["reference_modes"] = jref;
   details["shape_criterion"] = "MAC of the residue vectors (light damping: nearly real shapes, where MACXP is MAC)";
   int total_iterations = 0;
@@ -260,7 +270,8 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   if (!structural.empty()) {
     // 3. Sobol total indices of each mode's objective (NFD^2 + 1 - MAC + log-scale^2) over the start range.
     std::vector<std::pair<double, double>> range;
-    for (int i : structural) range.push_back(log_range(info.parameters[static_cast<std::size_t>(i)], prior[i], spread_factor));
+    for (int i : structural)
+      range.push_back(log_range(info.parameters[static_cast<std::size_t>(i)], prior[i], spread_factor));
     const auto ks = static_cast<Eigen::Index>(structural.size());
     const auto objective = [&](const Eigen::VectorXd& u) {
       Eigen::VectorXd q = prior;
@@ -273,7 +284,8 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
       if (!c.ok) return out;
       for (int r = 0; r < nr; ++r) {
         const auto rr = static_cast<std::size_t>(r);
-        const double nfd = c.f_hz[rr] / ref[rr].f_hz - 1, scale = std::log(c.residues[rr].norm() / ref[rr].residues.norm());
+        const double nfd = c.f_hz[rr] / ref[rr].f_hz - 1,
+                     scale = std::log(c.residues[rr].norm() / ref[rr].residues.norm());
         out[r] = nfd * nfd + (1 - c.mac[rr]) + scale * scale;
       }
       return out;
@@ -305,14 +317,17 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
         if (m == r) continue;
         double w = 0;
         for (Eigen::Index j = 0; j < ks; ++j)
-          if (std::find(s.parameters.begin(), s.parameters.end(), structural[static_cast<std::size_t>(j)]) != s.parameters.end())
+          if (std::find(s.parameters.begin(), s.parameters.end(), structural[static_cast<std::size_t>(j)]) !=
+              s.parameters.end())
             w += total(m, j);
         others.push_back({-w, m});
       }
       std::sort(others.begin(), others.end());
       s.modes.push_back(r);
       for (const auto& o : others) {
-        if (static_cast<int>(s.modes.size()) * methods::information_per_mode(channels) >= static_cast<int>(s.parameters.size())) break;
+        if (static_cast<int>(s.modes.size()) * methods::information_per_mode(channels) >=
+            static_cast<int>(s.parameters.size()))
+          break;
         s.modes.push_back(o.second);
       }
       std::sort(s.modes.begin(), s.modes.end());
@@ -360,7 +375,8 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
           total_iterations += reps.back().iterations;
           if (reps.back().cost < reps[static_cast<std::size_t>(best)].cost) best = k;
         }
-        for (int i : s.parameters) change = std::max(change, std::abs(reps[static_cast<std::size_t>(best)].p[i] / p[i] - 1));
+        for (int i : s.parameters)
+          change = std::max(change, std::abs(reps[static_cast<std::size_t>(best)].p[i] / p[i] - 1));
         for (int i : s.parameters) p[i] = reps[static_cast<std::size_t>(best)].p[i];
         spreads.push_back(spread(info, s, reps, best));
       }
@@ -396,7 +412,8 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
         q[i] += h;
         const ModalComparison c1 = methods::compare_modes(model, q, md, ref);
         if (!c1.ok) throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
-        for (int r = 0; r < nr; ++r) Q(r, j) = (c1.zeta[static_cast<std::size_t>(r)] - c0.zeta[static_cast<std::size_t>(r)]) / h;
+        for (int r = 0; r < nr; ++r)
+          Q(r, j) = (c1.zeta[static_cast<std::size_t>(r)] - c0.zeta[static_cast<std::size_t>(r)]) / h;
       }
       Eigen::VectorXd residual_share(nr);
       for (int r = 0; r < nr; ++r) {
@@ -445,10 +462,13 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   nlohmann::json agreement = nlohmann::json::array();
   for (int r = 0; r < nr; ++r) {
     const auto rr = static_cast<std::size_t>(r);
-    agreement.push_back({{"reference_f_hz", ref[rr].f_hz}, {"model_f_hz", fin.f_hz[rr]},
-                         {"nfd", fin.f_hz[rr] / ref[rr].f_hz - 1}, {"mac", fin.mac[rr]},
+    agreement.push_back({{"reference_f_hz", ref[rr].f_hz},
+                         {"model_f_hz", fin.f_hz[rr]},
+                         {"nfd", fin.f_hz[rr] / ref[rr].f_hz - 1},
+                         {"mac", fin.mac[rr]},
                          {"scale_log_ratio", std::log(fin.residues[rr].norm() / ref[rr].residues.norm())},
-                         {"reference_zeta", ref[rr].zeta}, {"model_zeta", fin.zeta[rr]},
+                         {"reference_zeta", ref[rr].zeta},
+                         {"model_zeta", fin.zeta[rr]},
                          {"ndd", (fin.zeta[rr] - ref[rr].zeta) / ref[rr].zeta}});
   }
   details["agreement"] = agreement;
@@ -476,7 +496,8 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   methods::score_by_output_error(model, data, options, candidates, static_cast<int>(candidates.size()), result);
   result.estimated.clear();  // no covariance: the modal objectives carry no noise model
   result.iterations = total_iterations;
-  result.converged = !details.contains("last_sweep_change") || details["last_sweep_change"].get<double>() < kSweepTolerance;
+  result.converged =
+      !details.contains("last_sweep_change") || details["last_sweep_change"].get<double>() < kSweepTolerance;
   result.stop_reason = result.converged ? "the subproblem sweeps settled" : "sweep limit reached";
   result.method_details["modal"] = details.dump();
   return result;

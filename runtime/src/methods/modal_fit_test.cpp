@@ -1,20 +1,18 @@
 // fit_modal on mdof2 FRFs made by the independent truth generator (scripts/truthgen: numpy, its own model assembly),
 // truth drawn at random (--draw: every estimable parameter 3-10 % off the model's values), 40 dB SNR. The model is
 // test_support's hand-written mdof2 with the .mdl's values and bounds.
-#include "../estimation/test_support.hpp"
-
-#include "mbgen/data_set.hpp"
-#include "mbgen/methods/modal.hpp"
-
 #include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
+
+#include "../estimation/test_support.hpp"
+#include "mbgen/data_set.hpp"
+#include "mbgen/methods/modal.hpp"
 
 using namespace mbgen;
 
@@ -30,9 +28,11 @@ Generated generate(int draw, int seed, const std::string& extra = "", const std:
   const std::filesystem::path dir = std::filesystem::path(MBGEN_BINARY_DIR) / "methods_modal";
   std::filesystem::create_directories(dir);
   const std::string stem = (dir / ("frf_draw" + std::to_string(draw) + "_seed" + std::to_string(seed) + tag)).string();
-  const std::string command = "/usr/bin/python3 " MBGEN_SOURCE_DIR "/scripts/truthgen/truthgen.py --example mdof2 "
-                              "--case nominal --snr-db 40 --kind frf --draw " + std::to_string(draw) +
-                              " --seed " + std::to_string(seed) + " " + extra + " -o " + stem + ".csv";
+  const std::string command = "/usr/bin/python3 " MBGEN_SOURCE_DIR
+                              "/scripts/truthgen/truthgen.py --example mdof2 "
+                              "--case nominal --snr-db 40 --kind frf --draw " +
+                              std::to_string(draw) + " --seed " + std::to_string(seed) + " " + extra + " -o " + stem +
+                              ".csv";
   REQUIRE(std::system(command.c_str()) == 0);
   const DataFile f = read_data_file(stem + ".csv");
   Generated g{std::visit([](const auto& d) { return DataSet(d); }, f), {}};
@@ -67,7 +67,8 @@ void check_spread(const FitResult& r, double relative_std) {
   for (const auto& sub : last) {
     INFO(sub.dump());
     CHECK(2 * sub.at("agreeing").get<int>() >= sub.at("repetitions").get<int>());
-    for (const auto& c : sub.at("local_optimum_costs")) CHECK(c.get<double>() > 1.01 * sub.at("best_cost").get<double>());
+    for (const auto& c : sub.at("local_optimum_costs"))
+      CHECK(c.get<double>() > 1.01 * sub.at("best_cost").get<double>());
     for (const auto& [name, s] : sub.at("parameters").items()) {
       CHECK(s.at("agreeing_relative_std").get<double>() < relative_std);
       ++parameters;
@@ -108,11 +109,20 @@ TEST_CASE("truthgen mdof2 FRF draw 2: modal from poor starts reaches one optimum
   o.starts = 8;
   const FitResult reference = fit_modal(model, {g.data}, o);
   check_truth(reference, g.truth, 0.005);
-  const std::vector<std::map<std::string, double>> poor = {
-      {{"m1", 2 * 1.39}, {"m2", 1.09 / 2}, {"k11", 1.38e6 / 3}, {"k22", 0.24e6 * 2}, {"k12", 0.12e6 * 3},
-       {"c11", 13.42 * 3}, {"c22", 0.47 / 3}},
-      {{"m1", 1.39 / 2}, {"m2", 1.09 * 2}, {"k11", 1.38e6 * 2}, {"k22", 0.24e6 / 3}, {"k12", 0.12e6 / 2},
-       {"c11", 13.42 / 3}, {"c22", 0.47 * 3}}};
+  const std::vector<std::map<std::string, double>> poor = {{{"m1", 2 * 1.39},
+                                                            {"m2", 1.09 / 2},
+                                                            {"k11", 1.38e6 / 3},
+                                                            {"k22", 0.24e6 * 2},
+                                                            {"k12", 0.12e6 * 3},
+                                                            {"c11", 13.42 * 3},
+                                                            {"c22", 0.47 / 3}},
+                                                           {{"m1", 1.39 / 2},
+                                                            {"m2", 1.09 * 2},
+                                                            {"k11", 1.38e6 * 2},
+                                                            {"k22", 0.24e6 / 3},
+                                                            {"k12", 0.12e6 / 2},
+                                                            {"c11", 13.42 / 3},
+                                                            {"c22", 0.47 * 3}}};
   for (std::size_t k = 0; k < poor.size(); ++k) {
     INFO("poor start " << k);
     o.values = poor[k];
@@ -133,7 +143,9 @@ TEST_CASE("modal refuses time records and too few modes", "[modal]") {
     std::filesystem::create_directories(dir);
     const std::string path = (dir / "time.csv").string();
     REQUIRE(std::system(("/usr/bin/python3 " MBGEN_SOURCE_DIR "/scripts/truthgen/truthgen.py --example mdof2 --case "
-                         "nominal --kind time --duration 0.25 --seed 2 -o " + path).c_str()) == 0);
+                         "nominal --kind time --duration 0.25 --seed 2 -o " +
+                         path)
+                            .c_str()) == 0);
     const DataFile f = read_data_file(path);
     const DataSet d = std::visit([](const auto& x) { return DataSet(x); }, f);
     CHECK_THROWS_WITH(fit_modal(model, {d}), Catch::Contains("needs FRFs") && Catch::Contains("time record"));

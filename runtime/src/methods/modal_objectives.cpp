@@ -1,11 +1,11 @@
 #include "modal_objectives.hpp"
 
-#include "mbgen/modal.hpp"
-#include "mbgen/modal_pairing.hpp"
-
 #include <cmath>
 #include <complex>
 #include <exception>
+
+#include "mbgen/modal.hpp"
+#include "mbgen/modal_pairing.hpp"
 
 namespace mbgen::methods {
 
@@ -24,7 +24,8 @@ ModalComparison compare_modes(const Model& model, const Eigen::VectorXd& p, cons
   const std::size_t nr = reference.size();
   if (oscillating.size() < nr || nr == 0) return c;
   const auto channels = static_cast<Eigen::Index>(data.channels.size());
-  Eigen::MatrixXcd a(channels, static_cast<Eigen::Index>(nr)), b(channels, static_cast<Eigen::Index>(oscillating.size()));
+  Eigen::MatrixXcd a(channels, static_cast<Eigen::Index>(nr)),
+      b(channels, static_cast<Eigen::Index>(oscillating.size()));
   for (std::size_t r = 0; r < nr; ++r) a.col(static_cast<Eigen::Index>(r)) = reference[r].residues;
   for (std::size_t m = 0; m < oscillating.size(); ++m)
     b.col(static_cast<Eigen::Index>(m)) = mm.residues.row(oscillating[m]).transpose();

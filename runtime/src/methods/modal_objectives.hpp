@@ -2,20 +2,19 @@
 // (docs/methods.md#modal). Internal header.
 #pragma once
 
+#include <Eigen/Core>
+#include <vector>
+
 #include "mbgen/modal_identification.hpp"
 #include "mbgen/model.hpp"
-
-#include <Eigen/Core>
-
-#include <vector>
 
 namespace mbgen::methods {
 
 // The model's oscillating modes at p paired one to one with the reference modes, greedily by largest MAC of the
 // residue vectors at the measured channels (the paper pairs by its shape criterion too).
 struct ModalComparison {
-  bool ok = false;               // false: the model cannot be evaluated at p, or has fewer oscillating modes
-  std::vector<int> model_mode;   // per reference mode: index into the model's oscillating modes
+  bool ok = false;              // false: the model cannot be evaluated at p, or has fewer oscillating modes
+  std::vector<int> model_mode;  // per reference mode: index into the model's oscillating modes
   std::vector<double> f_hz, zeta, mac;
   std::vector<Eigen::VectorXcd> residues;  // the paired model modes' residues at the data's channels
 };
