@@ -10,16 +10,7 @@ if(EXISTS "${WORK}/t.json")
 endif()
 
 # The driving point alone: two modes, but per mode only frequency and scale: 4 numbers for 5 mass/stiffness parameters.
-file(STRINGS "${MDOF2_FRF}" lines)
-set(text "")
-foreach(line IN LISTS lines)
-  if(line MATCHES "^#")
-    continue()
-  endif()
-  string(REGEX REPLACE "^([^,]*,[^,]*,[^,]*,[^,]*),.*$" "\\1" line "${line}")  # f_hz and d1/F1 only
-  string(APPEND text "${line}\n")
-endforeach()
-file(WRITE "${WORK}/d1_only.csv" "${text}")
+write_mdof2_d1_only(d1_only.csv)
 expect_run(STATUS 1 STDERR "--method modal: the FRFs show 2 mode\\(s\\) .* which give 4 numbers .* fewer than the 5 mass/stiffness parameters"
   ARGS fit ${MDOF2} --data d1_only.csv --method modal)
 

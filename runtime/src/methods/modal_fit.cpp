@@ -1,19 +1,23 @@
 // fit_modal: the parameters fitted to modes identified from FRFs, after Ellinger & Zaeh 2022 (docs/methods.md#modal).
 // Reference modes and the per-mode objectives are in modal_objectives.cpp; here the refusals, the Sobol partition,
 // the repeated local optimisation of each subproblem, the damping least squares, and the result.
-#include <Eigen/QR>
-#include <algorithm>
-#include <cmath>
-#include <nlohmann/json.hpp>
-#include <random>
-#include <set>
+#include "mbgen/methods/modal.hpp"
 
 #include "../estimation/levenberg_marquardt.hpp"
-#include "mbgen/methods/modal.hpp"
-#include "mbgen/modal_pairing.hpp"
-#include "mbgen/sensitivity.hpp"
 #include "method_result.hpp"
 #include "modal_objectives.hpp"
+
+#include "mbgen/modal_pairing.hpp"
+#include "mbgen/sensitivity.hpp"
+
+#include <Eigen/QR>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
 
 namespace mbgen {
 

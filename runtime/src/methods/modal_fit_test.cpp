@@ -1,45 +1,28 @@
 // fit_modal on mdof2 FRFs made by the independent truth generator (scripts/truthgen: numpy, its own model assembly),
 // truth drawn at random (--draw: every estimable parameter 3-10 % off the model's values), 40 dB SNR. The model is
 // test_support's hand-written mdof2 with the .mdl's values and bounds.
-#include <catch2/catch.hpp>
-#include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <map>
-#include <nlohmann/json.hpp>
-#include <string>
-
 #include "../estimation/test_support.hpp"
-#include "mbgen/data_set.hpp"
+#include "truthgen_test_support.hpp"
+
 #include "mbgen/methods/modal.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
 
 using namespace mbgen;
 
 namespace {
 
-struct Generated {
-  DataSet data;
-  std::map<std::string, double> truth;
-};
-
-// truthgen's mdof2 `nominal` case, truth draw `draw`, noise seed `seed`, extra truthgen arguments `extra`.
-Generated generate(int draw, int seed, const std::string& extra = "", const std::string& tag = "") {
-  const std::filesystem::path dir = std::filesystem::path(MBGEN_BINARY_DIR) / "methods_modal";
-  std::filesystem::create_directories(dir);
-  const std::string stem = (dir / ("frf_draw" + std::to_string(draw) + "_seed" + std::to_string(seed) + tag)).string();
-  const std::string command = "/usr/bin/python3 " MBGEN_SOURCE_DIR
-                              "/scripts/truthgen/truthgen.py --example mdof2 "
-                              "--case nominal --snr-db 40 --kind frf --draw " +
-                              std::to_string(draw) + " --seed " + std::to_string(seed) + " " + extra + " -o " + stem +
-                              ".csv";
-  REQUIRE(std::system(command.c_str()) == 0);
-  const DataFile f = read_data_file(stem + ".csv");
-  Generated g{std::visit([](const auto& d) { return DataSet(d); }, f), {}};
-  std::ifstream in(stem + ".truth.json");
-  const nlohmann::json parameters = nlohmann::json::parse(in).at("parameters");
-  for (auto it = parameters.begin(); it != parameters.end(); ++it) g.truth[it.key()] = it.value().get<double>();
-  return g;
+// truthgen's mdof2 `nominal` case at 40 dB, FRFs, truth draw `draw`, noise seed `seed`, extra arguments `extra`.
+test::TruthgenData generate(int draw, int seed, const std::string& extra = "", const std::string& tag = "") {
+  return test::truthgen_data("--example mdof2 --case nominal --snr-db 40 --kind frf --draw " + std::to_string(draw) +
+                                 " --seed " + std::to_string(seed) + " " + extra,
+                             "methods_modal", "frf_draw" + std::to_string(draw) + "_seed" + std::to_string(seed) + tag);
 }
 
 // Every parameter within `relative` of the truth.
@@ -83,7 +66,7 @@ void check_spread(const FitResult& r, double relative_std) {
 TEST_CASE("truthgen mdof2 FRF draws 1 and 4: modal reaches the truth", "[modal]") {
   for (auto [draw, seed] : {std::pair{1, 3}, std::pair{4, 14}}) {
     INFO("draw " << draw);
-    const Generated g = generate(draw, seed);
+    const test::TruthgenData g = generate(draw, seed);
     const test::LinearModel model = test::mdof2_model({}, true);
     FitOptions o;
     o.starts = 8;
@@ -103,7 +86,7 @@ TEST_CASE("truthgen mdof2 FRF draws 1 and 4: modal reaches the truth", "[modal]"
 // Poor starts: the priors a factor 2-3 off the model's values, in different directions; the repetitions of every
 // subproblem agree, and both reach the same optimum as from the model's values (and the truth).
 TEST_CASE("truthgen mdof2 FRF draw 2: modal from poor starts reaches one optimum", "[modal]") {
-  const Generated g = generate(2, 5);
+  const test::TruthgenData g = generate(2, 5);
   const test::LinearModel model = test::mdof2_model({}, true);
   FitOptions o;
   o.starts = 8;
@@ -138,24 +121,15 @@ TEST_CASE("truthgen mdof2 FRF draw 2: modal from poor starts reaches one optimum
 
 TEST_CASE("modal refuses time records and too few modes", "[modal]") {
   const test::LinearModel model = test::mdof2_model({}, true);
-  {
-    const std::filesystem::path dir = std::filesystem::path(MBGEN_BINARY_DIR) / "methods_modal";
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "time.csv").string();
-    REQUIRE(std::system(("/usr/bin/python3 " MBGEN_SOURCE_DIR "/scripts/truthgen/truthgen.py --example mdof2 --case "
-                         "nominal --kind time --duration 0.25 --seed 2 -o " +
-                         path)
-                            .c_str()) == 0);
-    const DataFile f = read_data_file(path);
-    const DataSet d = std::visit([](const auto& x) { return DataSet(x); }, f);
-    CHECK_THROWS_WITH(fit_modal(model, {d}), Catch::Contains("needs FRFs") && Catch::Contains("time record"));
-  }
+  const test::TruthgenData time =
+      test::truthgen_data("--example mdof2 --case nominal --kind time --duration 0.25 --seed 2", "methods_modal", "time");
+  CHECK_THROWS_WITH(fit_modal(model, {time.data}), Catch::Contains("needs FRFs") && Catch::Contains("time record"));
   // A band up to 120 Hz holds the first mode (about 90 Hz) alone: 3 numbers for 5 mass/stiffness parameters.
-  const Generated low = generate(1, 3, "--f-max 120", "_low");
+  const test::TruthgenData low = generate(1, 3, "--f-max 120", "_low");
   CHECK_THROWS_WITH(fit_modal(model, {low.data}),
                     Catch::Contains("show 1 mode(s)") && Catch::Contains("fewer than the 5 mass/stiffness"));
   // The driving point alone: both modes, but per mode only frequency and scale, 4 numbers for 5 parameters.
-  Generated both = generate(1, 3);
+  test::TruthgenData both = generate(1, 3);
   FrfData one = std::get<FrfData>(both.data.content);
   one.channels.erase(one.channels.begin() + 1);
   REQUIRE(one.channels.front().output == "d1");

@@ -1,11 +1,11 @@
 #include "modal_objectives.hpp"
 
+#include "mbgen/modal.hpp"
+#include "mbgen/modal_pairing.hpp"
+
 #include <cmath>
 #include <complex>
 #include <exception>
-
-#include "mbgen/modal.hpp"
-#include "mbgen/modal_pairing.hpp"
 
 namespace mbgen::methods {
 
