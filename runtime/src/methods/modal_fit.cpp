@@ -27,8 +27,13 @@ using methods::ModalComparison;
 
 constexpr int kSobolSamples = 256;
 constexpr int kMaxSweeps = 30;
-constexpr double kSweepTolerance = 1e-7;  // largest relative parameter change in a sweep that ends the sweeps
-constexpr int kDampingIterations = 4;     // the paper's linear solve, then relinearisations at the estimate
+// The sweeps end when no parameter moves by more than this in a sweep: they only have to reach the optimum's basin
+// (block coordinate descent converges linearly where subproblems share modes); the joint step after them converges.
+constexpr double kSweepTolerance = 1e-3;
+constexpr int kDampingIterations = 4;
+// A mass/stiffness parameter whose total Sobol index is below this for every mode's objective is not estimated: the
+// identified modes do not depend on it (the paper's sensitivity threshold).
+constexpr double kInfluence = 0.01;     // the paper's linear solve, then relinearisations at the estimate
 
 struct Problem {
   const Model& model;
@@ -217,7 +222,7 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   const Eigen::VectorXd prior = methods::checked_prior(model, data, options);
   const std::vector<int> candidates = methods::candidate_parameters(info, options);
   if (candidates.empty()) throw FitError("fit: --method modal: the model has no parameter to estimate");
-  std::vector<int> structural, damping;
+  std::vector<int> structural, damping, uninfluential;
   classify(model, prior, candidates, structural, damping);
 
   // 1. Reference modes: the experimental modal analysis of the FRFs (automatic pole selection), in the quantity the
@@ -306,14 +311,15 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
 
     // Each parameter to the mode whose objective it moves most; each mode's objectives, plus those of the modes its
     // parameters move next most until there are as many numbers as parameters.
+    for (Eigen::Index j = 0; j < ks; ++j)
+      if (!(total.col(j).maxCoeff() >= kInfluence)) uninfluential.push_back(structural[static_cast<std::size_t>(j)]);
     std::vector<Subproblem> subs;
     for (int r = 0; r < nr; ++r) {
       Subproblem s;
       s.mode = r;
       for (Eigen::Index j = 0; j < ks; ++j) {
         Eigen::Index best = 0;
-        total.col(j).maxCoeff(&best);
-        if (best == r) s.parameters.push_back(structural[static_cast<std::size_t>(j)]);
+        if (total.col(j).maxCoeff(&best) >= kInfluence && best == r) s.parameters.push_back(structural[static_cast<std::size_t>(j)]);
       }
       if (s.parameters.empty()) continue;
       std::vector<std::pair<double, int>> others;
@@ -353,6 +359,13 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
       jsubs.push_back({{"mode", s.mode}, {"parameters", names}, {"objective_modes", s.modes}});
     }
     jpart["subproblems"] = jsubs;
+    std::vector<std::string> kept;
+    for (int i : uninfluential) {
+      kept.push_back(info.parameters[static_cast<std::size_t>(i)].name);
+      structural.erase(std::find(structural.begin(), structural.end(), i));
+    }
+    jpart["not_influential"] = kept;
+    jpart["influence_threshold"] = kInfluence;
     details["partition"] = jpart;
 
     // 4. The subproblems in turn, each from `starts` seeded starts (the current values, then log-uniform within the
@@ -447,11 +460,13 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   // The residue scale depends slightly on damping: all mass/stiffness parameters once more against all modes,
   // from the estimate, then the damping again.
   double polish_before = 0, polish_after = 0;
+  bool joint_converged = true;
   if (!structural.empty()) {
     Eigen::VectorXd x(static_cast<Eigen::Index>(structural.size())), r;
     for (std::size_t j = 0; j < structural.size(); ++j) x[static_cast<Eigen::Index>(j)] = std::log(p[structural[j]]);
     if (residuals_at(pr, p, structural, all_modes, x, r)) polish_before = r.squaredNorm();
     const LocalOptimum o = local_fit(pr, p, p, structural, all_modes, options);
+    joint_converged = o.converged;
     total_iterations += o.iterations;
     if (o.cost <= polish_before || polish_before == 0) p = o.p;
     polish_after = std::min(o.cost, polish_before > 0 ? polish_before : o.cost);
@@ -490,19 +505,23 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
     e.unit = q.unit;
     e.prior = prior[i];
     e.value = p[i];
-    e.estimated = true;
+    e.estimated = std::find(uninfluential.begin(), uninfluential.end(), i) == uninfluential.end();
     const double tol = 1e-9 * std::max(std::abs(p[i]), 1.0);
     if (std::abs(p[i] - q.lower) <= tol) e.at_bound = "lower";
     if (std::abs(p[i] - q.upper) <= tol) e.at_bound = "upper";
-    e.identifiable = e.at_bound.empty();
+    e.identifiable = e.estimated && e.at_bound.empty();
     result.parameters.push_back(e);
   }
-  methods::score_by_output_error(model, data, options, candidates, static_cast<int>(candidates.size()), result);
+  methods::score_by_output_error(model, data, options, candidates,
+                                 static_cast<int>(candidates.size() - uninfluential.size()), result);
   result.estimated.clear();  // no covariance: the modal objectives carry no noise model
   result.iterations = total_iterations;
-  result.converged =
+  const bool settled =
       !details.contains("last_sweep_change") || details["last_sweep_change"].get<double>() < kSweepTolerance;
-  result.stop_reason = result.converged ? "the subproblem sweeps settled" : "sweep limit reached";
+  result.converged = settled && joint_converged;
+  result.stop_reason = !settled           ? "sweep limit reached"
+                       : !joint_converged ? "the joint mass/stiffness step did not converge"
+                                          : "the subproblem sweeps settled and the joint step converged";
   result.method_details["modal"] = details.dump();
   return result;
 }

@@ -38,10 +38,9 @@ void check_truth(const FitResult& r, const std::map<std::string, double>& truth,
   }
 }
 
-// The paper's test for the global optimum, per subproblem of the last sweep: at least half of the repetitions from
-// the seeded starts agree with the best (every parameter within 1e-3) and spread among themselves by less than
-// `relative_std`; the others stopped at local optima of higher cost. (From starts a factor 3 off, the greedy MAC
-// pairing can swap the model's modes, which makes such local optima: draw 1 has 2 of 8 in {m1, k11}.)
+// The paper's test for the global optimum, per subproblem of the last sweep: every repetition from the seeded starts
+// (a factor up to 3 off the current values) agrees with the best (every parameter within 1e-3) and they spread by
+// less than `relative_std`. (mdof2 has no local optimum within that range; the spindle has, tests/cli/methods_modal.)
 void check_spread(const FitResult& r, double relative_std) {
   const nlohmann::json d = nlohmann::json::parse(r.method_details.at("modal"));
   const nlohmann::json& last = d.at("repetitions").at("last_sweep");
@@ -49,11 +48,10 @@ void check_spread(const FitResult& r, double relative_std) {
   int parameters = 0;
   for (const auto& sub : last) {
     INFO(sub.dump());
-    CHECK(2 * sub.at("agreeing").get<int>() >= sub.at("repetitions").get<int>());
-    for (const auto& c : sub.at("local_optimum_costs"))
-      CHECK(c.get<double>() > 1.01 * sub.at("best_cost").get<double>());
+    CHECK(sub.at("agreeing").get<int>() == sub.at("repetitions").get<int>());
+    CHECK(sub.at("local_optimum_costs").empty());
     for (const auto& [name, s] : sub.at("parameters").items()) {
-      CHECK(s.at("agreeing_relative_std").get<double>() < relative_std);
+      CHECK(s.at("relative_std").get<double>() < relative_std);
       ++parameters;
     }
   }

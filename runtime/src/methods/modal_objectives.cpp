@@ -3,6 +3,7 @@
 #include "mbgen/modal.hpp"
 #include "mbgen/modal_pairing.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <exception>
@@ -29,17 +30,26 @@ ModalComparison compare_modes(const Model& model, const Eigen::VectorXd& p, cons
   for (std::size_t r = 0; r < nr; ++r) a.col(static_cast<Eigen::Index>(r)) = reference[r].residues;
   for (std::size_t m = 0; m < oscillating.size(); ++m)
     b.col(static_cast<Eigen::Index>(m)) = mm.residues.row(oscillating[m]).transpose();
-  Eigen::MatrixXd mac = modal_assurance_criterion(a, b);
+  const Eigen::MatrixXd mac = modal_assurance_criterion(a, b);
   if (!mac.allFinite()) return c;
+  // The pairing score: MAC times the ratio of the residue vectors' norms (smaller over larger). MAC alone is blind
+  // to size: a mode the sensors hardly see (the spindle's y modes at its x sensors) has a residue vector of noise
+  // size whose MAC with a measured mode can still be high.
+  Eigen::MatrixXd score = mac;
+  for (Eigen::Index r = 0; r < score.rows(); ++r)
+    for (Eigen::Index m = 0; m < score.cols(); ++m) {
+      const double na = a.col(r).norm(), nb = b.col(m).norm();
+      score(r, m) *= na > 0 && nb > 0 ? std::min(na, nb) / std::max(na, nb) : 0.0;
+    }
   c.model_mode.assign(nr, -1);
   c.f_hz.assign(nr, 0);
   c.zeta.assign(nr, 0);
   c.mac.assign(nr, 0);
   c.residues.assign(nr, Eigen::VectorXcd());
-  // Greedy: the largest MAC left pairs its reference and model mode, which then leave the table.
+  // Greedy: the largest score left pairs its reference and model mode, which then leave the table.
   for (std::size_t k = 0; k < nr; ++k) {
     Eigen::Index r = 0, m = 0;
-    if (mac.maxCoeff(&r, &m) < 0) return c;
+    if (score.maxCoeff(&r, &m) < 0) return c;
     const int i = oscillating[static_cast<std::size_t>(m)];
     const auto rr = static_cast<std::size_t>(r);
     c.model_mode[rr] = static_cast<int>(m);
@@ -47,8 +57,8 @@ ModalComparison compare_modes(const Model& model, const Eigen::VectorXd& p, cons
     c.f_hz[rr] = mm.f_hz[static_cast<std::size_t>(i)];
     c.zeta[rr] = mm.zeta[static_cast<std::size_t>(i)];
     c.residues[rr] = mm.residues.row(i).transpose();
-    mac.row(r).setConstant(-1);
-    mac.col(m).setConstant(-1);
+    score.row(r).setConstant(-1);
+    score.col(m).setConstant(-1);
   }
   c.ok = true;
   return c;

@@ -10,8 +10,9 @@
 
 namespace mbgen::methods {
 
-// The model's oscillating modes at p paired one to one with the reference modes, greedily by largest MAC of the
-// residue vectors at the measured channels (the paper pairs by its shape criterion too).
+// The model's oscillating modes at p paired one to one with the reference modes, greedily by the largest MAC of the
+// residue vectors at the measured channels times the ratio of their norms (smaller over larger): the paper pairs by
+// its shape criterion; the norm ratio keeps modes the sensors hardly see from pairing by a chance MAC.
 struct ModalComparison {
   bool ok = false;              // false: the model cannot be evaluated at p, or has fewer oscillating modes
   std::vector<int> model_mode;  // per reference mode: index into the model's oscillating modes
