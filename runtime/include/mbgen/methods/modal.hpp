@@ -4,11 +4,13 @@
 //   FitResult r = mbgen::fit_modal(model, data, options);   // r.method == "modal"
 //
 // 1. Reference modes from the FRFs by experimental modal analysis (LSCF poles, automatic selection, refined poles,
-//    LSFD residues: modal_identification.hpp), paired at every evaluation with the model's modes by MAC.
+//    LSFD residues: modal_identification.hpp), paired at every evaluation with the model's modes by
+//    MAC times the ratio of the residue norms.
 // 2. Per mode the objectives: natural frequency difference (f - f_ref) / f_ref, shape difference of the
 //    phase-aligned unit residue vectors (squared norm 2 (1 - sqrt(MAC))), and the log ratio of the residue vectors'
 //    norms (the modal scaling, which fixes the absolute size of masses and stiffnesses that f and shape leave free).
-// 3. The mass/stiffness parameters partitioned by Sobol total indices of each mode's objective over the start range;
+// 3. The mass/stiffness parameters partitioned by Sobol total indices of each mode's objective over the start range
+//    (those below 0.01 for every mode are kept at their prior);
 //    each subproblem (a mode's parameters against that mode's objectives) solved in turn, sweep after sweep.
 // 4. Each subproblem solved by Levenberg-Marquardt from FitOptions::starts seeded starts; the spread of the optima
 //    is reported (the paper's test for the global optimum).
