@@ -21,6 +21,20 @@ function(write_model name)
   file(WRITE "${WORK}/${name}.mdl" "${text}")
 endfunction()
 
+# mdof2's example FRFs with the driving point d1/F1 alone (f_hz and the three d1/F1 columns), written to WORK/NAME.
+function(write_mdof2_d1_only name)
+  file(STRINGS "${MDOF2_FRF}" lines)
+  set(text "")
+  foreach(line IN LISTS lines)
+    if(line MATCHES "^#")
+      continue()
+    endif()
+    string(REGEX REPLACE "^([^,]*,[^,]*,[^,]*,[^,]*),.*$" "\\1" line "${line}")  # f_hz and d1/F1 only
+    string(APPEND text "${line}\n")
+  endforeach()
+  file(WRITE "${WORK}/${name}" "${text}")
+endfunction()
+
 # A fit that takes milliseconds: the model above (one.mdl) and its FRF with m1 = 2.3 (one_frf.csv), both in WORK.
 write_model(one)
 file(COPY "${CMAKE_CURRENT_LIST_DIR}/one_frf.csv" DESTINATION "${WORK}")

@@ -16,16 +16,7 @@ foreach(method direct hybrid)
 endforeach()
 
 # mdof2 with one of its two sensors: mass2.x is missing.
-file(STRINGS "${MDOF2_FRF}" lines)
-set(text "")
-foreach(line IN LISTS lines)
-  if(line MATCHES "^#")
-    continue()
-  endif()
-  string(REGEX REPLACE "^([^,]*,[^,]*,[^,]*,[^,]*),.*$" "\\1" line "${line}")  # f_hz and d1/F1 only
-  string(APPEND text "${line}\n")
-endforeach()
-file(WRITE "${WORK}/d1_only.csv" "${text}")
+write_mdof2_d1_only(d1_only.csv)
 expect_run(STATUS 1 STDERR "d1_only.csv: error: --method direct needs .* cannot give mass2.x"
   ARGS fit ${MDOF2} --data d1_only.csv --method direct)
 

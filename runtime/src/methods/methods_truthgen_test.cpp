@@ -2,6 +2,7 @@
 // assembly and simulation), truth drawn at random (--draw: every estimable parameter 3-10 % off the model's values),
 // 40 dB SNR, FRFs and time records. The model is test_support's hand-written mdof2 with the .mdl's values and bounds.
 #include "../estimation/test_support.hpp"
+#include "truthgen_test_support.hpp"
 
 #include "mbgen/data_set.hpp"
 #include "mbgen/methods/direct.hpp"
@@ -21,26 +22,13 @@ using namespace mbgen;
 
 namespace {
 
-struct Generated {
-  DataSet data;
-  std::map<std::string, double> truth;
-};
-
 // truthgen's mdof2 `nominal` case, truth draw `draw`, noise seed `seed`: the data set and (for the comparison only)
-// the truth parameters from its .truth.json.
-Generated generate(const std::string& kind, int draw, int seed) {
-  const std::filesystem::path dir = std::filesystem::path(MBGEN_BINARY_DIR) / "methods_truthgen";
-  std::filesystem::create_directories(dir);
-  const std::string stem = (dir / (kind + "_draw" + std::to_string(draw) + "_seed" + std::to_string(seed))).string();
-  const std::string command = "/usr/bin/python3 " MBGEN_SOURCE_DIR "/scripts/truthgen/truthgen.py --example mdof2 "
-                              "--case nominal --snr-db 40 --kind " + kind + " --draw " + std::to_string(draw) +
-                              " --seed " + std::to_string(seed) + " -o " + stem + ".csv";
-  REQUIRE(std::system(command.c_str()) == 0);
-  const DataFile f = read_data_file(stem + ".csv");
-  Generated g{std::visit([](const auto& d) { return DataSet(d); }, f), {}};
-  std::ifstream in(stem + ".truth.json");
-  const nlohmann::json parameters = nlohmann::json::parse(in).at("parameters");
-  for (auto it = parameters.begin(); it != parameters.end(); ++it) g.truth[it.key()] = it.value().get<double>();
+// the truth parameters.
+test::TruthgenData generate(const std::string& kind, int draw, int seed) {
+  test::TruthgenData g = test::truthgen_data("--example mdof2 --case nominal --snr-db 40 --kind " + kind + " --draw " +
+                                                 std::to_string(draw) + " --seed " + std::to_string(seed),
+                                             "methods_truthgen",
+                                             kind + "_draw" + std::to_string(draw) + "_seed" + std::to_string(seed));
   REQUIRE(g.truth.size() == 8);
   return g;
 }
@@ -84,14 +72,14 @@ void check_hybrid(const test::LinearModel& model, const DataSet& data, const std
 
 // FRFs: direct reaches the truth to within 0.5 % (measured: at most 0.15 %), its std honest (|error| < 4 std).
 TEST_CASE("truthgen mdof2 FRF draw 1: direct and hybrid", "[direct][hybrid][frf]") {
-  const Generated g = generate("frf", 1, 3);
+  const test::TruthgenData g = generate("frf", 1, 3);
   const test::LinearModel model = test::mdof2_model({}, true);
   check_direct(fit_direct(model, {g.data}), g.truth, 4, 0.005);
   check_hybrid(model, g.data, g.truth);
 }
 
 TEST_CASE("truthgen mdof2 FRF draw 4: direct and hybrid", "[direct][hybrid][frf]") {
-  const Generated g = generate("frf", 4, 14);
+  const test::TruthgenData g = generate("frf", 4, 14);
   const test::LinearModel model = test::mdof2_model({}, true);
   check_direct(fit_direct(model, {g.data}), g.truth, 4, 0.005);
   check_hybrid(model, g.data, g.truth);
@@ -100,14 +88,14 @@ TEST_CASE("truthgen mdof2 FRF draw 4: direct and hybrid", "[direct][hybrid][frf]
 // Time records (2 s at 4096 Hz): direct within 1 % (measured: at most 0.6 %, on the weakly determined scale of
 // mass 2's row: m2, k22, k12 together), |error| < 4 std.
 TEST_CASE("truthgen mdof2 time record draw 1: direct and hybrid", "[direct][hybrid][time]") {
-  const Generated g = generate("time", 1, 3);
+  const test::TruthgenData g = generate("time", 1, 3);
   const test::LinearModel model = test::mdof2_model({}, true);
   check_direct(fit_direct(model, {g.data}), g.truth, 4, 0.01);
   check_hybrid(model, g.data, g.truth);
 }
 
 TEST_CASE("truthgen mdof2 time record draw 3: direct and hybrid", "[direct][hybrid][time]") {
-  const Generated g = generate("time", 3, 13);
+  const test::TruthgenData g = generate("time", 3, 13);
   const test::LinearModel model = test::mdof2_model({}, true);
   check_direct(fit_direct(model, {g.data}), g.truth, 4, 0.01);
   check_hybrid(model, g.data, g.truth);

@@ -1,0 +1,529 @@
+// fit_modal: the parameters fitted to modes identified from FRFs, after Ellinger & Zaeh 2022 (docs/methods.md#modal).
+// Reference modes and the per-mode objectives are in modal_objectives.cpp; here the refusals, the Sobol partition,
+// the repeated local optimisation of each subproblem, the damping least squares, and the result.
+#include "mbgen/methods/modal.hpp"
+
+#include "../estimation/levenberg_marquardt.hpp"
+#include "method_result.hpp"
+#include "modal_objectives.hpp"
+
+#include "mbgen/modal_pairing.hpp"
+#include "mbgen/sensitivity.hpp"
+
+#include <Eigen/QR>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+namespace mbgen {
+
+namespace {
+
+using methods::ModalComparison;
+
+constexpr int kSobolSamples = 256;
+constexpr int kMaxSweeps = 30;
+// The sweeps end when no parameter moves by more than this in a sweep: they only have to reach the optimum's basin
+// (block coordinate descent converges linearly where subproblems share modes); the joint step after them converges.
+constexpr double kSweepTolerance = 1e-3;
+constexpr int kDampingIterations = 4;
+// A mass/stiffness parameter whose total Sobol index is below this for every mode's objective is not estimated: the
+// identified modes do not depend on it (the paper's sensitivity threshold).
+constexpr double kInfluence = 0.01;     // the paper's linear solve, then relinearisations at the estimate
+
+struct Problem {
+  const Model& model;
+  const ModalData& data;
+  const std::vector<IdentifiedMode>& reference;
+};
+
+bool within_bounds(const ModelInfo& info, const Eigen::VectorXd& p, const std::vector<int>& which) {
+  for (int i : which) {
+    const ParameterInfo& q = info.parameters[static_cast<std::size_t>(i)];
+    if (!(p[i] >= q.lower && p[i] <= q.upper)) return false;
+  }
+  return true;
+}
+
+// The objectives of `modes` at `base` with parameters `which` = exp(x); false outside the bounds or when the model's
+// modes cannot be paired.
+bool residuals_at(const Problem& pr, const Eigen::VectorXd& base, const std::vector<int>& which,
+                  const std::vector<int>& modes, const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+  Eigen::VectorXd p = base;
+  for (std::size_t j = 0; j < which.size(); ++j) p[which[j]] = std::exp(x[static_cast<Eigen::Index>(j)]);
+  if (!within_bounds(pr.model.info(), p, which)) return false;
+  const ModalComparison c = methods::compare_modes(pr.model, p, pr.data, pr.reference);
+  if (!c.ok) return false;
+  methods::structural_residuals(c, pr.reference, modes, r);
+  return r.allFinite();
+}
+
+struct LocalOptimum {
+  Eigen::VectorXd p;  // all parameters
+  double cost = 0;
+  bool converged = false;
+  int iterations = 0;
+};
+
+// Levenberg-Marquardt on log(parameters `which`), Jacobian by forward differences (backward at a bound).
+LocalOptimum local_fit(const Problem& pr, const Eigen::VectorXd& base, const Eigen::VectorXd& start,
+                       const std::vector<int>& which, const std::vector<int>& modes, const FitOptions& options) {
+  const estimation::ResidualFunction f = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    if (!residuals_at(pr, base, which, modes, x, r)) return false;
+    if (J) {
+      J->resize(r.size(), x.size());
+      Eigen::VectorXd rh;
+      for (Eigen::Index j = 0; j < x.size(); ++j) {
+        constexpr double h = 1e-7;
+        Eigen::VectorXd xh = x;
+        xh[j] += h;
+        double step = h;
+        if (!residuals_at(pr, base, which, modes, xh, rh)) {
+          xh[j] = x[j] - h;
+          step = -h;
+          if (!residuals_at(pr, base, which, modes, xh, rh)) return false;
+        }
+        J->col(j) = (rh - r) / step;
+      }
+    }
+    return true;
+  };
+  Eigen::VectorXd x0(static_cast<Eigen::Index>(which.size()));
+  for (std::size_t j = 0; j < which.size(); ++j) x0[static_cast<Eigen::Index>(j)] = std::log(start[which[j]]);
+  estimation::LmOptions lm;
+  lm.max_iterations = options.max_iterations;
+  lm.cost_tolerance = options.cost_tolerance;
+  lm.step_tolerance = options.step_tolerance;
+  lm.gradient_tolerance = options.gradient_tolerance;
+  const estimation::LmResult res = estimation::levenberg_marquardt(f, x0, lm);
+  LocalOptimum o;
+  o.p = base;
+  for (std::size_t j = 0; j < which.size(); ++j) o.p[which[j]] = std::exp(res.x[static_cast<Eigen::Index>(j)]);
+  o.cost = res.cost;
+  o.converged = res.converged;
+  o.iterations = res.iterations;
+  return o;
+}
+
+// The range a parameter is sampled and restarted in: within a factor `spread` of `centre`, cut to its bounds.
+std::pair<double, double> log_range(const ParameterInfo& q, double centre, double spread) {
+  const double lo = std::max(centre / spread, q.lower > 0 ? q.lower : centre / spread);
+  const double hi = std::min(centre * spread, q.upper);
+  return {std::log(lo), std::log(std::max(hi, lo))};
+}
+
+// Which parameters act on M or K, which on C only: the partition of the paper's assumption A1/A4.
+void classify(const Model& model, const Eigen::VectorXd& prior, const std::vector<int>& candidates,
+              std::vector<int>& structural, std::vector<int>& damping) {
+  ModelDerivatives d;
+  model.derivatives(prior, d);
+  const ModelInfo& info = model.info();
+  auto touches = [](const std::vector<DerivativeEntry>& list, int i) {
+    return std::any_of(list.begin(), list.end(),
+                       [&](const DerivativeEntry& e) { return e.param == i && e.value != 0; });
+  };
+  for (int i : candidates) {
+    const std::string& name = info.parameters[static_cast<std::size_t>(i)].name;
+    const bool mk = touches(d.M, i) || touches(d.K, i), c = touches(d.C, i);
+    if (touches(d.B, i) || touches(d.Cd, i) || touches(d.Cv, i) || touches(d.Ca, i))
+      throw FitError("fit: error: --method modal fits mass, stiffness and damping parameters to modes, but " + name +
+                     " enters the input or output map");
+    if (mk && c)
+      throw FitError(
+          "fit: error: --method modal needs each parameter to act on damping alone or on mass/stiffness "
+          "alone (Ellinger & Zaeh's assumption A1), but " +
+          name + " acts on both");
+    if (!mk && !c)
+      throw FitError("fit: error: --method modal: " + name + " acts on none of M, C, K at its prior value");
+    if (mk && !(prior[i] > 0))
+      throw FitError(
+          "fit: error: --method modal searches mass/stiffness parameters on a log scale and needs a "
+          "positive prior, but " +
+          name + " = " + std::to_string(prior[i]));
+    (mk ? structural : damping).push_back(i);
+  }
+}
+
+std::string hz_list(const std::vector<IdentifiedMode>& modes) {
+  std::string s;
+  for (const IdentifiedMode& m : modes) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%s%.4g Hz", s.empty() ? "" : ", ", m.f_hz);
+    s += b;
+  }
+  return s.empty() ? "none" : s;
+}
+
+struct Subproblem {
+  int mode = 0;                 // the mode whose parameters these are
+  std::vector<int> parameters;  // model indices
+  std::vector<int> modes;       // objectives: the mode and, where it has too few, the next most influenced
+};
+
+// The spread of one subproblem's repetitions. The paper's test: the standard deviation of each parameter over all
+// repetitions (relative_std, relative to the best). Besides, which repetitions agree with the best (every parameter
+// within 1e-3), the spread among those (agreeing_relative_std), and the costs of those that stopped elsewhere: local
+// optima, all worse than the best when the best is the global optimum.
+nlohmann::json spread(const ModelInfo& info, const Subproblem& s, const std::vector<LocalOptimum>& reps, int best) {
+  nlohmann::json j;
+  const LocalOptimum& b = reps[static_cast<std::size_t>(best)];
+  j["mode"] = s.mode;
+  j["repetitions"] = reps.size();
+  j["best_cost"] = b.cost;
+  std::vector<bool> agrees;
+  std::vector<double> others;
+  for (const LocalOptimum& o : reps) {
+    double dev = 0;
+    for (int i : s.parameters) dev = std::max(dev, std::abs(o.p[i] / b.p[i] - 1));
+    agrees.push_back(dev < 1e-3);
+    if (!agrees.back()) others.push_back(o.cost);
+  }
+  j["agreeing"] = std::count(agrees.begin(), agrees.end(), true);
+  j["local_optimum_costs"] = others;
+  auto stats = [&](int i, bool agreeing_only) {
+    double n = 0, mean = 0, var = 0;
+    for (std::size_t k = 0; k < reps.size(); ++k)
+      if (!agreeing_only || agrees[k]) n += 1, mean += reps[k].p[i];
+    mean /= n;
+    for (std::size_t k = 0; k < reps.size(); ++k)
+      if (!agreeing_only || agrees[k]) var += (reps[k].p[i] - mean) * (reps[k].p[i] - mean);
+    return std::pair{mean, std::sqrt(var / std::max(n - 1, 1.0)) / std::abs(b.p[i])};
+  };
+  nlohmann::json per = nlohmann::json::object();
+  for (int i : s.parameters) {
+    const auto [mean, rel] = stats(i, false);
+    per[info.parameters[static_cast<std::size_t>(i)].name] = {
+        {"best", b.p[i]}, {"mean", mean}, {"relative_std", rel}, {"agreeing_relative_std", stats(i, true).second}};
+  }
+  j["parameters"] = per;
+  return j;
+}
+
+}  // namespace
+
+FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const FitOptions& options) {
+  const ModelInfo& info = model.info();
+  std::vector<FrfData> frfs;
+  for (const DataSet& d : data) {
+    if (!d.is_frf())
+      throw FitError(d.file() +
+                     ": error: --method modal needs FRFs (it identifies modes from them), but this is a "
+                     "time record");
+    if (!d.set().empty())
+      throw FitError(d.file() +
+                     ": error: --method modal fits one configuration: data sets with `# set` values are "
+                     "not supported");
+    frfs.push_back(std::get<FrfData>(d.content));
+  }
+  const Eigen::VectorXd prior = methods::checked_prior(model, data, options);
+  const std::vector<int> candidates = methods::candidate_parameters(info, options);
+  if (candidates.empty()) throw FitError("fit: --method modal: the model has no parameter to estimate");
+  std::vector<int> structural, damping, uninfluential;
+  classify(model, prior, candidates, structural, damping);
+
+  // 1. Reference modes: the experimental modal analysis of the FRFs (automatic pole selection), in the quantity the
+  //    model's outputs are.
+  ModalData md;
+  try {
+    md = modal_data(frfs, FrequencyBand{}, FrfQuantity::Unknown);
+    md.quantity = model_modes(model, prior, md).quantity;
+  } catch (const std::exception& e) {
+    throw FitError(std::string("fit: error: --method modal: ") + e.what());
+  }
+  ModalIdentification id;
+  try {
+    id = identify_modes(md, ModalOptions{});
+  } catch (const std::exception& e) {
+    throw FitError(std::string("fit: error: --method modal: the modal analysis of the FRFs failed: ") + e.what());
+  }
+  const std::vector<IdentifiedMode>& ref = id.modes;
+  const int channels = static_cast<int>(md.channels.size());
+  const int nr = static_cast<int>(ref.size());
+  const int information = nr * methods::information_per_mode(channels);
+  if (information < static_cast<int>(structural.size()))
+    throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" + hz_list(ref) +
+                   ") on " + std::to_string(channels) + " channel(s), which give " + std::to_string(information) +
+                   " numbers (per mode: frequency, " + std::to_string(channels - 1) +
+                   " shape ratio(s), scale), fewer "
+                   "than the " +
+                   std::to_string(structural.size()) + " mass/stiffness parameters to estimate");
+  if (nr < static_cast<int>(damping.size()))
+    throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" + hz_list(ref) +
+                   "), fewer than the " + std::to_string(damping.size()) +
+                   " damping parameters to estimate (one "
+                   "modal damping ratio per mode)");
+  const Problem pr{model, md, ref};
+  if (!methods::compare_modes(model, prior, md, ref).ok)
+    throw FitError("fit: error: --method modal: the model at its prior has fewer oscillating modes than the " +
+                   std::to_string(nr) + " identified (" + hz_list(ref) + ")");
+
+  Eigen::VectorXd p = prior;
+  nlohmann::json details;
+  nlohmann::json jref = nlohmann::json::array();
+  for (const IdentifiedMode& m : ref)
+    jref.push_back({{"f_hz", m.f_hz},
+                    {"zeta", m.zeta},
+                    {"f_std_hz", std::isfinite(m.f_std_hz) ? m.f_std_hz : 0.0},
+                    {"mpc", m.mpc},
+                    {"support", m.support}});
+  details["reference_modes"] = jref;
+  details["shape_criterion"] = "MAC of the residue vectors (light damping: nearly real shapes, where MACXP is MAC)";
+  int total_iterations = 0;
+
+  const double spread_factor = std::max(options.spread, 1.0 + 1e-6);
+  const int starts = std::max(options.starts, 1);
+  if (!structural.empty()) {
+    // 3. Sobol total indices of each mode's objective (NFD^2 + 1 - MAC + log-scale^2) over the start range.
+    std::vector<std::pair<double, double>> range;
+    for (int i : structural)
+      range.push_back(log_range(info.parameters[static_cast<std::size_t>(i)], prior[i], spread_factor));
+    const auto ks = static_cast<Eigen::Index>(structural.size());
+    const auto objective = [&](const Eigen::VectorXd& u) {
+      Eigen::VectorXd q = prior;
+      for (Eigen::Index j = 0; j < ks; ++j) {
+        const auto& [lo, hi] = range[static_cast<std::size_t>(j)];
+        q[structural[static_cast<std::size_t>(j)]] = std::exp(lo + u[j] * (hi - lo));
+      }
+      Eigen::VectorXd out = Eigen::VectorXd::Constant(nr, std::numeric_limits<double>::quiet_NaN());
+      const ModalComparison c = methods::compare_modes(model, q, md, ref);
+      if (!c.ok) return out;
+      for (int r = 0; r < nr; ++r) {
+        const auto rr = static_cast<std::size_t>(r);
+        const double nfd = c.f_hz[rr] / ref[rr].f_hz - 1,
+                     scale = std::log(c.residues[rr].norm() / ref[rr].residues.norm());
+        out[r] = nfd * nfd + (1 - c.mac[rr]) + scale * scale;
+      }
+      return out;
+    };
+    SobolOptions so;
+    so.samples = kSobolSamples;
+    so.seed = options.seed;
+    so.threads = std::max(options.threads, 1);
+    const SobolIndices sobol = sobol_indices(objective, static_cast<int>(ks), nr, so);
+    Eigen::MatrixXd total = sobol.total;
+    for (Eigen::Index r = 0; r < total.rows(); ++r)
+      for (Eigen::Index j = 0; j < total.cols(); ++j)
+        if (!std::isfinite(total(r, j))) total(r, j) = 0;
+
+    // Each parameter to the mode whose objective it moves most; each mode's objectives, plus those of the modes its
+    // parameters move next most until there are as many numbers as parameters.
+    for (Eigen::Index j = 0; j < ks; ++j)
+      if (!(total.col(j).maxCoeff() >= kInfluence)) uninfluential.push_back(structural[static_cast<std::size_t>(j)]);
+    std::vector<Subproblem> subs;
+    for (int r = 0; r < nr; ++r) {
+      Subproblem s;
+      s.mode = r;
+      for (Eigen::Index j = 0; j < ks; ++j) {
+        Eigen::Index best = 0;
+        if (total.col(j).maxCoeff(&best) >= kInfluence && best == r) s.parameters.push_back(structural[static_cast<std::size_t>(j)]);
+      }
+      if (s.parameters.empty()) continue;
+      std::vector<std::pair<double, int>> others;
+      for (int m = 0; m < nr; ++m) {
+        if (m == r) continue;
+        double w = 0;
+        for (Eigen::Index j = 0; j < ks; ++j)
+          if (std::find(s.parameters.begin(), s.parameters.end(), structural[static_cast<std::size_t>(j)]) !=
+              s.parameters.end())
+            w += total(m, j);
+        others.push_back({-w, m});
+      }
+      std::sort(others.begin(), others.end());
+      s.modes.push_back(r);
+      for (const auto& o : others) {
+        if (static_cast<int>(s.modes.size()) * methods::information_per_mode(channels) >=
+            static_cast<int>(s.parameters.size()))
+          break;
+        s.modes.push_back(o.second);
+      }
+      std::sort(s.modes.begin(), s.modes.end());
+      subs.push_back(s);
+    }
+    nlohmann::json jpart;
+    jpart["samples"] = kSobolSamples;
+    jpart["range_factor"] = spread_factor;
+    nlohmann::json jtotal = nlohmann::json::object();
+    for (Eigen::Index j = 0; j < ks; ++j) {
+      std::vector<double> col(total.col(j).data(), total.col(j).data() + nr);
+      jtotal[info.parameters[static_cast<std::size_t>(structural[static_cast<std::size_t>(j)])].name] = col;
+    }
+    jpart["total_index_per_mode"] = jtotal;
+    nlohmann::json jsubs = nlohmann::json::array();
+    for (const Subproblem& s : subs) {
+      std::vector<std::string> names;
+      for (int i : s.parameters) names.push_back(info.parameters[static_cast<std::size_t>(i)].name);
+      jsubs.push_back({{"mode", s.mode}, {"parameters", names}, {"objective_modes", s.modes}});
+    }
+    jpart["subproblems"] = jsubs;
+    std::vector<std::string> kept;
+    for (int i : uninfluential) {
+      kept.push_back(info.parameters[static_cast<std::size_t>(i)].name);
+      structural.erase(std::find(structural.begin(), structural.end(), i));
+    }
+    jpart["not_influential"] = kept;
+    jpart["influence_threshold"] = kInfluence;
+    details["partition"] = jpart;
+
+    // 4. The subproblems in turn, each from `starts` seeded starts (the current values, then log-uniform within the
+    //    range factor of them), the best repetition kept; sweeps until no parameter moves.
+    std::mt19937_64 rng(options.seed);
+    nlohmann::json first_spread = nlohmann::json::array(), last_spread = nlohmann::json::array();
+    int sweeps = 0;
+    double change = 0;
+    for (; sweeps < kMaxSweeps;) {
+      ++sweeps;
+      change = 0;
+      nlohmann::json spreads = nlohmann::json::array();
+      for (const Subproblem& s : subs) {
+        std::vector<LocalOptimum> reps;
+        int best = 0;
+        for (int k = 0; k < starts; ++k) {
+          Eigen::VectorXd start = p;
+          if (k > 0)
+            for (int i : s.parameters) {
+              const auto [lo, hi] = log_range(info.parameters[static_cast<std::size_t>(i)], p[i], spread_factor);
+              start[i] = std::exp(std::uniform_real_distribution<double>(lo, hi)(rng));
+            }
+          reps.push_back(local_fit(pr, p, start, s.parameters, s.modes, options));
+          total_iterations += reps.back().iterations;
+          if (reps.back().cost < reps[static_cast<std::size_t>(best)].cost) best = k;
+        }
+        for (int i : s.parameters)
+          change = std::max(change, std::abs(reps[static_cast<std::size_t>(best)].p[i] / p[i] - 1));
+        for (int i : s.parameters) p[i] = reps[static_cast<std::size_t>(best)].p[i];
+        spreads.push_back(spread(info, s, reps, best));
+      }
+      if (sweeps == 1) first_spread = spreads;
+      last_spread = spreads;
+      if (change < kSweepTolerance) break;
+    }
+    details["sweeps"] = sweeps;
+    details["last_sweep_change"] = change;
+    details["repetitions"] = {{"first_sweep", first_spread}, {"last_sweep", last_spread}};
+  }
+
+  // 5. Damping: the modal damping ratios linear in the damping parameters at fixed M and K,
+  //    zeta_r = zeta_res,r + sum_j q_rj c_j, solved by least squares with rows divided by zeta_ref (the NDD); q by
+  //    differences, relinearised at the estimate (the first solve is the paper's).
+  std::vector<int> all_modes(static_cast<std::size_t>(nr));
+  for (int r = 0; r < nr; ++r) all_modes[static_cast<std::size_t>(r)] = r;
+  nlohmann::json jdamp;
+  auto solve_damping = [&]() {
+    if (damping.empty()) return;
+    const auto kd = static_cast<Eigen::Index>(damping.size());
+    nlohmann::json iterations = nlohmann::json::array();
+    for (int it = 0; it < kDampingIterations; ++it) {
+      const ModalComparison c0 = methods::compare_modes(model, p, md, ref);
+      if (!c0.ok) throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
+      Eigen::MatrixXd Q(nr, kd);
+      Eigen::VectorXd rhs(nr), c(kd);
+      for (Eigen::Index j = 0; j < kd; ++j) {
+        const int i = damping[static_cast<std::size_t>(j)];
+        c[j] = p[i];
+        const double h = 1e-3 * std::max({std::abs(p[i]), std::abs(prior[i]), 1e-6});
+        Eigen::VectorXd q = p;
+        q[i] += h;
+        const ModalComparison c1 = methods::compare_modes(model, q, md, ref);
+        if (!c1.ok) throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
+        for (int r = 0; r < nr; ++r)
+          Q(r, j) = (c1.zeta[static_cast<std::size_t>(r)] - c0.zeta[static_cast<std::size_t>(r)]) / h;
+      }
+      Eigen::VectorXd residual_share(nr);
+      for (int r = 0; r < nr; ++r) {
+        residual_share[r] = c0.zeta[static_cast<std::size_t>(r)] - Q.row(r).dot(c);
+        rhs[r] = (ref[static_cast<std::size_t>(r)].zeta - residual_share[r]) / ref[static_cast<std::size_t>(r)].zeta;
+        Q.row(r) /= ref[static_cast<std::size_t>(r)].zeta;
+      }
+      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Q);
+      if (qr.rank() < kd)
+        throw FitError("fit: error: --method modal: the modal damping ratios of the " + std::to_string(nr) +
+                       " identified modes (" + hz_list(ref) + ") cannot separate the damping parameters (rank " +
+                       std::to_string(qr.rank()) + " of " + std::to_string(kd) + ")");
+      const Eigen::VectorXd sol = qr.solve(rhs);
+      double step = 0;
+      for (Eigen::Index j = 0; j < kd; ++j) {
+        const int i = damping[static_cast<std::size_t>(j)];
+        const ParameterInfo& q = info.parameters[static_cast<std::size_t>(i)];
+        const double v = std::min(std::max(sol[j], q.lower), q.upper);
+        step = std::max(step, std::abs(v - p[i]) / std::max(std::abs(v), 1e-300));
+        p[i] = v;
+      }
+      iterations.push_back({{"relative_step", step}, {"ndd_residual_norm", (Q * sol - rhs).norm()}});
+    }
+    jdamp["iterations"] = iterations;
+  };
+  solve_damping();
+  // The residue scale depends slightly on damping: all mass/stiffness parameters once more against all modes,
+  // from the estimate, then the damping again.
+  double polish_before = 0, polish_after = 0;
+  bool joint_converged = true;
+  if (!structural.empty()) {
+    Eigen::VectorXd x(static_cast<Eigen::Index>(structural.size())), r;
+    for (std::size_t j = 0; j < structural.size(); ++j) x[static_cast<Eigen::Index>(j)] = std::log(p[structural[j]]);
+    if (residuals_at(pr, p, structural, all_modes, x, r)) polish_before = r.squaredNorm();
+    const LocalOptimum o = local_fit(pr, p, p, structural, all_modes, options);
+    joint_converged = o.converged;
+    total_iterations += o.iterations;
+    if (o.cost <= polish_before || polish_before == 0) p = o.p;
+    polish_after = std::min(o.cost, polish_before > 0 ? polish_before : o.cost);
+    solve_damping();
+  }
+  details["joint_polish"] = {{"cost_before", polish_before}, {"cost_after", polish_after}};
+  if (!damping.empty()) details["damping"] = jdamp;
+
+  // Agreement per mode at the estimate.
+  const ModalComparison fin = methods::compare_modes(model, p, md, ref);
+  if (!fin.ok) throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
+  nlohmann::json agreement = nlohmann::json::array();
+  for (int r = 0; r < nr; ++r) {
+    const auto rr = static_cast<std::size_t>(r);
+    agreement.push_back({{"reference_f_hz", ref[rr].f_hz},
+                         {"model_f_hz", fin.f_hz[rr]},
+                         {"nfd", fin.f_hz[rr] / ref[rr].f_hz - 1},
+                         {"mac", fin.mac[rr]},
+                         {"scale_log_ratio", std::log(fin.residues[rr].norm() / ref[rr].residues.norm())},
+                         {"reference_zeta", ref[rr].zeta},
+                         {"model_zeta", fin.zeta[rr]},
+                         {"ndd", (fin.zeta[rr] - ref[rr].zeta) / ref[rr].zeta}});
+  }
+  details["agreement"] = agreement;
+
+  FitResult result;
+  result.model = info.name;
+  for (const auto& d : data) result.data.push_back(d.file());
+  result.method = "modal";
+  result.prior_values = prior;
+  result.values = p;
+  for (int i : candidates) {
+    const ParameterInfo& q = info.parameters[static_cast<std::size_t>(i)];
+    ParameterEstimate e;
+    e.name = q.name;
+    e.unit = q.unit;
+    e.prior = prior[i];
+    e.value = p[i];
+    e.estimated = std::find(uninfluential.begin(), uninfluential.end(), i) == uninfluential.end();
+    const double tol = 1e-9 * std::max(std::abs(p[i]), 1.0);
+    if (std::abs(p[i] - q.lower) <= tol) e.at_bound = "lower";
+    if (std::abs(p[i] - q.upper) <= tol) e.at_bound = "upper";
+    e.identifiable = e.estimated && e.at_bound.empty();
+    result.parameters.push_back(e);
+  }
+  methods::score_by_output_error(model, data, options, candidates,
+                                 static_cast<int>(candidates.size() - uninfluential.size()), result);
+  result.estimated.clear();  // no covariance: the modal objectives carry no noise model
+  result.iterations = total_iterations;
+  const bool settled =
+      !details.contains("last_sweep_change") || details["last_sweep_change"].get<double>() < kSweepTolerance;
+  result.converged = settled && joint_converged;
+  result.stop_reason = !settled           ? "sweep limit reached"
+                       : !joint_converged ? "the joint mass/stiffness step did not converge"
+                                          : "the subproblem sweeps settled and the joint step converged";
+  result.method_details["modal"] = details.dump();
+  return result;
+}
+
+}  // namespace mbgen

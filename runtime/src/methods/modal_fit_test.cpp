@@ -1,0 +1,136 @@
+// fit_modal on mdof2 FRFs made by the independent truth generator (scripts/truthgen: numpy, its own model assembly),
+// truth drawn at random (--draw: every estimable parameter 3-10 % off the model's values), 40 dB SNR. The model is
+// test_support's hand-written mdof2 with the .mdl's values and bounds.
+#include "../estimation/test_support.hpp"
+#include "truthgen_test_support.hpp"
+
+#include "mbgen/methods/modal.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+using namespace mbgen;
+
+namespace {
+
+// truthgen's mdof2 `nominal` case at 40 dB, FRFs, truth draw `draw`, noise seed `seed`, extra arguments `extra`.
+test::TruthgenData generate(int draw, int seed, const std::string& extra = "", const std::string& tag = "") {
+  return test::truthgen_data("--example mdof2 --case nominal --snr-db 40 --kind frf --draw " + std::to_string(draw) +
+                                 " --seed " + std::to_string(seed) + " " + extra,
+                             "methods_modal", "frf_draw" + std::to_string(draw) + "_seed" + std::to_string(seed) + tag);
+}
+
+// Every parameter within `relative` of the truth.
+void check_truth(const FitResult& r, const std::map<std::string, double>& truth, double relative) {
+  CHECK(r.method == "modal");
+  CHECK(r.converged);
+  REQUIRE(r.parameters.size() == 7);
+  for (const ParameterEstimate& e : r.parameters) {
+    const double t = truth.at(e.name);
+    INFO(e.name << " = " << e.value << ", truth " << t << " (" << (e.value / t - 1) * 100 << " %)");
+    CHECK(e.identifiable);
+    CHECK(std::abs(e.value / t - 1) < relative);
+  }
+}
+
+// The paper's test for the global optimum, per subproblem of the last sweep: every repetition from the seeded starts
+// (a factor up to 3 off the current values) agrees with the best (every parameter within 1e-3) and they spread by
+// less than `relative_std`. (mdof2 has no local optimum within that range; the spindle has, tests/cli/methods_modal.)
+void check_spread(const FitResult& r, double relative_std) {
+  const nlohmann::json d = nlohmann::json::parse(r.method_details.at("modal"));
+  const nlohmann::json& last = d.at("repetitions").at("last_sweep");
+  REQUIRE(last.size() == 2);  // mdof2: two modes, a subproblem each
+  int parameters = 0;
+  for (const auto& sub : last) {
+    INFO(sub.dump());
+    CHECK(sub.at("agreeing").get<int>() == sub.at("repetitions").get<int>());
+    CHECK(sub.at("local_optimum_costs").empty());
+    for (const auto& [name, s] : sub.at("parameters").items()) {
+      CHECK(s.at("relative_std").get<double>() < relative_std);
+      ++parameters;
+    }
+  }
+  CHECK(parameters == 5);
+}
+
+}  // namespace
+
+// Measured: largest error 0.11 % (draw 1), 0.14 % (draw 4, k22), 0.32 % (draw 2 below, k12); asserted 0.5 %.
+TEST_CASE("truthgen mdof2 FRF draws 1 and 4: modal reaches the truth", "[modal]") {
+  for (auto [draw, seed] : {std::pair{1, 3}, std::pair{4, 14}}) {
+    INFO("draw " << draw);
+    const test::TruthgenData g = generate(draw, seed);
+    const test::LinearModel model = test::mdof2_model({}, true);
+    FitOptions o;
+    o.starts = 8;
+    const FitResult r = fit_modal(model, {g.data}, o);
+    check_truth(r, g.truth, 0.005);
+    check_spread(r, 1e-6);
+    const nlohmann::json d = nlohmann::json::parse(r.method_details.at("modal"));
+    REQUIRE(d.at("reference_modes").size() == 2);
+    for (const auto& a : d.at("agreement")) {
+      CHECK(a.at("mac").get<double>() > 0.9999);
+      CHECK(std::abs(a.at("nfd").get<double>()) < 1e-4);
+      CHECK(std::abs(a.at("ndd").get<double>()) < 1e-6);  // two modes, two damping parameters: solved exactly
+    }
+  }
+}
+
+// Poor starts: the priors a factor 2-3 off the model's values, in different directions; the repetitions of every
+// subproblem agree, and both reach the same optimum as from the model's values (and the truth).
+TEST_CASE("truthgen mdof2 FRF draw 2: modal from poor starts reaches one optimum", "[modal]") {
+  const test::TruthgenData g = generate(2, 5);
+  const test::LinearModel model = test::mdof2_model({}, true);
+  FitOptions o;
+  o.starts = 8;
+  const FitResult reference = fit_modal(model, {g.data}, o);
+  check_truth(reference, g.truth, 0.005);
+  const std::vector<std::map<std::string, double>> poor = {{{"m1", 2 * 1.39},
+                                                            {"m2", 1.09 / 2},
+                                                            {"k11", 1.38e6 / 3},
+                                                            {"k22", 0.24e6 * 2},
+                                                            {"k12", 0.12e6 * 3},
+                                                            {"c11", 13.42 * 3},
+                                                            {"c22", 0.47 / 3}},
+                                                           {{"m1", 1.39 / 2},
+                                                            {"m2", 1.09 * 2},
+                                                            {"k11", 1.38e6 * 2},
+                                                            {"k22", 0.24e6 / 3},
+                                                            {"k12", 0.12e6 / 2},
+                                                            {"c11", 13.42 / 3},
+                                                            {"c22", 0.47 * 3}}};
+  for (std::size_t k = 0; k < poor.size(); ++k) {
+    INFO("poor start " << k);
+    o.values = poor[k];
+    o.seed = 11 + k;
+    const FitResult r = fit_modal(model, {g.data}, o);
+    check_spread(r, 1e-6);
+    for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+      INFO(r.parameters[i].name << ": " << r.parameters[i].value << " vs " << reference.parameters[i].value);
+      CHECK(std::abs(r.parameters[i].value / reference.parameters[i].value - 1) < 1e-6);
+    }
+  }
+}
+
+TEST_CASE("modal refuses time records and too few modes", "[modal]") {
+  const test::LinearModel model = test::mdof2_model({}, true);
+  const test::TruthgenData time =
+      test::truthgen_data("--example mdof2 --case nominal --kind time --duration 0.25 --seed 2", "methods_modal", "time");
+  CHECK_THROWS_WITH(fit_modal(model, {time.data}), Catch::Contains("needs FRFs") && Catch::Contains("time record"));
+  // A band up to 120 Hz holds the first mode (about 90 Hz) alone: 3 numbers for 5 mass/stiffness parameters.
+  const test::TruthgenData low = generate(1, 3, "--f-max 120", "_low");
+  CHECK_THROWS_WITH(fit_modal(model, {low.data}),
+                    Catch::Contains("show 1 mode(s)") && Catch::Contains("fewer than the 5 mass/stiffness"));
+  // The driving point alone: both modes, but per mode only frequency and scale, 4 numbers for 5 parameters.
+  test::TruthgenData both = generate(1, 3);
+  FrfData one = std::get<FrfData>(both.data.content);
+  one.channels.erase(one.channels.begin() + 1);
+  REQUIRE(one.channels.front().output == "d1");
+  CHECK_THROWS_WITH(fit_modal(model, {DataSet(one)}),
+                    Catch::Contains("show 2 mode(s)") && Catch::Contains("1 channel(s), which give 4 numbers"));
+}

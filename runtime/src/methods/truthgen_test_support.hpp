@@ -1,0 +1,41 @@
+// For the methods' tests: a data set made by the independent truth generator (scripts/truthgen: numpy, its own model
+// assembly and simulation) and its truth parameters (from the .truth.json beside it, for the comparison only).
+// Test-only header (Catch2).
+#pragma once
+
+#include "mbgen/data_set.hpp"
+#include "mbgen/fit.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+namespace mbgen::test {
+
+struct TruthgenData {
+  DataSet data;
+  std::map<std::string, double> truth;
+};
+
+// Runs `truthgen.py ARGUMENTS -o BUILD/DIR/STEM.csv` and reads what it wrote.
+inline TruthgenData truthgen_data(const std::string& arguments, const std::string& dir, const std::string& stem) {
+  const std::filesystem::path folder = std::filesystem::path(MBGEN_BINARY_DIR) / dir;
+  std::filesystem::create_directories(folder);
+  const std::string path = (folder / stem).string();
+  const std::string command =
+      "/usr/bin/python3 " MBGEN_SOURCE_DIR "/scripts/truthgen/truthgen.py " + arguments + " -o " + path + ".csv";
+  REQUIRE(std::system(command.c_str()) == 0);
+  const DataFile f = read_data_file(path + ".csv");
+  TruthgenData g{std::visit([](const auto& d) { return DataSet(d); }, f), {}};
+  std::ifstream in(path + ".truth.json");
+  const nlohmann::json parameters = nlohmann::json::parse(in).at("parameters");
+  for (auto it = parameters.begin(); it != parameters.end(); ++it) g.truth[it.key()] = it.value().get<double>();
+  return g;
+}
+
+}  // namespace mbgen::test
