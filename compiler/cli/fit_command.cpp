@@ -1,6 +1,7 @@
 // `mbgen fit MODEL.mdl --data FILE [--data FILE ...] [--method NAME] [--json OUT.json] [--report DIR]`:
 // estimates the model's `estimate` parameters from measured FRFs or time records (runtime/include/mbgen/fit.hpp).
 #include <mbgen/fit_report.hpp>
+#include <mbgen/methods/two_step.hpp>
 
 #include <cstdio>
 #include <iostream>
@@ -53,8 +54,8 @@ int run_fit(int argc, char** argv) {
   FitOptions options;
   app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable, fitted jointly")->required();
-  app.add_option("--method", method, "auto (by the data), frf-output-error or time-output-error")
-      ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error"}));
+  app.add_option("--method", method, "auto (by the data), frf-output-error, time-output-error or two-step")
+      ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "two-step"}));
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
@@ -86,7 +87,7 @@ int run_fit(int argc, char** argv) {
       progress_line("fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
                     ", iteration " + std::to_string(p.iteration) + ", cost " + std::to_string(p.cost));
     };
-    FitResult result = fit(*evaluator, data, options);
+    FitResult result = method == "two-step" ? fit_two_step(*evaluator, data, options) : fit(*evaluator, data, options);
     progress_done();
     result.model = model_path;
 
