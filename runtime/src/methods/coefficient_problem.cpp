@@ -2,6 +2,8 @@
 
 #include "model_coefficients.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 
@@ -57,6 +59,37 @@ void CoefficientProblem::evaluate(const Eigen::VectorXd& values, const std::vect
       J->row(i) = (t.channel < 0 ? mt.ddenominator.row(t.power)
                                  : mt.dnumerators[static_cast<std::size_t>(t.channel)].row(t.power)) * scale;
   }
+  if (whitening_.size()) {
+    r = whitening_ * r;
+    if (J) *J = whitening_ * *J;
+  }
+}
+
+Eigen::MatrixXd CoefficientProblem::weight() const {
+  const Eigen::Index n = static_cast<Eigen::Index>(targets_.size());
+  Eigen::VectorXd d(n);
+  for (Eigen::Index i = 0; i < n; ++i) d[i] = 1 / std::abs(targets_[static_cast<std::size_t>(i)].value);
+  if (whitening_.size()) return whitening_ * d.asDiagonal();
+  return d.asDiagonal();
+}
+
+bool CoefficientProblem::use_covariance_weighting() {
+  const Eigen::MatrixXd cov = identified_covariance();
+  if (cov.size() == 0) return false;
+  whitening_.resize(0, 0);
+  const Eigen::MatrixXd D = weight();
+  // S^(-1/2) U^T of the normalised covariance D cov D = U S U^T; directions with no variance (relative 1e-14) are
+  // left out (they would get infinite weight).
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(D * cov * D);
+  const Eigen::VectorXd s = es.eigenvalues();
+  const double top = s.maxCoeff();
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index i = 0; i < s.size(); ++i)
+    if (s[i] > top * 1e-14) keep.push_back(i);
+  whitening_.resize(static_cast<Eigen::Index>(keep.size()), s.size());
+  for (std::size_t k = 0; k < keep.size(); ++k)
+    whitening_.row(static_cast<Eigen::Index>(k)) = es.eigenvectors().col(keep[k]).transpose() / std::sqrt(s[keep[k]]);
+  return true;
 }
 
 Eigen::MatrixXd CoefficientProblem::identified_covariance() const {

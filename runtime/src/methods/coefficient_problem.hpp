@@ -3,7 +3,9 @@
 // The compared coefficients are the denominator's a_0 .. a_{q-1} (a_q = 1 on both sides) of each identified
 // transfer function and each channel's numerator coefficients that the model has structurally non-zero
 // (model_coefficients.hpp). Residual i is the thesis's normalised mismatch (Eq. 3.98) (L_i(p) - L^_i) / |L^_i|,
-// L^ identified, L(p) the model's at the data set's parameter values (its `# set` lines applied).
+// L^ identified, L(p) the model's at the data set's parameter values (its `# set` lines applied). With
+// use_covariance_weighting() the normalised mismatches are whitened by step one's covariance instead (the Markov
+// estimate: the coefficients' correlations, e.g. of a lightly damped pole's a_i, count as they are).
 #pragma once
 
 #include "identified_tf.hpp"
@@ -50,11 +52,16 @@ class CoefficientProblem {
                 Eigen::VectorXd* model_values = nullptr) const;
   // The covariance of the identified coefficients L^ (targets' order), or an empty matrix when a step one gave none.
   Eigen::MatrixXd identified_covariance() const;
+  // Whitens the residuals by the identified covariance; false (nothing changed) when there is none.
+  bool use_covariance_weighting();
+  // The residuals are W (L(p) - L^): this W.
+  Eigen::MatrixXd weight() const;
 
  private:
   const Model& model_;
   const std::vector<StepOneTf>& tfs_;
   std::vector<CoefficientTarget> targets_;
+  Eigen::MatrixXd whitening_;  // applied to the normalised mismatches; empty: none
 };
 
 }  // namespace mbgen::methods

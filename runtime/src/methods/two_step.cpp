@@ -162,6 +162,8 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
                        const TwoStepOptions& two_step) {
   if (two_step.solver != "auto" && two_step.solver != "minimisation" && two_step.solver != "newton")
     throw FitError("two-step: unknown solver " + two_step.solver + " (auto, minimisation or newton)");
+  if (two_step.weighting != "normalised" && two_step.weighting != "covariance")
+    throw FitError("two-step: unknown weighting " + two_step.weighting + " (normalised or covariance)");
   if (two_step.criterion != "aic" && two_step.criterion != "bic" && two_step.criterion != "fpe")
     throw FitError("two-step: unknown order criterion " + two_step.criterion + " (aic, bic or fpe)");
   if (data.empty()) throw FitError("two-step: no data");
@@ -187,7 +189,11 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
 
   // ---- step one ----
   const methods::StepOne one = methods::run_step_one(model, data, prior, candidates, two_step);
-  const CoefficientProblem problem(model, one.tfs);
+  CoefficientProblem problem(model, one.tfs);
+  const bool whitened = two_step.weighting == "covariance" && problem.use_covariance_weighting();
+  if (two_step.weighting == "covariance" && !whitened)
+    throw FitError("two-step: covariance weighting needs step one's coefficient covariance, which time records (ARX) "
+                   "do not give");
   const Search search(problem, prior, transforms);
   const auto n_eq = static_cast<Eigen::Index>(problem.targets().size());
 
@@ -266,9 +272,16 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
   const estimation::LmResult& best = runs[static_cast<std::size_t>(result.best_start)];
   if (!std::isfinite(best.cost)) throw FitError("two-step: the model cannot be evaluated at any starting point");
   const Eigen::VectorXd minimum = search.full(free, best.x);
+  // Starts that reached the same estimate (every parameter within 1e-4 of it, relatively): the repeatability the
+  // thesis's Table 5.5 reports.
   int at_best = 0;
-  for (const auto& run : runs)
-    if (run.cost <= best.cost * (1 + 1e-6) + 1e-30) ++at_best;
+  for (const auto& run : runs) {
+    if (!std::isfinite(run.cost)) continue;
+    const Eigen::VectorXd v = search.full(free, run.x);
+    double d = 0;
+    for (int i : free) d = std::max(d, std::abs(v[i] - minimum[i]) / std::max(std::abs(minimum[i]), 1e-300));
+    if (d < 1e-4) ++at_best;
+  }
 
   // ---- step two (b): Newton on the square system, from the minimum and every start ----
   std::vector<NewtonSolution> roots;
@@ -337,13 +350,12 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
   Eigen::MatrixXd cov;
   std::string uncertainty_note;
   if (sigma_hat.size()) {
-    Eigen::VectorXd w(n_eq);  // the residuals' normalisation 1 / |L^_i|
-    for (Eigen::Index i = 0; i < n_eq; ++i) w[i] = 1 / std::abs(problem.targets()[static_cast<std::size_t>(i)].value);
+    const Eigen::MatrixXd W = problem.weight();
     Eigen::VectorXd sc(static_cast<Eigen::Index>(free.size()));
     for (std::size_t j = 0; j < free.size(); ++j) sc[static_cast<Eigen::Index>(j)] = std::max(std::abs(values[free[j]]), 1e-300);
     const Eigen::MatrixXd Js = J_est * sc.asDiagonal();
     const Eigen::MatrixXd Hi = pinv_spd(Js.transpose() * Js);
-    const Eigen::MatrixXd Sw = w.asDiagonal() * sigma_hat * w.asDiagonal();
+    const Eigen::MatrixXd Sw = W * sigma_hat * W.transpose();
     cov = sc.asDiagonal() * (Hi * Js.transpose() * Sw * Js * Hi) * sc.asDiagonal();
     uncertainty_note = "step one's coefficient covariance propagated through step two's linearisation at the estimate: "
                        "(J^T W J)^-1 J^T W S W J (J^T W J)^-1";
@@ -432,6 +444,11 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
 
   // ---- method_details ----
   nlohmann::json coefficients = nlohmann::json::array();
+  double q_tf = 0;  // the thesis's Eq. 3.99 whatever the weighting
+  for (Eigen::Index i = 0; i < n_eq; ++i) {
+    const double v = problem.targets()[static_cast<std::size_t>(i)].value;
+    q_tf += std::pow((model_coefficients[i] - v) / v, 2);
+  }
   for (Eigen::Index i = 0; i < n_eq; ++i) {
     const methods::CoefficientTarget& t = problem.targets()[static_cast<std::size_t>(i)];
     const methods::StepOneTf& s = one.tfs[t.tf];
@@ -440,17 +457,19 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
                             {"power", t.power},
                             {"identified", number(t.value)},
                             {"model", number(model_coefficients[i])},
-                            {"relative_mismatch", number(r_est[i])}});
+                            {"relative_mismatch", number((model_coefficients[i] - t.value) / std::abs(t.value))}});
   }
   nlohmann::json step_two = {
       {"solver", solver},
       {"equations", n_eq},
       {"unknowns", static_cast<int>(free.size())},
-      {"weighting", "normalised by the identified coefficient (thesis Eq. 3.98)"},
-      {"q_tf", number(r_est.squaredNorm())},
+      {"weighting", whitened ? "covariance: the normalised mismatches whitened by step one's covariance"
+                             : "normalised by the identified coefficient (thesis Eq. 3.98)"},
+      {"q_tf", number(q_tf)},
+      {"cost", number(r_est.squaredNorm())},
       {"coefficients", coefficients},
       {"minimisation", {{"starts", starts}, {"best_start", result.best_start}, {"starts_at_best", at_best},
-                        {"q_tf", number(best.cost)}}},
+                        {"cost", number(best.cost)}}},
       {"newton", newton_json},
       {"uncertainty", uncertainty_note}};
   nlohmann::json zero_pole = nlohmann::json::array(), checks = nlohmann::json::array();

@@ -26,6 +26,9 @@ struct TwoStepOptions {
   // Step two: "auto" (Newton where the system is square and it finds an admissible solution, else minimisation),
   // "minimisation" or "newton" (square systems only; FitError otherwise).
   std::string solver = "auto";
+  // Step two's residuals: "normalised" (the thesis's (L(p) - L^) / |L^|, Eq. 3.98) or "covariance" (those whitened by
+  // step one's coefficient covariance: the Markov estimate; FRF data only, ARX gives no covariance).
+  std::string weighting = "normalised";
   // Time records: the ARX order criterion ("aic", "bic", "fpe") and the highest order tried.
   std::string criterion = "aic";
   int max_arx_order = 40;
