@@ -143,10 +143,19 @@ IdentifiedTf fit_rational_frf(const Eigen::VectorXd& omega, const std::vector<Ra
     }
     return true;
   };
+  // LM works on x / |x_SK| (every unknown starts at +-1), so that its step tolerance is relative.
+  Eigen::VectorXd unit = x.cwiseAbs();
+  for (Eigen::Index j = 0; j < unit.size(); ++j)
+    if (!(unit[j] > 0)) unit[j] = 1;
+  const estimation::ResidualFunction g = [&](const Eigen::VectorXd& z, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    if (!f(z.cwiseProduct(unit), r, J)) return false;
+    if (J) *J = *J * unit.asDiagonal();
+    return true;
+  };
   estimation::LmOptions lm;
   lm.max_iterations = 500;
-  const estimation::LmResult fit = estimation::levenberg_marquardt(f, x, lm);
-  x = fit.x;
+  const estimation::LmResult fit = estimation::levenberg_marquardt(g, x.cwiseQuotient(unit), lm);
+  x = fit.x.cwiseProduct(unit);
   rep.lm_iterations = fit.iterations;
   rep.converged = fit.converged;
 
