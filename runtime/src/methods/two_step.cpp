@@ -443,6 +443,8 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
   }
 
   // ---- method_details ----
+  nlohmann::json start_costs = nlohmann::json::array();
+  for (double c : result.start_costs) start_costs.push_back(number(c));
   nlohmann::json coefficients = nlohmann::json::array();
   double q_tf = 0;  // the thesis's Eq. 3.99 whatever the weighting
   for (Eigen::Index i = 0; i < n_eq; ++i) {
@@ -469,7 +471,7 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
       {"cost", number(r_est.squaredNorm())},
       {"coefficients", coefficients},
       {"minimisation", {{"starts", starts}, {"best_start", result.best_start}, {"starts_at_best", at_best},
-                        {"cost", number(best.cost)}}},
+                        {"cost", number(best.cost)}, {"start_costs", start_costs}}},
       {"newton", newton_json},
       {"uncertainty", uncertainty_note}};
   nlohmann::json zero_pole = nlohmann::json::array(), checks = nlohmann::json::array();
