@@ -72,22 +72,36 @@ ArxIdentification identify_arx(const Eigen::VectorXd& u, const std::vector<Eigen
   const Eigen::Index per = N - n_max;
   const Eigen::Index R = per * O;
   const long P = layout.columns(n_max);
-  Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(R, P);
-  Eigen::VectorXd target(R);
-  for (int o = 0; o < O; ++o) {
-    const Eigen::VectorXd yo = y[static_cast<std::size_t>(o)] / sy[static_cast<std::size_t>(o)];
-    for (Eigen::Index k = n_max; k < N; ++k) {
-      const Eigen::Index row = o * per + (k - n_max);
-      target[row] = yo[k];
+  // The QR of [Phi | target] in blocks of rows (memory bounded by the block, whatever the record's length): the
+  // triangular factor of the rows so far stacked over the next block is factored again. Its last column holds
+  // Q^T target (first P entries) and keeps the target's norm.
+  constexpr Eigen::Index kBlock = 4096;
+  Eigen::MatrixXd top(0, P + 1);
+  std::vector<Eigen::VectorXd> yn;
+  for (int o = 0; o < O; ++o) yn.push_back(y[static_cast<std::size_t>(o)] / sy[static_cast<std::size_t>(o)]);
+  for (Eigen::Index start = 0; start < R; start += kBlock) {
+    const Eigen::Index rows = std::min(kBlock, R - start);
+    Eigen::MatrixXd block = Eigen::MatrixXd::Zero(top.rows() + rows, P + 1);
+    block.topRows(top.rows()) = top;
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      const Eigen::Index row = start + i;
+      const int o = static_cast<int>(row / per);
+      const Eigen::Index k = n_max + row % per;
+      const Eigen::VectorXd& yo = yn[static_cast<std::size_t>(o)];
+      const Eigen::Index r = top.rows() + i;
+      block(r, P) = yo[k];
       for (int l = layout.first_lag; l <= n_max; ++l) {
-        if (l >= 1) Phi(row, layout.a_column(l)) = -yo[k - l];
-        Phi(row, layout.b_column(o, l)) = u[k - l] / su;
+        if (l >= 1) block(r, layout.a_column(l)) = -yo[k - l];
+        block(r, layout.b_column(o, l)) = u[k - l] / su;
       }
     }
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(block);
+    const Eigen::Index keep = std::min<Eigen::Index>(block.rows(), P + 1);
+    top = qr.matrixQR().topRows(keep).triangularView<Eigen::Upper>();
   }
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Phi);
-  const Eigen::VectorXd qty = (qr.householderQ().transpose() * target).head(P);
-  const double yy = target.squaredNorm();
+  const Eigen::VectorXd qty = top.col(P).head(P);
+  const double yy = top.col(P).squaredNorm();
+  const Eigen::MatrixXd Rfactor = top.topLeftCorner(P, P);
 
   ArxIdentification out;
   out.samples = static_cast<long>(N);
@@ -112,7 +126,7 @@ ArxIdentification identify_arx(const Eigen::VectorXd& u, const std::vector<Eigen
   const int n = out.selected_order;
   const long p = layout.columns(n);
   const Eigen::VectorXd theta =
-      qr.matrixQR().topLeftCorner(p, p).triangularView<Eigen::Upper>().solve(qty.head(p));
+      Rfactor.topLeftCorner(p, p).triangularView<Eigen::Upper>().solve(qty.head(p));
 
   // A(z) = z^n + a_1 z^(n-1) + ... + a_n and B_o(z) = sum_l b_{o,l} z^(n-l), ascending, in physical units.
   Eigen::VectorXd A = Eigen::VectorXd::Zero(n + 1);
