@@ -1,5 +1,6 @@
 #include "mbgen/methods/two_step.hpp"
 
+#include "../estimation/fit_setup.hpp"
 #include "../estimation/levenberg_marquardt.hpp"
 #include "../estimation/multistart.hpp"
 #include "../estimation/output_error.hpp"
@@ -28,23 +29,6 @@ using methods::CoefficientProblem;
 namespace {
 
 nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
-
-std::vector<int> candidate_parameters(const ModelInfo& info, const FitOptions& options) {
-  std::vector<int> out;
-  if (options.estimate.empty()) {
-    for (std::size_t i = 0; i < info.parameters.size(); ++i)
-      if (info.parameters[i].role == ParameterRole::Estimate) out.push_back(static_cast<int>(i));
-    return out;
-  }
-  for (const auto& name : options.estimate) {
-    const int idx = info.parameter_index(name);
-    if (idx < 0) throw FitError("fit: the model has no parameter " + name + " (asked to estimate it)");
-    out.push_back(idx);
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
 
 // Pseudo-inverse of a symmetric positive semi-definite matrix (relative cut 1e-14).
 Eigen::MatrixXd pinv_spd(const Eigen::MatrixXd& H) {
@@ -168,24 +152,10 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
     throw FitError("two-step: unknown order criterion " + two_step.criterion + " (aic, bic or fpe)");
   if (data.empty()) throw FitError("two-step: no data");
   const ModelInfo& info = model.info();
-  Eigen::VectorXd prior = info.default_values();
-  for (const auto& [name, value] : options.values) {
-    const int idx = info.parameter_index(name);
-    if (idx < 0) throw FitError("fit: --set " + name + ": the model has no parameter " + name);
-    prior[idx] = value;
-  }
-  estimation::check_parameter_values(model, prior, options.values.empty() ? "the model's values" : "the values set");
-  estimation::check_data_set_values(model, prior, data);
-  estimation::check_measured_signals(model, data);
-  const std::vector<int> candidates = candidate_parameters(info, options);
-  std::vector<ParameterTransform> transforms(info.parameters.size());
-  for (int i : candidates) {
-    try {
-      transforms[static_cast<std::size_t>(i)] = make_parameter_transform(info.parameters[static_cast<std::size_t>(i)], prior[i]);
-    } catch (const std::invalid_argument& e) {
-      throw FitError(std::string("fit: ") + e.what());
-    }
-  }
+  const estimation::FitSetup setup = estimation::prepare_fit(model, data, options);
+  const Eigen::VectorXd& prior = setup.prior;
+  const std::vector<int>& candidates = setup.candidates;
+  const std::vector<ParameterTransform>& transforms = setup.transforms;
 
   // ---- step one ----
   const methods::StepOne one = methods::run_step_one(model, data, prior, candidates, two_step);
@@ -239,23 +209,8 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
 
   // Starting points: the prior, then log-uniform within +-log(spread) of it in internal coordinates (as fit()).
   const int starts = std::max(1, options.starts);
-  std::vector<Eigen::VectorXd> start_points;
-  {
-    const Eigen::VectorXd theta0 = search.internal(free, prior);
-    estimation::StartSampler sampler(options.seed);
-    const double half_width = std::log(std::max(options.spread, 1.0));
-    for (int s = 0; s < starts; ++s) {
-      Eigen::VectorXd theta = theta0;
-      if (s > 0)
-        for (std::size_t j = 0; j < free.size(); ++j) {
-          const double u = sampler.symmetric_unit();
-          const ParameterTransform& t = transforms[static_cast<std::size_t>(free[j])];
-          if (t.kind == BoundKind::None) theta[static_cast<Eigen::Index>(j)] *= std::exp(half_width * u);
-          else theta[static_cast<Eigen::Index>(j)] += half_width * u;
-        }
-      start_points.push_back(theta);
-    }
-  }
+  const std::vector<Eigen::VectorXd> start_points =
+      estimation::start_points(search.internal(free, prior), free, transforms, options);
 
   // ---- step two (c): minimisation of Q_TF from every start ----
   estimation::LmOptions lm;

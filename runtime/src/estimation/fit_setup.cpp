@@ -1,0 +1,85 @@
+#include "fit_setup.hpp"
+
+#include "multistart.hpp"
+#include "value_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mbgen::estimation {
+
+namespace {
+
+std::vector<int> candidate_parameters(const ModelInfo& info, const FitOptions& options) {
+  std::vector<int> out;
+  if (options.estimate.empty()) {
+    for (std::size_t i = 0; i < info.parameters.size(); ++i)
+      if (info.parameters[i].role == ParameterRole::Estimate) out.push_back(static_cast<int>(i));
+    return out;
+  }
+  for (const auto& name : options.estimate) {
+    const int idx = info.parameter_index(name);
+    if (idx < 0) throw FitError("fit: the model has no parameter " + name + " (asked to estimate it)");
+    out.push_back(idx);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
+FitSetup prepare_fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options) {
+  const ModelInfo& info = model.info();
+  FitSetup s;
+  s.prior = info.default_values();
+  for (const auto& [name, value] : options.values) {
+    const int idx = info.parameter_index(name);
+    if (idx < 0) throw FitError("fit: --set " + name + ": the model has no parameter " + name);
+    s.prior[idx] = value;
+  }
+  check_parameter_values(model, s.prior, options.values.empty() ? "the model's values" : "the values set");
+  check_data_set_values(model, s.prior, data);
+  check_measured_signals(model, data);
+  s.candidates = candidate_parameters(info, options);
+  s.transforms.resize(info.parameters.size());
+  for (int i : s.candidates) {
+    try {
+      s.transforms[static_cast<std::size_t>(i)] =
+          make_parameter_transform(info.parameters[static_cast<std::size_t>(i)], s.prior[i]);
+    } catch (const std::invalid_argument& e) {
+      throw FitError(std::string("fit: ") + e.what());
+    }
+  }
+  return s;
+}
+
+std::vector<Eigen::VectorXd> start_points(const Eigen::VectorXd& theta0, const std::vector<int>& free,
+                                          const std::vector<ParameterTransform>& transforms, const FitOptions& options,
+                                          const std::optional<Eigen::VectorXd>& second) {
+  const int starts = std::max(1, options.starts);
+  std::vector<Eigen::VectorXd> out;
+  StartSampler sampler(options.seed);
+  const double half_width = std::log(std::max(options.spread, 1.0));
+  for (int s = 0; s < starts; ++s) {
+    Eigen::VectorXd theta = theta0;
+    if (s == 1 && second) {
+      out.push_back(*second);
+      continue;
+    }
+    if (s > 0)
+      for (std::size_t j = 0; j < free.size(); ++j) {
+        const double u = sampler.symmetric_unit();
+        const ParameterTransform& t = transforms[static_cast<std::size_t>(free[j])];
+        if (t.kind == BoundKind::None)
+          theta[static_cast<Eigen::Index>(j)] *= std::exp(half_width * u);  // multiplicative around the prior
+        else
+          theta[static_cast<Eigen::Index>(j)] += half_width * u;
+      }
+    out.push_back(theta);
+  }
+  return out;
+}
+
+}  // namespace mbgen::estimation
