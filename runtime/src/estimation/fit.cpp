@@ -35,16 +35,10 @@ class Estimator {
       : problem_(problem), prior_(prior), transforms_(std::move(transforms)) {}
 
   Eigen::VectorXd full_values(const std::vector<int>& free, const Eigen::VectorXd& theta) const {
-    Eigen::VectorXd full = prior_;
-    for (std::size_t j = 0; j < free.size(); ++j)
-      full[free[j]] = transforms_[static_cast<std::size_t>(free[j])].to_physical(theta[static_cast<Eigen::Index>(j)]);
-    return full;
+    return estimation::physical_values(prior_, free, transforms_, theta);
   }
   Eigen::VectorXd internal(const std::vector<int>& free, const Eigen::VectorXd& full) const {
-    Eigen::VectorXd theta(static_cast<Eigen::Index>(free.size()));
-    for (std::size_t j = 0; j < free.size(); ++j)
-      theta[static_cast<Eigen::Index>(j)] = transforms_[static_cast<std::size_t>(free[j])].to_internal(full[free[j]]);
-    return theta;
+    return estimation::internal_values(free, transforms_, full);
   }
 
   ResidualFunction function(const std::vector<int>& free, ResidualKind kind) const {

@@ -55,6 +55,22 @@ FitSetup prepare_fit(const Model& model, const std::vector<DataSet>& data, const
   return s;
 }
 
+Eigen::VectorXd physical_values(const Eigen::VectorXd& base, const std::vector<int>& free,
+                                const std::vector<ParameterTransform>& transforms, const Eigen::VectorXd& theta) {
+  Eigen::VectorXd full = base;
+  for (std::size_t j = 0; j < free.size(); ++j)
+    full[free[j]] = transforms[static_cast<std::size_t>(free[j])].to_physical(theta[static_cast<Eigen::Index>(j)]);
+  return full;
+}
+
+Eigen::VectorXd internal_values(const std::vector<int>& free, const std::vector<ParameterTransform>& transforms,
+                                const Eigen::VectorXd& values) {
+  Eigen::VectorXd theta(static_cast<Eigen::Index>(free.size()));
+  for (std::size_t j = 0; j < free.size(); ++j)
+    theta[static_cast<Eigen::Index>(j)] = transforms[static_cast<std::size_t>(free[j])].to_internal(values[free[j]]);
+  return theta;
+}
+
 std::vector<Eigen::VectorXd> start_points(const Eigen::VectorXd& theta0, const std::vector<int>& free,
                                           const std::vector<ParameterTransform>& transforms, const FitOptions& options,
                                           const std::optional<Eigen::VectorXd>& second) {

@@ -27,6 +27,12 @@ struct FitSetup {
 
 FitSetup prepare_fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options);
 
+// The full parameter vector with the `free` ones at internal coordinates theta (the others as in `base`), and back.
+Eigen::VectorXd physical_values(const Eigen::VectorXd& base, const std::vector<int>& free,
+                                const std::vector<ParameterTransform>& transforms, const Eigen::VectorXd& theta);
+Eigen::VectorXd internal_values(const std::vector<int>& free, const std::vector<ParameterTransform>& transforms,
+                                const Eigen::VectorXd& values);
+
 std::vector<Eigen::VectorXd> start_points(const Eigen::VectorXd& theta0, const std::vector<int>& free,
                                           const std::vector<ParameterTransform>& transforms, const FitOptions& options,
                                           const std::optional<Eigen::VectorXd>& second = std::nullopt);

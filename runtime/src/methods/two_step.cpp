@@ -46,16 +46,10 @@ class Search {
   Search(const CoefficientProblem& problem, const Eigen::VectorXd& prior, const std::vector<ParameterTransform>& t)
       : problem_(problem), prior_(prior), transforms_(t) {}
   Eigen::VectorXd full(const std::vector<int>& free, const Eigen::VectorXd& theta) const {
-    Eigen::VectorXd v = prior_;
-    for (std::size_t j = 0; j < free.size(); ++j)
-      v[free[j]] = transforms_[static_cast<std::size_t>(free[j])].to_physical(theta[static_cast<Eigen::Index>(j)]);
-    return v;
+    return estimation::physical_values(prior_, free, transforms_, theta);
   }
   Eigen::VectorXd internal(const std::vector<int>& free, const Eigen::VectorXd& v) const {
-    Eigen::VectorXd theta(static_cast<Eigen::Index>(free.size()));
-    for (std::size_t j = 0; j < free.size(); ++j)
-      theta[static_cast<Eigen::Index>(j)] = transforms_[static_cast<std::size_t>(free[j])].to_internal(v[free[j]]);
-    return theta;
+    return estimation::internal_values(free, transforms_, v);
   }
   estimation::ResidualFunction function(const std::vector<int>& free) const {
     return [this, free](const Eigen::VectorXd& theta, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
