@@ -29,6 +29,9 @@ BOUNDS = {
     ("spindle", "time"): {"k_fx": 0.10, "k_rx": 0.10, "c_fx": 0.10, "c_rx": 0.10, "k_hbx": 0.3, "k_hby": 0.3,
                           "k_hbz": 0.3, "c_hbx": 4.0, "c_hby": 4.0, "c_hbz": 4.0},
 }
+# Step one's order (the model's: mdof2 4, the spindle's x block 10): at 40 dB the spindle's fifth x-block mode
+# (~1060 Hz) is below the noise, so the data show four modes and the fit has eight poles.
+ORDER = {"mdof2": 4, "spindle": 8}
 # Where the propagated std is honest (mdof2 from FRFs: the model's full order), each error within this many stds.
 STD_COVERAGE = {("mdof2", "frf"): 4.0}
 # Two-step's RMS relative error over one step's on the same record at least this.
@@ -72,6 +75,17 @@ def main():
     for key in ("step_one", "step_two", "zero_pole", "checks"):
         if key not in result.get("method_details", {}):
             failures.append("method_details lacks " + key)
+    details = result["method_details"]
+    one = details["step_one"][0]
+    if one["order"] != ORDER[example]:
+        failures.append("step one's order %d, expected %d" % (one["order"], ORDER[example]))
+    if kind == "time":
+        arx = one["arx"]
+        if arx["selected_order"] < one["model_order"] or sum(p["kept"] for p in arx["poles"]) != ORDER[example] // 2:
+            failures.append("ARX order %d with %d kept poles" % (arx["selected_order"], sum(p["kept"] for p in arx["poles"])))
+    # Every identified pole of mdof2 has its model counterpart at the estimate; the checks say so.
+    if example == "mdof2" and not details["checks"]["verdict"].startswith("valid"):
+        failures.append("checks: " + details["checks"]["verdict"])
     err = errors(result, truth)
     bounds = BOUNDS[(example, kind)]
     print("two-step %s %s draw %s (%.1f s): %s" % (example, kind, draw, seconds, result["method_details"]["checks"]["verdict"]))
