@@ -337,6 +337,11 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
             cov(static_cast<Eigen::Index>(interior[a]), static_cast<Eigen::Index>(interior[b]));
     const Eigen::VectorXd sd = result.covariance.diagonal().cwiseMax(0).cwiseSqrt();
     result.correlation = result.covariance.cwiseQuotient(sd * sd.transpose());
+  } else if (!interior.empty()) {
+    // No covariance (time records): the matrices keep the size of `estimated`, as fit.hpp has them, and say unknown.
+    const Eigen::Index k = static_cast<Eigen::Index>(interior.size());
+    result.covariance = Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::quiet_NaN());
+    result.correlation = result.covariance;
   }
   result.values = values;
   result.singular_values = analyse_identifiability(scaled_jacobian(candidates, values), id_options).singular_values;

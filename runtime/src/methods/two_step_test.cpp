@@ -114,6 +114,10 @@ TEST_CASE("two-step from a noiseless record recovers the parameters", "[two-step
   CHECK(kept == 2);
   // No covariance from ARX: std null, and the reason is given.
   for (const ParameterEstimate& e : r.parameters) CHECK(std::isnan(e.std));
+  // The covariance keeps the size of `estimated` (reports index it so), all unknown.
+  REQUIRE(r.covariance.rows() == static_cast<Eigen::Index>(r.estimated.size()));
+  CHECK(r.correlation.rows() == static_cast<Eigen::Index>(r.estimated.size()));
+  CHECK(r.covariance.array().isNaN().all());
   CHECK(details(r, "step_two")["uncertainty"].get<std::string>().rfind("std null", 0) == 0);
 }
 
