@@ -198,7 +198,7 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
                    std::to_string(free.size()) + " parameters (the thesis: add a transfer function or lump parameters)");
   const bool square = n_eq == static_cast<Eigen::Index>(free.size());
   if (two_step.solver == "newton" && !square)
-    throw FitError("two-step: --solver newton needs as many compared coefficients as parameters; there are " +
+    throw FitError("two-step: the newton solver needs as many compared coefficients as parameters; there are " +
                    std::to_string(n_eq) + " for " + std::to_string(free.size()));
 
   // Starting points: the prior, then log-uniform within +-log(spread) of it in internal coordinates (as fit()).
