@@ -6,6 +6,7 @@
 #include <mbgen/methods/ekf.hpp>
 #include <mbgen/methods/hybrid.hpp>
 #include <mbgen/methods/modal.hpp>
+#include <mbgen/methods/two_step.hpp>
 
 #include <cstdio>
 #include <iostream>
@@ -58,10 +59,10 @@ int run_fit(int argc, char** argv) {
   FitOptions options;
   app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable, fitted jointly")->required();
-  app.add_option("--method", method, "auto (by the data), frf-output-error, time-output-error, direct, hybrid, ekf, "
-                 "arx-two-stage or modal (docs/methods.md)")
-      ->check(CLI::IsMember(
-          {"auto", "frf-output-error", "time-output-error", "direct", "hybrid", "ekf", "arx-two-stage", "modal"}));
+  app.add_option("--method", method, "auto (by the data), frf-output-error, time-output-error, direct, two-step, "
+                 "hybrid, ekf, arx-two-stage or modal (docs/methods.md)")
+      ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "direct", "two-step", "hybrid", "ekf",
+                             "arx-two-stage", "modal"}));
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
@@ -98,6 +99,7 @@ int run_fit(int argc, char** argv) {
     };
     FitResult result;
     if (method == "direct") result = fit_direct(*evaluator, data, options);
+    else if (method == "two-step") result = fit_two_step(*evaluator, data, options);
     else if (method == "hybrid") result = fit_hybrid(*evaluator, data, options);
     else if (method == "ekf") result = fit_ekf(*evaluator, data, options, ekf);
     else if (method == "arx-two-stage") result = fit_arx_two_stage(*evaluator, data, options);

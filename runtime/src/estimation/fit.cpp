@@ -1,10 +1,9 @@
 #include "mbgen/fit.hpp"
 
-#include "fit_inputs.hpp"
+#include "fit_setup.hpp"
 #include "levenberg_marquardt.hpp"
 #include "multistart.hpp"
 #include "output_error.hpp"
-#include "value_checks.hpp"
 #include "mbgen/spectral_companion.hpp"
 
 #include "mbgen/identifiability.hpp"
@@ -36,16 +35,10 @@ class Estimator {
       : problem_(problem), prior_(prior), transforms_(std::move(transforms)) {}
 
   Eigen::VectorXd full_values(const std::vector<int>& free, const Eigen::VectorXd& theta) const {
-    Eigen::VectorXd full = prior_;
-    for (std::size_t j = 0; j < free.size(); ++j)
-      full[free[j]] = transforms_[static_cast<std::size_t>(free[j])].to_physical(theta[static_cast<Eigen::Index>(j)]);
-    return full;
+    return estimation::physical_values(prior_, free, transforms_, theta);
   }
   Eigen::VectorXd internal(const std::vector<int>& free, const Eigen::VectorXd& full) const {
-    Eigen::VectorXd theta(static_cast<Eigen::Index>(free.size()));
-    for (std::size_t j = 0; j < free.size(); ++j)
-      theta[static_cast<Eigen::Index>(j)] = transforms_[static_cast<std::size_t>(free[j])].to_internal(full[free[j]]);
-    return theta;
+    return estimation::internal_values(free, transforms_, full);
   }
 
   ResidualFunction function(const std::vector<int>& free, ResidualKind kind) const {
@@ -97,16 +90,10 @@ std::vector<int> select(const std::vector<int>& cols, const std::vector<bool>& k
 
 FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options) {
   const ModelInfo& info = model.info();
-  const Eigen::VectorXd prior = estimation::checked_prior(model, data, options);
-  const std::vector<int> candidates = estimation::candidate_parameters(info, options);
-  std::vector<ParameterTransform> transforms(info.parameters.size());
-  for (int i : candidates) {
-    try {
-      transforms[static_cast<std::size_t>(i)] = make_parameter_transform(info.parameters[static_cast<std::size_t>(i)], prior[i]);
-    } catch (const std::invalid_argument& e) {
-      throw FitError(std::string("fit: ") + e.what());
-    }
-  }
+  const estimation::FitSetup setup = estimation::prepare_fit(model, data, options);
+  const Eigen::VectorXd& prior = setup.prior;
+  const std::vector<int>& candidates = setup.candidates;
+  const std::vector<ParameterTransform>& transforms = setup.transforms;
   const OutputErrorProblem problem(model, data, options.frf_weighting);
   const Estimator estimator(problem, prior, transforms);
   IdentifiabilityOptions id_options;
@@ -154,37 +141,17 @@ FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOpt
     };
   };
 
-  // Starting points in internal coordinates: the prior, then uniform within +-log(spread) of it.
+  // Starting points in internal coordinates: the prior, then uniform within +-log(spread) of it (fit_setup.hpp).
   const int starts = std::max(1, options.starts);
-  std::vector<Eigen::VectorXd> start_points;
   Eigen::VectorXd chosen_start = prior;
   for (const auto& [name, value] : options.also_start_at) {
     const int idx = info.parameter_index(name);
     if (idx < 0) throw FitError("fit: a start value for " + name + ": the model has no parameter " + name);
     chosen_start[idx] = value;
   }
-  {
-    const Eigen::VectorXd theta0 = estimator.internal(free, prior);
-    estimation::StartSampler sampler(options.seed);
-    const double half_width = std::log(std::max(options.spread, 1.0));
-    for (int s = 0; s < starts; ++s) {
-      Eigen::VectorXd theta = theta0;
-      if (s == 1 && !options.also_start_at.empty()) {
-        start_points.push_back(estimator.internal(free, chosen_start));
-        continue;
-      }
-      if (s > 0)
-        for (std::size_t j = 0; j < free.size(); ++j) {
-          const double u = sampler.symmetric_unit();
-          const ParameterTransform& t = transforms[static_cast<std::size_t>(free[j])];
-          if (t.kind == BoundKind::None)
-            theta[static_cast<Eigen::Index>(j)] *= std::exp(half_width * u);  // multiplicative around the prior
-          else
-            theta[static_cast<Eigen::Index>(j)] += half_width * u;
-        }
-      start_points.push_back(theta);
-    }
-  }
+  const std::vector<Eigen::VectorXd> start_points = estimation::start_points(
+      estimator.internal(free, prior), free, transforms, options,
+      options.also_start_at.empty() ? std::nullopt : std::optional<Eigen::VectorXd>(estimator.internal(free, chosen_start)));
   const ResidualFunction weighted = estimator.function(free, ResidualKind::Weighted);
   LmOptions search_lm = lm;
   search_lm.cost_tolerance = std::max(lm.cost_tolerance, options.search_cost_tolerance);

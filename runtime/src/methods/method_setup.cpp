@@ -1,6 +1,7 @@
 #include "method_setup.hpp"
 
 #include "method_result.hpp"
+#include "../estimation/fit_setup.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,24 +11,17 @@ namespace mbgen::methods {
 
 MethodSetup method_setup(const Model& model, const std::vector<DataSet>& data, const FitOptions& options,
                          const std::string& method) {
-  const ModelInfo& info = model.info();
   if (data.empty()) throw FitError("fit: no data sets given");
   for (const DataSet& d : data)
     if (d.is_frf())
       throw FitError(d.file() + ": error: --method " + method +
                      " needs time records (sampled inputs and outputs), but this file holds FRFs");
+  estimation::FitSetup setup = estimation::prepare_fit(model, data, options);
+  if (setup.candidates.empty()) throw FitError("fit: --method " + method + ": the model has no parameter to estimate");
   MethodSetup s;
-  s.prior = checked_prior(model, data, options);
-  s.estimated = candidate_parameters(info, options);
-  if (s.estimated.empty()) throw FitError("fit: --method " + method + ": the model has no parameter to estimate");
-  s.transforms.resize(info.parameters.size());
-  for (int i : s.estimated) {
-    try {
-      s.transforms[static_cast<std::size_t>(i)] = make_parameter_transform(info.parameters[static_cast<std::size_t>(i)], s.prior[i]);
-    } catch (const std::invalid_argument& e) {
-      throw FitError(std::string("fit: ") + e.what());
-    }
-  }
+  s.prior = std::move(setup.prior);
+  s.estimated = std::move(setup.candidates);
+  s.transforms = std::move(setup.transforms);
   return s;
 }
 

@@ -1,0 +1,42 @@
+// The thesis's "two step" method (Nickel 1999, Sec. 3.6.2, 4.5, 4.7, 5.3.4.1; docs/methods.md#two-step):
+//
+//   step one: a black-box continuous-time transfer function per input from the data, of the model's order
+//             (2 nb poles for the nb coordinates of the input's excited block): from FRFs a rational fit with a
+//             common denominator (Sanathanan-Koerner, then maximum likelihood); from a time record an ARX model,
+//             its order chosen by AIC, BIC or FPE, its poles pruned by the thesis's rules to the model's order and
+//             mapped to continuous time under the record's input hold;
+//   step two: the physical parameters from the identified coefficients and the model's (transfer_function.hpp):
+//             (c) minimisation of the normalised coefficient mismatch Q_TF = sum ((L_i(p) - L^_i) / L^_i)^2 over all
+//             channels (Eq. 3.99), Levenberg-Marquardt within the parameters' bounds from a deterministic
+//             multi-start; (b) where there are as many compared coefficients as parameters, Newton's method on the
+//             coefficient equations L(p) = L^ (Eq. 3.92) from the same starts.
+//
+// The estimate's uncertainty propagates step one's coefficient covariance through step two's linearisation
+// (sandwich); a step one without a covariance (ARX) gives std null. method_details holds both steps, the zero-pole
+// comparison of identified and model transfer functions at the estimate and the validation checks (Sec. 4.7).
+#pragma once
+
+#include "mbgen/fit.hpp"
+
+#include <string>
+
+namespace mbgen {
+
+struct TwoStepOptions {
+  // Step two: "auto" (Newton where the system is square and it finds an admissible solution, else minimisation),
+  // "minimisation" or "newton" (square systems only; FitError otherwise).
+  std::string solver = "auto";
+  // Step two's residuals: "normalised" (the thesis's (L(p) - L^) / |L^|, Eq. 3.98) or "covariance" (those whitened by
+  // step one's coefficient covariance: the Markov estimate; FRF data only, ARX gives no covariance).
+  std::string weighting = "normalised";
+  // Time records: the ARX order criterion ("aic", "bic", "fpe") and the highest order tried.
+  std::string criterion = "aic";
+  int max_arx_order = 40;
+};
+
+// Throws FitError for data the method cannot use (a record driving several inputs, too short a record, fewer modes
+// in the data than the model's order needs, an output whose model transfer function is zero) and bad options.
+FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, const FitOptions& options = {},
+                       const TwoStepOptions& two_step = {});
+
+}  // namespace mbgen

@@ -1,0 +1,36 @@
+// Real polynomials in ascending powers, for the two-step method's transfer functions. Internal header.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <complex>
+#include <vector>
+
+namespace mbgen::methods {
+
+// p(s) = sum_k c[k] s^k (Horner).
+std::complex<double> poly_eval(const Eigen::VectorXd& c, std::complex<double> s);
+std::complex<double> poly_eval(const Eigen::VectorXcd& c, std::complex<double> s);
+
+// Roots of sum_k c[k] s^k, leading (highest) zero coefficients dropped. The variable is first scaled by
+// |c0 / cn|^(1/n), so that the companion matrix's entries are of similar size (mechanical coefficients span
+// 1e0 .. 1e35); eigenvalues of the companion matrix (Eigen's real Schur). Empty for a constant.
+std::vector<std::complex<double>> poly_roots(const Eigen::VectorXd& c);
+
+// Coefficients (ascending, complex) of prod_k (s - r_k); leading coefficient 1.
+Eigen::VectorXcd poly_from_roots(const std::vector<std::complex<double>>& roots);
+
+// Modal form to coefficients: for vibration modes lambda_k (one per conjugate pair), the monic denominator
+// D(s) = prod_k (s - lambda_k)(s - conj lambda_k) (2m + 1 entries) and the 2m x 2m matrix T whose columns map
+// (Re r_k, Im r_k) to the numerator coefficients (ascending) of sum_k r_k / (s - lambda_k) + conj: the pair's
+// numerator is 2 Re(r_k P_k(s)), P_k = D(s) / (s - lambda_k).
+struct ModalPolynomials {
+  Eigen::VectorXd denominator;
+  Eigen::MatrixXd residue_map;
+};
+ModalPolynomials modal_polynomials(const std::vector<std::complex<double>>& modes);
+
+// Highest index with a non-zero entry, or -1.
+int poly_degree(const Eigen::VectorXd& c);
+
+}  // namespace mbgen::methods

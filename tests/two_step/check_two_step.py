@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""End-to-end test of `mbgen fit --method two-step` on data from the independent generator scripts/truthgen.
+
+    check_two_step.py MBGEN TRUTHGEN WORKDIR EXAMPLE KIND DRAW [--versus-one-step]
+
+Makes a data set of EXAMPLE (mdof2 or spindle; case nominal, 40 dB SNR) of KIND (frf or time) whose truth is drawn
+from DRAW, fits it by two-step and checks each identifiable parameter's relative error against the bound below (what
+the method reaches; docs/methods.md#two-step). With --versus-one-step (time records), also fits the same record by
+time-output-error and requires two-step's RMS relative error to exceed one step's by the factor below (the thesis's
+Ch. 5 finding). The truth JSON is read only to score the result. Exit 1 on failure.
+"""
+import json
+import os
+import subprocess
+import sys
+import time
+
+# Bounds on |relative error| by parameter, for the draws the tests use (1 and 2; measured values in
+# docs/methods.md#two-step, with draws 3 and 4 beside them). The mass-2 group of mdof2 (m2, k22, k12) and the
+# spindle's mounts are what the coefficient comparison determines worst.
+MDOF2_MASS2 = ("m2", "k22", "k12")
+SPINDLE_BEARINGS = ("k_fx", "k_rx", "c_fx", "c_rx")
+BOUNDS = {
+    ("mdof2", "frf"): dict([(n, 0.02) for n in ("m1", "k11", "c11")] + [("c22", 0.05)] +
+                           [(n, 0.15) for n in MDOF2_MASS2]),
+    ("mdof2", "time"): dict([("m1", 0.03), ("k11", 0.10), ("c11", 0.10), ("c22", 1.0)] + [(n, 1.0) for n in MDOF2_MASS2]),
+    ("spindle", "frf"): {"k_fx": 0.05, "k_rx": 0.05, "c_fx": 0.10, "c_rx": 0.10, "k_hbx": 0.5, "k_hby": 0.5,
+                         "k_hbz": 0.5, "c_hbx": 1.5, "c_hby": 1.5, "c_hbz": 1.5},
+    ("spindle", "time"): {"k_fx": 0.10, "k_rx": 0.10, "c_fx": 0.10, "c_rx": 0.10, "k_hbx": 0.3, "k_hby": 0.3,
+                          "k_hbz": 0.3, "c_hbx": 4.0, "c_hby": 4.0, "c_hbz": 4.0},
+}
+# Step one's order (the model's: mdof2 4, the spindle's x block 10): at 40 dB the spindle's fifth x-block mode
+# (~1060 Hz) is below the noise, so the data show four modes and the fit has eight poles.
+ORDER = {"mdof2": 4, "spindle": 8}
+# Where the propagated std is honest (mdof2 from FRFs: the model's full order), each error within this many stds.
+STD_COVERAGE = {("mdof2", "frf"): 4.0}
+# Two-step's RMS relative error over one step's on the same record at least this.
+VERSUS_FACTOR = 5.0
+
+
+def run(cmd):
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        sys.exit("command failed (%d): %s\n%s%s" % (p.returncode, " ".join(cmd), p.stdout, p.stderr))
+    return p.stdout
+
+
+def errors(result, truth):
+    out = {}
+    for name, p in result["parameters"].items():
+        if p["identifiable"]:
+            out[name] = (p["value"] - truth[name]) / truth[name]
+    return out
+
+
+def main():
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    versus = "--versus-one-step" in sys.argv
+    mbgen, truthgen, work, example, kind, draw = args
+    os.makedirs(work, exist_ok=True)
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    model = os.path.join(root, "examples", example, example + ".mdl")
+    data = os.path.join(work, "%s_%s_%s.csv" % (example, kind, draw))
+    run([sys.executable, truthgen, "--example", example, "--case", "nominal", "--kind", kind, "--seed",
+         str(100 + int(draw)), "--draw", draw, "-o", data])
+    truth = json.load(open(data[:-4] + ".truth.json"))["parameters"]
+    out = os.path.join(work, "two_step_%s_%s_%s.json" % (example, kind, draw))
+    t0 = time.time()
+    run([mbgen, "fit", model, "--data", data, "--method", "two-step", "--json", out])
+    seconds = time.time() - t0
+    result = json.load(open(out))
+    failures = []
+    if result["method"] != "two-step":
+        failures.append("method is %s" % result["method"])
+    details = result.get("method_details", {}).get("two_step", {})
+    for key in ("step_one", "step_two", "zero_pole", "checks"):
+        if key not in details:
+            failures.append("method_details.two_step lacks " + key)
+    one = details["step_one"][0]
+    if one["order"] != ORDER[example]:
+        failures.append("step one's order %d, expected %d" % (one["order"], ORDER[example]))
+    if kind == "time":
+        arx = one["arx"]
+        if arx["selected_order"] < one["model_order"] or sum(p["kept"] for p in arx["poles"]) != ORDER[example] // 2:
+            failures.append("ARX order %d with %d kept poles" % (arx["selected_order"], sum(p["kept"] for p in arx["poles"])))
+    # Every identified pole of mdof2 has its model counterpart at the estimate; the checks say so.
+    if example == "mdof2" and not details["checks"]["verdict"].startswith("valid"):
+        failures.append("checks: " + details["checks"]["verdict"])
+    err = errors(result, truth)
+    bounds = BOUNDS[(example, kind)]
+    print("two-step %s %s draw %s (%.1f s): %s" % (example, kind, draw, seconds, details["checks"]["verdict"]))
+    if set(err) != set(bounds):
+        failures.append("identifiable parameters %s, expected %s" % (sorted(err), sorted(bounds)))
+    for name, e in err.items():
+        bound = bounds.get(name, 0)
+        std = result["parameters"][name]["std"]
+        print("  %-6s error %+8.2f %%  (bound %g %%)  std %s" % (name, 100 * e, 100 * bound,
+                                                                 "%.2f %%" % (100 * std / truth[name]) if std else "null"))
+        if not abs(e) <= bound:
+            failures.append("%s: relative error %.4f beyond %.4f" % (name, e, bound))
+        coverage = STD_COVERAGE.get((example, kind))
+        if coverage and not (std and abs(e) * truth[name] <= coverage * std):
+            failures.append("%s: error %.4g beyond %g std (%s)" % (name, e * truth[name], coverage, std))
+    rms_two = (sum(e * e for e in err.values()) / len(err)) ** 0.5
+    print("  RMS relative error %.4f, nrmse %.4g" % (rms_two, result["fit"]["nrmse"]))
+    if versus:
+        one_out = os.path.join(work, "one_step_%s_%s_%s.json" % (example, kind, draw))
+        run([mbgen, "fit", model, "--data", data, "--method", "time-output-error", "--json", one_out])
+        one = json.load(open(one_out))
+        err_one = errors(one, truth)
+        common = [n for n in err if n in err_one]
+        rms_one = (sum(err_one[n] ** 2 for n in common) / len(common)) ** 0.5
+        rms_two = (sum(err[n] ** 2 for n in common) / len(common)) ** 0.5
+        print("  one step (time-output-error) on the same record: RMS relative error %.4f; two-step / one step = %.1f"
+              % (rms_one, rms_two / rms_one))
+        if not rms_two > VERSUS_FACTOR * rms_one:
+            failures.append("two-step (%.4f) is not poorer than %g x one step (%.4f)" % (rms_two, VERSUS_FACTOR, rms_one))
+    for f in failures:
+        print("FAIL: " + f)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
