@@ -8,6 +8,7 @@
 #include <mbgen/methods/modal.hpp>
 #include <mbgen/methods/two_step.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -32,7 +33,10 @@ std::string summary(const FitResult& r) {
     const std::string note = !p.at_bound.empty() ? "at its " + p.at_bound + " bound: the data pull it beyond; no std"
                              : !p.identifiable ? "not identifiable: kept at the prior"
                                                : "";
-    std::snprintf(line, sizeof line, "%-12s %14.6g %14.6g %12.3g  %s\n", p.name.c_str(), p.prior, p.value, p.std,
+    const bool has_std = std::find(r.estimated.begin(), r.estimated.end(), p.name) != r.estimated.end();
+    char std_text[32] = "-";  // the method gives no std for it (docs/methods.md)
+    if (has_std) std::snprintf(std_text, sizeof std_text, "%.3g", p.std);
+    std::snprintf(line, sizeof line, "%-12s %14.6g %14.6g %12s  %s\n", p.name.c_str(), p.prior, p.value, std_text,
                   note.c_str());
     out += line;
   }

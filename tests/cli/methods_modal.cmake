@@ -22,6 +22,11 @@ string(JSON modes LENGTH "${json}" method_details modal reference_modes)
 if(NOT method STREQUAL "modal" OR NOT subproblems EQUAL 2 OR NOT modes EQUAL 2)
   message(SEND_ERROR "modal: method ${method}, ${subproblems} subproblems, ${modes} reference modes")
 endif()
+# The method gives no standard deviations: they are null in the JSON (once written as 0, a false certainty).
+string(JSON k11_std TYPE "${json}" parameters k11 std)
+if(NOT k11_std STREQUAL "NULL")
+  message(SEND_ERROR "modal: parameters.k11.std is ${k11_std}, expected null (the method gives no std)")
+endif()
 
 # The spindle, its x FRFs, the damping known (8 damping parameters, 4 modes in the data): the y/z bearing stiffnesses
 # move none of the four x modes (Sobol total index < 0.01) and are kept at their priors, not estimated; the five

@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <ostream>
 
@@ -25,7 +26,10 @@ std::string fit_result_json(const FitResult& r) {
   for (const auto& e : r.parameters) {
     nlohmann::json p;
     p["value"] = number(e.value);
-    p["std"] = e.identifiable ? number(e.std) : nlohmann::json(nullptr);
+    // A std only where the estimate has a covariance: identifiable, not at a bound, and a method that gives one
+    // (arx-two-stage, modal and two-step from records give none: their `estimated` list is empty or lacks it).
+    const bool has_std = e.identifiable && std::find(r.estimated.begin(), r.estimated.end(), e.name) != r.estimated.end();
+    p["std"] = has_std ? number(e.std) : nlohmann::json(nullptr);
     p["identifiable"] = e.identifiable;
     p["prior"] = number(e.prior);
     p["unit"] = e.unit;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <complex>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -79,9 +80,12 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   md << ".\n\n## Parameters\n\n| parameter | prior | estimate | std | relative std | identifiable | unit |\n"
      << "|---|---|---|---|---|---|---|\n";
   for (const auto& e : result.parameters) {
+    // A std only where the method gives one (as in the JSON: the parameter has a covariance row).
+    const bool has_std = e.identifiable &&
+                         std::find(result.estimated.begin(), result.estimated.end(), e.name) != result.estimated.end();
     md << "| " << e.name << " | " << report_number(e.prior) << " | " << report_number(e.value) << " | "
-       << (e.identifiable ? report_number(e.std, 3) : "—") << " | "
-       << (e.identifiable && e.value != 0 ? report_number(100 * e.std / std::abs(e.value), 3) + " %" : "—") << " | "
+       << (has_std ? report_number(e.std, 3) : "—") << " | "
+       << (has_std && e.value != 0 ? report_number(100 * e.std / std::abs(e.value), 3) + " %" : "—") << " | "
        << (e.identifiable        ? "yes"
            : e.at_bound.empty() ? "**no** (kept at prior)"
                                 : "**no**: at its " + e.at_bound + " bound");

@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""Every `mbgen fit --method` on the same data sets, in one run: parameter errors against the truth and time.
+
+usage: bench/methods_table.py [MBGEN] [--draw N] [--work DIR]
+
+Data: scripts/truthgen (the independent numpy generator), 40 dB, the truth drawn with --draw (default 1): mdof2 FRFs
+(10-400 Hz), an mdof2 record (2 s at 4096 Hz), spindle FRFs (50-1200 Hz) and a spindle record (1 s at 8192 Hz).
+Each method runs on each data set it accepts; a refusal (exit 1) is shown with its reason. arx-two-stage needs the
+masses known: it runs on tests/ekf_arx/mdof2_known_mass.mdl with the masses set to the truth's, as weighed.
+Errors are over the parameters each run reports identifiable (relative, per cent): the largest and the RMS. Time is
+wall time of the whole command on this machine, so ratios between rows mean more than the seconds.
+Prints a Markdown table (bench/README.md keeps the last one).
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TRUTHGEN = os.path.join(ROOT, "scripts", "truthgen", "truthgen.py")
+METHODS = ["auto", "direct", "two-step", "hybrid", "ekf", "arx-two-stage", "modal"]
+DATA = [  # name, example, kind, extra truthgen arguments
+    ("mdof2 FRF", "mdof2", "frf", []),
+    ("mdof2 record", "mdof2", "time", ["--duration", "2"]),
+    ("spindle FRF", "spindle", "frf", []),
+    ("spindle record", "spindle", "time", ["--duration", "1"]),
+]
+
+
+def make_data(work, draw):
+    sets = []
+    for i, (name, example, kind, extra) in enumerate(DATA):
+        out = os.path.join(work, "%s_%s.csv" % (example, kind))
+        subprocess.run([sys.executable, TRUTHGEN, "--example", example, "--case", "nominal", "--kind", kind,
+                        "--seed", str(700 + i), "--draw", str(draw), "-o", out] + extra, check=True,
+                       stdout=subprocess.DEVNULL)
+        truth = json.load(open(out[:-4] + ".truth.json"))["parameters"]
+        sets.append((name, example, out, truth))
+    return sets
+
+
+def run_method(mbgen, method, example, data, truth, work):
+    model = os.path.join(ROOT, "examples", example, example + ".mdl")
+    extra = []
+    if method == "arx-two-stage" and example == "mdof2":
+        model = os.path.join(ROOT, "tests", "ekf_arx", "mdof2_known_mass.mdl")
+        extra = ["--set", "m1=%r" % truth["m1"], "--set", "m2=%r" % truth["m2"]]
+    out = os.path.join(work, "%s_%s_%s.json" % (os.path.basename(data)[:-4], method, example))
+    cmd = [mbgen, "fit", model, "--data", data, "--json", out] + extra
+    if method != "auto":
+        cmd += ["--method", method]
+    t0 = time.time()
+    p = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    seconds = time.time() - t0
+    if p.returncode != 0:
+        reason = p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "status %d" % p.returncode
+        return {"refused": reason[:90], "seconds": seconds}
+    r = json.load(open(out))
+    errors = {}
+    for name, e in r["parameters"].items():
+        if e["identifiable"] and name in truth and truth[name] != 0:
+            errors[name] = abs(e["value"] - truth[name]) / abs(truth[name])
+    return {"method": r["method"], "errors": errors, "seconds": seconds, "nrmse": r["fit"]["nrmse"],
+            "with_std": sum(1 for e in r["parameters"].values() if e["std"] is not None)}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("mbgen", nargs="?", default=os.path.join(ROOT, "build", "compiler", "mbgen"))
+    ap.add_argument("--draw", type=int, default=1)
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench_methods"))
+    a = ap.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    sets = make_data(a.work, a.draw)
+    print("| data | method | max error | RMS error | parameters (with std) | nrmse | time |")
+    print("|---|---|---|---|---|---|---|")
+    for name, example, data, truth in sets:
+        for method in METHODS:
+            r = run_method(a.mbgen, method, example, data, truth, a.work)
+            if "refused" in r:
+                print("| %s | %s | refused: %s | | | | %.1f s |" % (name, method, r["refused"].replace("|", "/"), r["seconds"]))
+                continue
+            e = list(r["errors"].values())
+            worst = max(e) if e else float("nan")
+            rms = math.sqrt(sum(x * x for x in e) / len(e)) if e else float("nan")
+            label = method if method != "auto" else r["method"]
+            print("| %s | %s | %.2f %% | %.2f %% | %d (%d) | %.4g | %.1f s |"
+                  % (name, label, 100 * worst, 100 * rms, len(e), r["with_std"], r["nrmse"], r["seconds"]))
+            sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
