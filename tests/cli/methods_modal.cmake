@@ -27,34 +27,3 @@ string(JSON k11_std TYPE "${json}" parameters k11 std)
 if(NOT k11_std STREQUAL "NULL")
   message(SEND_ERROR "modal: parameters.k11.std is ${k11_std}, expected null (the method gives no std)")
 endif()
-
-# The spindle, its x FRFs, the damping known (8 damping parameters, 4 modes in the data): the y/z bearing stiffnesses
-# move none of the four x modes (Sobol total index < 0.01) and are kept at their priors, not estimated; the five
-# others reach the truth within 2 % (measured at most 1.5 %, k_hby); the subproblem {k_fx, k_hbx} finds local optima
-# from some of its starts (measured 11 of 16 agree), reported with their costs.
-file(READ "${SOURCE}/examples/spindle/spindle.mdl" spindle)
-string(REGEX REPLACE "(param c_[a-z]+ *= *[0-9.e]+ *\"N s/m\") *estimate" "\\1 known" spindle "${spindle}")
-file(WRITE "${WORK}/spindle_known_damping.mdl" "${spindle}")
-expect_run(STATUS 0 STDOUT "modal\\)" ARGS fit spindle_known_damping.mdl --data ${SOURCE}/examples/spindle/data/frf_Fx.csv
-  --method modal --json s.json)
-execute_process(COMMAND python3 -c "
-import json, sys
-r = json.load(open('s.json'))
-t = json.load(open(sys.argv[1]))['parameters']
-d = r['method_details']['modal']
-bad = []
-if not r['fit']['converged']: bad.append('not converged: ' + r['fit']['stop_reason'])
-if sorted(d['partition']['not_influential']) != ['k_fy', 'k_fz', 'k_ry']: bad.append('not influential: %s' % d['partition']['not_influential'])
-for name, p in r['parameters'].items():
-    if name in ('k_fy', 'k_fz', 'k_ry'):
-        if p['value'] != p['prior'] or p['identifiable']: bad.append(name + ' moved or claimed identifiable')
-    elif abs(p['value'] / t[name] - 1) > 0.02: bad.append('%s = %g, truth %g' % (name, p['value'], t[name]))
-reps = d['repetitions']['last_sweep']
-if not any(s['agreeing'] < s['repetitions'] for s in reps): bad.append('no local optima reported')
-for s in reps:
-    if 2 * s['agreeing'] < s['repetitions'] or any(c <= 1.01 * s['best_cost'] for c in s['local_optimum_costs']): bad.append('spread %s' % s)
-print('; '.join(bad))
-" "${SOURCE}/examples/spindle/data/frf_Fx.truth.json" WORKING_DIRECTORY "${WORK}" OUTPUT_VARIABLE problems RESULT_VARIABLE status)
-if(NOT status EQUAL 0 OR NOT problems STREQUAL "\n")
-  message(SEND_ERROR "modal on the spindle: status ${status}: ${problems}")
-endif()

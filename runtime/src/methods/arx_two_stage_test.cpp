@@ -83,7 +83,8 @@ TEST_CASE("arx-two-stage on noise-free records: K and C of mdof2", "[arx-two-sta
   A(2, 2) = -v.c11 / v.m1;
   A(3, 3) = -v.c22 / v.m2;
   std::vector<std::complex<double>> poles;
-  for (const auto& l : Eigen::EigenSolver<Eigen::Matrix4d>(A).eigenvalues())
+  const Eigen::EigenSolver<Eigen::Matrix4d> solver(A);  // kept: eigenvalues() refers into it
+  for (const auto& l : solver.eigenvalues())
     if (l.imag() > 0) poles.push_back(l);
   std::sort(poles.begin(), poles.end(), [](auto a, auto b) { return std::abs(a) < std::abs(b); });
   const nlohmann::json j = nlohmann::json::parse(r.method_details.at("arx_two_stage"));
