@@ -3,9 +3,9 @@
 #include "../estimation/fit_setup.hpp"
 #include "../estimation/levenberg_marquardt.hpp"
 #include "../estimation/multistart.hpp"
-#include "../estimation/output_error.hpp"
 #include "../estimation/value_checks.hpp"
 #include "coefficient_problem.hpp"
+#include "method_result.hpp"
 #include "model_coefficients.hpp"
 #include "step_one.hpp"
 #include "validation.hpp"
@@ -369,32 +369,13 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
     result.parameters.push_back(e);
   }
 
-  // The data misfit at the estimate on the output-error scale, so that methods compare on the same data.
-  {
-    const estimation::OutputErrorProblem oe(model, data, options.frf_weighting);
-    Eigen::VectorXd r;
-    oe.evaluate(prior, {}, estimation::ResidualKind::Weighted, r, nullptr);
-    result.initial_cost = r.squaredNorm();
-    oe.evaluate(values, {}, estimation::ResidualKind::Weighted, r, nullptr);
-    const double n = double(oe.residual_count()), k = double(free.size());
-    result.residual_count = static_cast<long>(oe.residual_count());
-    result.cost = r.squaredNorm();
-    result.residual_variance = n > k ? result.cost / (n - k) : std::numeric_limits<double>::quiet_NaN();
-    result.nrmse = oe.measured_sum_squares() > 0 ? std::sqrt(result.cost / oe.measured_sum_squares())
-                                                 : std::numeric_limits<double>::quiet_NaN();
-    result.bic = n * std::log(std::max(result.cost, std::numeric_limits<double>::min()) / n) + k * std::log(n);
-  }
+  // The data misfit at the estimate on the output-error scale, and the modes, as every method reports them
+  // (method_result.hpp). No candidates: the singular values stay step two's (set above).
+  methods::score_by_output_error(model, data, options, {}, static_cast<int>(free.size()), result);
   result.iterations = best.iterations;
   result.converged = best.converged;
   result.stop_reason = best.stop_reason;
   result.cost_history = best.history;
-  ModelMatrices m;
-  model.evaluate(values, m);
-  try {
-    result.modes = modal_analysis(m.M, m.C, m.K);
-  } catch (const std::exception&) {
-    result.modes.clear();
-  }
 
   // ---- method_details ----
   nlohmann::json start_costs = nlohmann::json::array();
