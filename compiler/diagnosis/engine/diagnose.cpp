@@ -321,7 +321,9 @@ class Diagnoser {
         static_cast<double>(kept.size()) > options_.max_remaining_findings * static_cast<double>(before_findings)) {
       say(format("the extended model still shows %.0f of the nominal model's %.0f findings: it does not explain them; "
                  "not extending", static_cast<double>(kept.size()), static_cast<double>(before_findings)));
-      for (const Discrepancy* d : kept) say("  still: " + d->text);
+      for (const Discrepancy* d : kept)
+        say("  still: " + d->text +
+            format(" (band residual %.3g -> %.3g)", band_mean_z(result.nominal.channels, *d), band_mean_z(current.channels, *d)));
       result.selected.clear();
       current = result.nominal;
     }

@@ -22,8 +22,9 @@
 // white), with a and g by maximum likelihood. A part proportional to the response (force noise) is not modelled:
 // a model's error at a resonance also grows with the response, and a fit that took it for noise would hide exactly
 // the findings that matter (a frequency shift at every peak); tried with second differences, such a part also
-// absorbed the curvature of lightly damped peaks. With coherence, the coherence-based level is kept in shape and
-// only its scale is estimated the same way.
+// absorbed the curvature of lightly damped peaks. With coherence, the coherence-based level is used and only the
+// number of averages (which sets its scale and, where the coherence is low, its shape) is estimated
+// the same way.
 #pragma once
 
 #include "mbgen/frf_data.hpp"
@@ -44,8 +45,9 @@ struct FrfNoise {
 
   Eigen::VectorXd sigma;  // standard deviation of each measured complex value (total over real and imaginary part)
   Source source = Source::Scatter;
-  // Coherence: the factor applied to the coherence-based variance ((1 - coh^2)/coh^2 |H|^2, one average); about
-  // 1/n for an FRF averaged n times.
+  // Coherence: the number of averages n whose variance (1 - coh^2)/(n coh^2) |H|^2 matches the data's scatter
+  // (at least 1), and the factor then applied to it (1, or more where the scatter exceeds one average's).
+  double averages = 1;
   double coherence_scale = 1;
   // Scatter: the fitted model s^2 = additive exp(drift x).
   double additive = 0, drift = 0;

@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <random>
@@ -103,20 +104,56 @@ TEST_CASE("frf_noise: lightly damped peaks a few lines wide do not inflate the l
   }
 }
 
-TEST_CASE("frf_noise: the scale of a coherence-based level is corrected by the data's scatter", "[frf_noise]") {
-  // An FRF averaged 50 times: its variance is 1/50 of what the coherence says for one average.
+// An FRF averaged n times with the coherence of one average (the ordinary coherence does not fall with averaging),
+// noise of relative level `additive_rel`.
+struct Averaged {
+  Synthetic one;
+  mbgen::FrfChannel channel;
+  Eigen::VectorXd sigma;  // the true standard deviation of the averaged FRF per line
+};
+
+Averaged averaged(unsigned seed, double additive_rel, double n, int lines = 1200) {
+  Averaged a{make(seed, lines, 600.0 / lines, 0.02, additive_rel, 0.0, 0.0), {}, {}};
+  a.channel = channel(a.one.clean + (a.one.noisy - a.one.clean) / std::sqrt(n));
+  a.channel.coherence = Eigen::VectorXd(a.one.clean.size());
+  for (Eigen::Index k = 0; k < a.one.clean.size(); ++k)
+    (*a.channel.coherence)[k] = std::norm(a.one.clean[k]) / (std::norm(a.one.clean[k]) + std::norm(a.one.sigma[k]));
+  a.sigma = a.one.sigma / std::sqrt(n);
+  return a;
+}
+
+TEST_CASE("frf_noise: the number of averages behind a coherence-based level is found from the data's scatter",
+          "[frf_noise]") {
   for (unsigned seed = 41; seed <= 45; ++seed) {
-    const Synthetic one = make(seed, 1200, 0.5, 0.02, 0.01, 0.0, 0.0);
-    const Eigen::VectorXd sigma2 = one.sigma.cwiseAbs2();
-    Eigen::VectorXcd averaged = one.clean + (one.noisy - one.clean) / std::sqrt(50.0);
-    mbgen::FrfChannel c = channel(averaged);
-    c.coherence = Eigen::VectorXd(one.clean.size());
-    for (Eigen::Index k = 0; k < one.clean.size(); ++k)
-      (*c.coherence)[k] = std::norm(one.clean[k]) / (std::norm(one.clean[k]) + sigma2[k]);
-    const mbgen::FrfNoise noise = mbgen::frf_noise(one.f, c);
+    const Averaged a = averaged(seed, 0.01, 50);
+    const mbgen::FrfNoise noise = mbgen::frf_noise(a.one.f, a.channel);
     INFO("seed " << seed << ": " << noise.description());
     CHECK(noise.source == mbgen::FrfNoise::Source::Coherence);
-    CHECK(noise.coherence_scale == Approx(1.0 / 50).epsilon(0.12));
+    CHECK(noise.averages == Approx(50).epsilon(0.12));
+    CHECK(noise.coherence_scale == Approx(1).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("frf_noise: where the coherence is low, the level follows the averaged noise, not one average's shape",
+          "[frf_noise]") {
+  // Noise at 30 % of the RMS response: the coherence falls to ~0.1 between and above the modes. Read with one
+  // average's shape, (1 - coh^2) |h|^2 scaled to the lines of high coherence, the level there came out ~3 times too
+  // small at 50 averages.
+  for (unsigned seed = 51; seed <= 54; ++seed) {
+    for (double n : {1.0, 10.0, 50.0}) {
+      const Averaged a = averaged(seed, 0.3, n, 4800);
+      double lowest = 1;
+      for (Eigen::Index k = 0; k < a.channel.coherence->size(); ++k) lowest = std::min(lowest, (*a.channel.coherence)[k]);
+      REQUIRE(lowest < 0.15);
+      const mbgen::FrfNoise noise = mbgen::frf_noise(a.one.f, a.channel);
+      INFO("seed " << seed << ", " << n << " averages: " << noise.description());
+      CHECK(noise.averages == Approx(n).epsilon(0.25));
+      Eigen::VectorXd ratio = noise.sigma.cwiseQuotient(a.sigma);
+      std::sort(ratio.data(), ratio.data() + ratio.size());
+      CHECK(ratio[ratio.size() / 2] == Approx(1).epsilon(0.1));  // the median line
+      CHECK(ratio[ratio.size() / 20] > 0.6);                       // 5 % of lines lower (five-line power averages)
+      CHECK(ratio[ratio.size() - 1 - ratio.size() / 20] < 1.5);    // 5 % higher
+    }
   }
 }
 
