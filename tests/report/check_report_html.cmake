@@ -80,7 +80,8 @@ foreach(report fit diag)
   file(READ "${dir}/report.md" md)
 
   # Self-contained: no address, no external style or frame, every image source a data: URI.
-  foreach(pattern "http:" "https:" "file://" "src=\"file" "<link" "<iframe" "<object" "<embed" "<base" "url(" "@import" "<script")
+  foreach(pattern "http:" "https:" "file://" "src=\"file" "<link" "<iframe" "<object" "<embed" "<base" "url("
+                  "@import" "<script")
     string(FIND "${html}" "${pattern}" at)
     if(NOT at EQUAL -1)
       message(SEND_ERROR "${report}/report.html has `${pattern}`")
@@ -159,7 +160,8 @@ window.addEventListener('load', function () {
   elseif(NOT CMAKE_MATCH_1 EQUAL figures OR NOT CMAKE_MATCH_2 EQUAL figures OR NOT CMAKE_MATCH_3 EQUAL 0
          OR NOT CMAKE_MATCH_4 EQUAL tables)
     message(SEND_ERROR "${report}: in the browser ${CMAKE_MATCH_2} of ${CMAKE_MATCH_1} images drawn (expected "
-                       "${figures}), ${CMAKE_MATCH_3} requests (expected 0), ${CMAKE_MATCH_4} tables (expected ${tables})")
+                       "${figures}), ${CMAKE_MATCH_3} requests (expected 0), ${CMAKE_MATCH_4} tables "
+                       "(expected ${tables})")
   endif()
 
   # A screenshot for a human look (the test asserts only that the page rendered to a picture).
@@ -169,5 +171,6 @@ window.addEventListener('load', function () {
   if(png_size LESS 20000)
     message(SEND_ERROR "${report}: the screenshot is ${png_size} bytes: nothing rendered?")
   endif()
-  message(STATUS "${report}: ${headings} headings, ${tables} tables, ${figures} plots drawn; screenshot ${WORK}/${report}.png")
+  message(STATUS "${report}: ${headings} headings, ${tables} tables, ${figures} plots drawn; "
+                 "screenshot ${WORK}/${report}.png")
 endforeach()

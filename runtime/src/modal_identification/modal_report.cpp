@@ -39,13 +39,6 @@ std::string fixed(double x, int decimals) {
   return text;
 }
 
-// A gnuplot single-quoted string: quotes doubled.
-std::string gp_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
 double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
 
 int stability_code(Stability s) {
@@ -75,7 +68,7 @@ std::string stabilization_plot(const ModalReportInput& in, const std::string& yl
   std::ostringstream gp;
   gp << "set terminal svg size 1000,600 dynamic font 'sans,11'\nset output 'stabilization.svg'\n"
      << "set title 'Stabilization diagram' noenhanced\nset xlabel 'f [Hz]'\nset ylabel 'model order'\n"
-     << "set y2label " << gp_quote(ylabel) << " noenhanced\nset logscale y2\nset format y2 '%.0e'\nset y2tics\n"
+     << "set y2label " << gnuplot_string(ylabel) << " noenhanced\nset logscale y2\nset format y2 '%.0e'\nset y2tics\n"
      << "set ytics nomirror\nset xrange [" << in.data.f_hz[0] << ":" << in.data.f_hz[in.data.f_hz.size() - 1] << "]\n"
      << "set yrange [0:" << (in.result.diagram.orders.empty() ? 1 : in.result.diagram.orders.back() + 1) << "]\n"
      << "set key outside right top\nset grid xtics\n";
@@ -95,8 +88,8 @@ std::string mac_plot(const std::string& stem, const std::string& title, const st
                      const std::string& ylabel) {
   std::ostringstream gp;
   gp << "set terminal svg size 560,480 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set title " << gp_quote(title) << " noenhanced\nset xlabel " << gp_quote(xlabel) << "\nset ylabel "
-     << gp_quote(ylabel) << "\nset cbrange [0:1]\nset palette defined (0 'white', 1 '#1f3b73')\n"
+     << "set title " << gnuplot_string(title) << " noenhanced\nset xlabel " << gnuplot_string(xlabel) << "\nset ylabel "
+     << gnuplot_string(ylabel) << "\nset cbrange [0:1]\nset palette defined (0 'white', 1 '#1f3b73')\n"
      << "set size ratio -1\nset tics out\nset autoscale fix\n"
      << "plot '" << stem << ".dat' using ($1 + 1):($2 + 1):3 matrix with image notitle, \\\n"
      << "     '' using ($1 + 1):($2 + 1):(sprintf('%.2f', $3)) matrix with labels font ',8' notitle\n";
@@ -116,7 +109,7 @@ std::string matrix_dat(const Eigen::MatrixXd& m) {
 std::string frf_plot(const std::string& stem, const std::string& title) {
   std::ostringstream gp;
   gp << "set terminal svg size 900,640 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set multiplot layout 2,1 title " << gp_quote(title) << " noenhanced\n"
+     << "set multiplot layout 2,1 title " << gnuplot_string(title) << " noenhanced\n"
      << "set logscale y\nset format y '%.0e'\nset grid\nset ylabel '|H|'\nset key top right\n"
      << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'measured', \\\n"
      << "     '' using 1:4 with lines lc rgb '#d62728' title 'synthesized'\n"
@@ -210,8 +203,8 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
                 "the LSCF cluster's median). Residues (the `shape` in the JSON) are those of the measured FRF. MPC is "
                 "1 for a real (normal) mode shape; MPD is the mean phase deviation from a straight line. *Orders* "
                 "counts the model orders whose pole joined the mode's cluster.");
-  report::Table modes{{"mode", "f [Hz]", "std f [Hz]", "zeta [%]", "std zeta [%]", "LSCF f [Hz]", "LSCF zeta [%]", "MPC",
-                       "MPD [deg]", "orders"},
+  report::Table modes{{"mode", "f [Hz]", "std f [Hz]", "zeta [%]", "std zeta [%]", "LSCF f [Hz]", "LSCF zeta [%]",
+                       "MPC", "MPD [deg]", "orders"},
                       {}};
   if (in.model)
     for (const char* h : {"model mode", "model f [Hz]", "model zeta [%]", "MAC"}) modes.header.push_back(h);

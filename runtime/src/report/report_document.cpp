@@ -93,7 +93,9 @@ std::string table_row(const std::vector<Inline>& cells) {
 
 std::string markdown(const Block& block) {
   struct Render {
-    std::string operator()(const Heading& h) const { return std::string(static_cast<std::size_t>(h.level), '#') + " " + markdown(h.text); }
+    std::string operator()(const Heading& h) const {
+      return std::string(static_cast<std::size_t>(h.level), '#') + " " + markdown(h.text);
+    }
     std::string operator()(const Paragraph& p) const { return markdown(p.text); }
     std::string operator()(const List& l) const {
       std::string out;

@@ -67,7 +67,7 @@ TEST_CASE("a user's string is literal in the Markdown", "[report]") {
         "a\\<script\\>alert(1)\\</script\\>\\&\"'\\|\\`\\*x\\* ``a<script>alert(1)</script>&\"'\\|`*x*``\n");
 }
 
-TEST_CASE("a table row needs a cell per column; a figure names a file the program made", "[report]") {
+TEST_CASE("a table row needs a cell per column, and a figure a file the program made", "[report]") {
   Document doc;
   CHECK_THROWS_AS(doc.table({{"a", "b"}, {{"1"}}}), std::logic_error);
   CHECK_THROWS_AS(doc.figure("../x.svg", "x"), std::logic_error);
@@ -86,7 +86,8 @@ TEST_CASE("the HTML escapes every user string: text, code, figure alt and title"
   const std::string html = to_html(doc, dir.string());
   CHECK(html.find("<script") == std::string::npos);
   CHECK(html.find("alert(1)</") == std::string::npos);
-  CHECK(count(html, "a&lt;script&gt;alert(1)&lt;/script&gt;&amp;&quot;&#39;|`*x*") == 7);  // title, h1, p, li, th, td, figure
+  // In the title, h1, p, li, th, td and the figure's note.
+  CHECK(count(html, "a&lt;script&gt;alert(1)&lt;/script&gt;&amp;&quot;&#39;|`*x*") == 7);
   CHECK(html.find("<title>Report: a&lt;script&gt;") != std::string::npos);
   // The missing plot is a note with its (escaped) alt text, not an image.
   CHECK(html.find("<img") == std::string::npos);
@@ -124,8 +125,8 @@ TEST_CASE("the HTML right-aligns the columns of numbers", "[report][html]") {
   doc.table({{"parameter", "estimate", "relative std", "unit"},
              {{"m1", "1.2614", "0.0122 %", "kg"}, {"k", "-1.3e+06", "—", "N/m"}}});
   const std::string html = to_html(doc, dir.string());
-  CHECK(html.find("<tr><th>parameter</th><th class=\"n\">estimate</th><th class=\"n\">relative std</th><th>unit</th></tr>") !=
-        std::string::npos);
+  CHECK(html.find("<tr><th>parameter</th><th class=\"n\">estimate</th><th class=\"n\">relative std</th>"
+                  "<th>unit</th></tr>") != std::string::npos);
   CHECK(html.find("<tr><td>k</td><td class=\"n\">-1.3e+06</td><td class=\"n\">—</td><td>N/m</td></tr>") !=
         std::string::npos);
 }

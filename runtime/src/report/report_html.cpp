@@ -265,7 +265,8 @@ std::string block_html(const Block& block, const std::string& dir) {
 }
 
 // Readable on a screen and on paper, wide tables scrolled within their box, numbers in tabular figures.
-const char* const style = R"(body{margin:0;background:#fff;color:#1b1b1b;font:15px/1.5 system-ui,-apple-system,"Segoe UI",Roboto,"DejaVu Sans",sans-serif}
+const char* const style = R"(body{margin:0;background:#fff;color:#1b1b1b;
+font:15px/1.5 system-ui,-apple-system,"Segoe UI",Roboto,"DejaVu Sans",sans-serif}
 main{max-width:980px;margin:0 auto;padding:1.2em 1.5em 3em}
 h1{font-size:1.55em;margin:.4em 0 .6em;padding-bottom:.25em;border-bottom:2px solid #d0d7de}
 h2{font-size:1.3em;margin:1.8em 0 .6em;padding-bottom:.2em;border-bottom:1px solid #e4e8ec}
@@ -273,7 +274,8 @@ h3{font-size:1.12em;margin:1.5em 0 .5em}
 h4{font-size:1em;margin:1.3em 0 .4em}
 p,ul{margin:.6em 0}
 li{margin:.2em 0}
-code{font-family:ui-monospace,"DejaVu Sans Mono",Menlo,Consolas,monospace;font-size:.88em;background:#f2f4f6;padding:.05em .3em;border-radius:3px;overflow-wrap:anywhere}
+code{font-family:ui-monospace,"DejaVu Sans Mono",Menlo,Consolas,monospace;font-size:.88em;background:#f2f4f6;
+padding:.05em .3em;border-radius:3px;overflow-wrap:anywhere}
 .table{overflow-x:auto;margin:.9em 0}
 table{border-collapse:collapse;font-size:.9em}
 th,td{border:1px solid #d0d7de;padding:.3em .65em;text-align:left;vertical-align:top}

@@ -32,12 +32,6 @@ std::string num(double x, int digits = 3) {
   return s.str();
 }
 
-std::string gp_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
 std::string mode_label(const Mode& m, std::size_t r) {
   char text[64];
   std::snprintf(text, sizeof text, "%zu (%.1f Hz)", r + 1, m.f_hz);
@@ -66,12 +60,13 @@ void heat_map(const std::string& dir, const std::string& stem, const std::string
   const double limit = std::max(1e-12, values.array().isFinite().select(values.cwiseAbs(), 0).maxCoeff());
   gp << "set terminal svg size " << std::max(500, 70 * static_cast<int>(cols.size()) + 200) << ","
      << 120 + 40 * rows.size() << " dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set title " << gp_quote(title) << " noenhanced\nset palette defined (-1 '#b2182b', 0 'white', 1 '#2166ac')\n"
+     << "set title " << gnuplot_string(title)
+     << " noenhanced\nset palette defined (-1 '#b2182b', 0 'white', 1 '#2166ac')\n"
      << "set cbrange [" << -limit << ":" << limit << "]\nset xtics rotate by -45 noenhanced\nset ytics noenhanced\n"
      << "set xrange [-0.5:" << values.cols() - 0.5 << "]\nset yrange [" << values.rows() - 0.5 << ":-0.5]\nset xtics (";
-  for (std::size_t j = 0; j < cols.size(); ++j) gp << (j ? ", " : "") << gp_quote(cols[j]) << " " << j;
+  for (std::size_t j = 0; j < cols.size(); ++j) gp << (j ? ", " : "") << gnuplot_string(cols[j]) << " " << j;
   gp << ")\nset ytics (";
-  for (std::size_t i = 0; i < rows.size(); ++i) gp << (i ? ", " : "") << gp_quote(rows[i]) << " " << i;
+  for (std::size_t i = 0; i < rows.size(); ++i) gp << (i ? ", " : "") << gnuplot_string(rows[i]) << " " << i;
   gp << ")\nplot '" << stem << ".dat' using 1:2:3 with image notitle, '' using 1:2:(sprintf('%.2f', $3)) with labels "
      << "font ',8' notitle\n";
   write_file(dir, stem + ".dat", dat.str());
@@ -245,13 +240,13 @@ void write_sensitivity_report(const std::string& dir, const SensitivityReportInp
     }
     gp << "set terminal svg size 900,600 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
        << "set title "
-       << gp_quote("feature map: " + m.parameter + " from " + num(m.values[0], 4) + " (circle) to " +
+       << gnuplot_string("feature map: " + m.parameter + " from " + num(m.values[0], 4) + " (circle) to " +
                    num(m.values[m.values.size() - 1], 4) + " (triangle)")
        << " noenhanced\nset xlabel 'f [Hz]'\nset ylabel 'zeta'\nset grid\nset key outside right top\nplot ";
     for (Eigen::Index t = 0; t < m.f_hz.cols(); ++t)
       gp << (t ? ", \\\n     " : "") << "'" << stem << ".dat' index " << t
          << " using 2:3 with linespoints pt 7 ps 0.4 lc " << t + 1 << " title "
-         << gp_quote("mode " + mode_label(m.start[static_cast<std::size_t>(t)], static_cast<std::size_t>(t)))
+         << gnuplot_string("mode " + mode_label(m.start[static_cast<std::size_t>(t)], static_cast<std::size_t>(t)))
          << ", '' index " << t << " every ::0::0 using 2:3 with points pt 6 ps 1.5 lc " << t + 1
          << " notitle, '' index " << t << " every ::" << m.values.size() - 1 << " using 2:3 with points pt 8 ps 1.5 lc "
          << t + 1 << " notitle";
