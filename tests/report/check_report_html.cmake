@@ -152,8 +152,8 @@ window.addEventListener('load', function () {
 });
 </script>
 </body>" probe "${probe}")
-  file(WRITE "${dir}/probe.html" "${probe}")
-  string(REPLACE " " "%20" url "file://${dir}/probe.html")
+  file(WRITE "${WORK}/${report}_probe.html" "${probe}")  # beside the report, which stays as mbgen wrote it
+  string(REPLACE " " "%20" url "file://${WORK}/${report}_probe.html")
   chromium(dom "${url}" --virtual-time-budget=10000 --dump-dom)
   if(NOT dom MATCHES "<pre id=\"mbgen-probe\">images ([0-9]+) drawn ([0-9]+) requests ([0-9]+) tables ([0-9]+)</pre>")
     message(SEND_ERROR "${report}: the probe did not report (the page did not finish loading?)")

@@ -264,7 +264,8 @@ std::string block_html(const Block& block, const std::string& dir) {
   return std::visit(Render{dir}, block);
 }
 
-// Readable on a screen and on paper, wide tables scrolled within their box, numbers in tabular figures.
+// Readable on a screen and on paper: wide tables scroll within their box, names in cells are not broken, numbers
+// in tabular figures.
 const char* const style = R"(body{margin:0;background:#fff;color:#1b1b1b;
 font:15px/1.5 system-ui,-apple-system,"Segoe UI",Roboto,"DejaVu Sans",sans-serif}
 main{max-width:980px;margin:0 auto;padding:1.2em 1.5em 3em}
@@ -276,6 +277,7 @@ p,ul{margin:.6em 0}
 li{margin:.2em 0}
 code{font-family:ui-monospace,"DejaVu Sans Mono",Menlo,Consolas,monospace;font-size:.88em;background:#f2f4f6;
 padding:.05em .3em;border-radius:3px;overflow-wrap:anywhere}
+td code,th code{white-space:nowrap;overflow-wrap:normal}
 .table{overflow-x:auto;margin:.9em 0}
 table{border-collapse:collapse;font-size:.9em}
 th,td{border:1px solid #d0d7de;padding:.3em .65em;text-align:left;vertical-align:top}
