@@ -83,7 +83,7 @@ class Document {
  public:
   void heading(int level, Inline text);
   void paragraph(Inline text);
-  void list(std::vector<Inline> items);
+  void list(std::vector<Inline> items);  // no items: no block
   void table(Table table);
   // Throws std::logic_error for a file name other than the program's own (see Figure).
   void figure(std::string file, Inline alt);
