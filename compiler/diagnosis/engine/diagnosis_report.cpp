@@ -1,7 +1,7 @@
 #include "diagnosis/engine/diagnosis_report.hpp"
 
 #include <mbgen/gnuplot.hpp>
-#include <mbgen/markdown.hpp>
+#include <mbgen/report_document.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -52,16 +52,15 @@ std::string residual_script(const std::string& stem, const std::string& title, b
   return gp.str();
 }
 
-void parameter_table(std::ostringstream& md, const FitResult& fit) {
-  md << "| parameter | prior | estimate | std | identifiable |\n|---|---|---|---|---|\n";
+report::Table parameter_table(const FitResult& fit) {
+  report::Table t{{"parameter", "prior", "estimate", "std", "identifiable"}, {}};
   for (const ParameterEstimate& p : fit.parameters)
-    md << "| `" << p.name << "` | " << num(p.prior, 6) << " | " << num(p.value, 6) << " | "
-       << (p.at_bound.empty() ? num(p.std, 3) : std::string("—")) << " | "
-       << (p.identifiable        ? "yes"
-           : p.at_bound.empty() ? "**no** (kept at prior)"
-                                : "**no**: at its " + p.at_bound + " bound")
-       << " |\n";
-  md << "\n";
+    t.rows.push_back({"`" + p.name + "`", num(p.prior, 6), num(p.value, 6),
+                      p.at_bound.empty() ? num(p.std, 3) : std::string("—"),
+                      p.identifiable        ? "yes"
+                      : p.at_bound.empty() ? "**no** (kept at prior)"
+                                           : "**no**: at its " + p.at_bound + " bound"});
+  return t;
 }
 
 }  // namespace
@@ -70,68 +69,73 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
   const fs::path root(dir);
   fs::create_directories(root);
   const bool extended = r.verdict == "extended";
-  std::ostringstream md;
-  md << "# Diagnosis of " << markdown_code(r.model_file) << "\n\n";
-  md << "Data: ";
-  for (std::size_t i = 0; i < r.data.size(); ++i) md << (i ? ", " : "") << markdown_code(r.data[i]);
-  md << "\n\n## Verdict: " << r.verdict << "\n\n";
+  report::Document doc;
+  doc.heading(1, report::Inline("Diagnosis of ") << report::code(r.model_file));
+  report::Inline data = "Data: ";
+  for (std::size_t i = 0; i < r.data.size(); ++i) data << (i ? ", " : "") << report::code(r.data[i]);
+  doc.paragraph(data);
+  doc.heading(2, "Verdict: " + r.verdict);
   if (extended) {
-    md << "Selected: ";
-    for (std::size_t i = 0; i < r.selected.size(); ++i) md << (i ? ", " : "") << "`" << r.selected[i] << "`";
-    md << ". Mean normalized residual " << num(r.nominal.residual.mean_z) << " -> " << num(r.final.residual.mean_z)
-       << " (1 is the noise level); validation error " << num(r.nominal.validation_nrmse) << " -> "
-       << num(r.final.validation_nrmse) << ".\n\n";
+    report::Inline selected = "Selected: ";
+    for (std::size_t i = 0; i < r.selected.size(); ++i) selected << (i ? ", " : "") << "`" << r.selected[i] << "`";
+    doc.paragraph(selected << ". Mean normalized residual " << num(r.nominal.residual.mean_z) << " -> "
+                           << num(r.final.residual.mean_z) << " (1 is the noise level); validation error "
+                           << num(r.nominal.validation_nrmse) << " -> " << num(r.final.validation_nrmse) << ".");
   } else if (r.verdict == "unexplained") {
-    md << "The model misses the data beyond the noise, and no candidate extension explains it (see the findings "
-          "and the ranking below).\n\n";
+    doc.paragraph("The model misses the data beyond the noise, and no candidate extension explains it (see the "
+                  "findings and the ranking below).");
   } else {
-    md << "Nothing beyond the noise remains: the nominal model explains the data.\n\n";
+    doc.paragraph("Nothing beyond the noise remains: the nominal model explains the data.");
   }
 
   if (!r.nominal.fit.converged)
-    md << "**The nominal model's fit did not converge** (" << r.nominal.fit.stop_reason
-       << "): some findings may be the fit's, not the model's.\n\n";
-  md << "## What the nominal model gets wrong\n\n";
-  if (r.nominal.residual.discrepancies.empty()) md << "No finding above the noise level.\n\n";
-  for (const Discrepancy& d : r.nominal.residual.discrepancies) md << "- " << d.text << " (`" << d.kind << "`)\n";
-  md << "\nThe noise level each channel is judged against (1 in the normalized residual):\n\n";
+    doc.paragraph("**The nominal model's fit did not converge** (" + r.nominal.fit.stop_reason +
+                  "): some findings may be the fit's, not the model's.");
+  doc.heading(2, "What the nominal model gets wrong");
+  if (r.nominal.residual.discrepancies.empty()) doc.paragraph("No finding above the noise level.");
+  std::vector<report::Inline> findings, noise;
+  for (const Discrepancy& d : r.nominal.residual.discrepancies) findings.push_back(d.text + " (`" + d.kind + "`)");
+  doc.list(std::move(findings));
+  doc.paragraph("The noise level each channel is judged against (1 in the normalized residual):");
   for (const ChannelResidual& c : r.nominal.channels) {
-    md << "- " << c.channel << " (`" << fs::path(c.data_set).filename().string() << "`): " << c.noise;
+    report::Inline& line = noise.emplace_back(c.channel + " (`" + fs::path(c.data_set).filename().string() + "`): " +
+                                              c.noise);
     if (c.lines_not_judged > 0)
-      md << "; " << c.lines_not_judged << " of " << (c.lines_not_judged + static_cast<long>(c.f_hz.size()))
-         << " lines not judged (the data there are noise)";
-    md << "\n";
+      line << "; " << c.lines_not_judged << " of " << (c.lines_not_judged + static_cast<long>(c.f_hz.size()))
+           << " lines not judged (the data there are noise)";
   }
-  md << "\n## Candidates\n\n| round | id | ΔBIC | validation nrmse | plausible | qualifies | what it adds |\n"
-     << "|---|---|---|---|---|---|---|\n";
-  md << "| | nominal | 0 | " << num(r.nominal.validation_nrmse) << " | | | |\n";
+  doc.list(std::move(noise));
+  doc.heading(2, "Candidates");
+  report::Table candidates{
+      {"round", "id", "ΔBIC", "validation nrmse", "plausible", "qualifies", "what it adds"},
+      {{"", "nominal", "0", num(r.nominal.validation_nrmse), "", "", ""}}};
   for (const CandidateOutcome& c : r.candidates) {
-    md << "| " << c.round << " | `" << c.id << "` | ";
-    if (!c.error.empty()) {
-      md << "failed | | | | " << markdown_text(c.error) << " |\n";
-      continue;
-    }
-    if (!c.fully_fitted) {
-      md << "screened out (" << num(c.screen_delta_bic, 5) << " in screening) | | | no | " << c.description << " |\n";
-      continue;
-    }
-    md << num(c.delta_bic, 5) << " | " << num(c.validation_nrmse) << " | "
-       << (c.plausible ? "yes" : "no: " + (c.doubts.empty() ? std::string() : c.doubts.front())) << " | "
-       << (c.qualifies ? "**yes**" : "no") << " | " << c.description << " |\n";
+    const report::Inline round = report::Inline() << c.round, id = "`" + c.id + "`";
+    if (!c.error.empty())
+      candidates.rows.push_back({round, id, "failed", "", "", "", report::text(c.error)});
+    else if (!c.fully_fitted)
+      candidates.rows.push_back(
+          {round, id, "screened out (" + num(c.screen_delta_bic, 5) + " in screening)", "", "", "no", c.description});
+    else
+      candidates.rows.push_back(
+          {round, id, num(c.delta_bic, 5), num(c.validation_nrmse),
+           c.plausible ? "yes" : "no: " + (c.doubts.empty() ? std::string() : c.doubts.front()),
+           c.qualifies ? "**yes**" : "no", c.description});
   }
-  md << "\nEvery candidate is first fitted cheaply (one local fit from the current estimate); the best by that "
-        "screening are fitted fully. A candidate qualifies when its BIC is lower by more than 10, its validation error "
-        "is lower, and its new parameters are plausible; the best one is selected if it also explains the "
-        "discrepancy.\n\n";
+  doc.table(std::move(candidates));
+  doc.paragraph("Every candidate is first fitted cheaply (one local fit from the current estimate); the best by that "
+                "screening are fitted fully. A candidate qualifies when its BIC is lower by more than 10, its "
+                "validation error is lower, and its new parameters are plausible; the best one is selected if it "
+                "also explains the discrepancy.");
 
-  md << "## Parameters of the nominal model\n\n";
-  parameter_table(md, r.nominal.fit);
+  doc.heading(2, "Parameters of the nominal model");
+  doc.table(parameter_table(r.nominal.fit));
   if (extended) {
-    md << "## Parameters of the extended model\n\n";
-    parameter_table(md, r.final.fit);
+    doc.heading(2, "Parameters of the extended model");
+    doc.table(parameter_table(r.final.fit));
   }
 
-  md << "## Plots\n\n";
+  doc.heading(2, "Plots");
   std::vector<std::string> stems;
   for (std::size_t c = 0; c < r.nominal.channels.size(); ++c) {
     const ChannelResidual& nominal = r.nominal.channels[c];
@@ -159,11 +163,11 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
     write_file(root / (res_stem + ".gp"), residual_script(res_stem, "normalized residual, " + label, final != nullptr));
     stems.push_back(frf_stem);
     stems.push_back(res_stem);
-    md << "### " << markdown_text(label) << "\n\n![" << markdown_text(label) << "](" << frf_stem
-       << ".svg)\n\n![residual](" << res_stem << ".svg)\n\n";
+    doc.heading(3, report::text(label));
+    doc.figure(frf_stem + ".svg", report::text(label));
+    doc.figure(res_stem + ".svg", "residual");
   }
-  md << render_gnuplot(root.string(), stems);
-  write_file(root / "report.md", md.str());
+  report::write_report(root.string(), std::move(doc), stems);
 }
 
 }  // namespace mbgen::diagnosis

@@ -1,4 +1,4 @@
-// The human report of a diagnosis: report.md with the verdict, the findings, the candidate ranking, the
+// The human report of a diagnosis: report.md and report.html with the verdict, the findings, the candidate ranking, the
 // parameters, and SVG plots per channel of data vs nominal vs extended FRFs and of the residual before and after.
 #pragma once
 

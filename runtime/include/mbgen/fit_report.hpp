@@ -12,10 +12,10 @@ namespace mbgen {
 std::string fit_result_json(const FitResult& result);
 void write_fit_json(std::ostream& out, const FitResult& result);
 
-// Writes DIR/report.md, per data set the data files (*.dat) and gnuplot scripts (*.gp) for Bode overlays
-// (magnitude and phase) of data vs model at the prior and at the estimate and for the residuals, and renders
-// them to SVG with `gnuplot` when it is installed (otherwise the report says so). Creates DIR if needed.
-// Throws FitError if DIR cannot be written.
+// Writes DIR/report.md and DIR/report.html (mbgen/report_document.hpp), per data set the data files (*.dat) and gnuplot
+// scripts (*.gp) for Bode overlays (magnitude and phase) of data vs model at the prior and at the estimate and for the
+// residuals, and renders them to SVG with `gnuplot` when it is installed (otherwise the report says so). Creates DIR if
+// needed. Throws FitError if DIR cannot be written.
 void write_fit_report(const std::string& dir, const Model& model, const std::vector<DataSet>& data,
                       const FitResult& result);
 

@@ -9,7 +9,7 @@
 namespace mbgen {
 
 // Runs `gnuplot STEM.gp` in `dir` for each stem (directly, not through a shell). Returns an empty string when
-// every plot was drawn, else a Markdown note saying why not (gnuplot missing or failing) and how to draw them.
+// every plot was drawn, else a Markdown paragraph (no final newline) saying why not (gnuplot missing or failing) and how to draw them.
 std::string render_gnuplot(const std::string& dir, const std::vector<std::string>& stems);
 
 // `s` as a single-quoted gnuplot string (for titles): quotes doubled, control characters as blanks. Use it with

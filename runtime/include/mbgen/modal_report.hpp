@@ -28,9 +28,9 @@ struct ModalReportInput {
 // The JSON document: keys sorted, numbers in shortest round-trip form, deterministic.
 std::string modal_result_json(const ModalReportInput& in);
 
-// Writes DIR/report.md with the mode table, the stabilization diagram over the sum of the FRFs' magnitudes, the
-// auto-MAC (and with a model the MAC against its modes), and per channel the synthesized against the measured
-// FRF; plots as gnuplot scripts and data beside SVGs rendered when gnuplot is installed. DIR must exist.
+// Writes DIR/report.md and DIR/report.html with the mode table, the stabilization diagram over the sum of the FRFs'
+// magnitudes, the auto-MAC (and with a model the MAC against its modes), and per channel the synthesized against the
+// measured FRF; plots as gnuplot scripts and data beside SVGs rendered when gnuplot is installed. DIR must exist.
 // Throws std::runtime_error when a file cannot be written.
 void write_modal_report(const std::string& dir, const ModalReportInput& in);
 

@@ -1,5 +1,5 @@
-// Small pieces shared by the report directories of `fit` and `monitor`: writing a file whole, a name made safe for
-// a plot's file stem, and numbers as the reports' tables print them.
+// Small pieces shared by the report directories (mbgen/report_document.hpp): writing a file whole, a name made safe
+// for a plot's file stem, and numbers as the reports' tables print them.
 #pragma once
 
 #include <string>

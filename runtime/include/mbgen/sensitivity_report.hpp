@@ -23,7 +23,9 @@ struct SensitivityReportInput {
 
 // Keys sorted, numbers in shortest round-trip form (NaN as null); deterministic.
 std::string sensitivity_json(const SensitivityReportInput& in);
-// DIR must exist. Throws std::runtime_error when a file cannot be written.
+// Writes DIR/report.md and DIR/report.html (tables, heat maps, feature maps), the plots as gnuplot scripts and data
+// beside SVGs rendered when gnuplot is installed. DIR must exist. Throws std::runtime_error when a file cannot be
+// written.
 void write_sensitivity_report(const std::string& dir, const SensitivityReportInput& in);
 std::string sensitivity_summary(const SensitivityReportInput& in);
 

@@ -66,7 +66,7 @@ std::string render_gnuplot(const std::string& dir, const std::vector<std::string
   if (rendered) return "";
   return std::string("**The plots were not rendered** (") +
          (installed ? "gnuplot failed" : "gnuplot is not installed") +
-         "): run `gnuplot NAME.gp` in this directory to draw them from the .dat files.\n";
+         "): run `gnuplot NAME.gp` in this directory to draw them from the .dat files.";
 }
 
 }  // namespace mbgen

@@ -1,8 +1,9 @@
-// The report directory: report.md with tables and SVG plots drawn by gnuplot from .dat files and .gp scripts.
+// The report directory: report.md and report.html with tables and SVG plots drawn by gnuplot from .dat files and
+// .gp scripts.
 #include "mbgen/fit_report.hpp"
 
 #include "mbgen/gnuplot.hpp"
-#include "mbgen/markdown.hpp"
+#include "mbgen/report_document.hpp"
 #include "mbgen/report_files.hpp"
 
 #include <cmath>
@@ -73,60 +74,73 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   const Prediction before = predict(model, data, result.prior_values);
   const Prediction after = predict(model, data, result.values);
 
-  std::ostringstream md;
-  md << "# Fit report: " << markdown_code(result.model) << "\n\n";
-  md << "Method: `" << result.method << "`. Data:";
-  for (const auto& d : result.data) md << " " << markdown_code(d);
-  md << ".\n\n## Parameters\n\n| parameter | prior | estimate | std | relative std | identifiable | unit |\n"
-     << "|---|---|---|---|---|---|---|\n";
+  report::Document doc;
+  doc.heading(1, report::Inline("Fit report: ") << report::code(result.model));
+  report::Inline intro = report::Inline("Method: `") << result.method << "`. Data:";
+  for (const auto& d : result.data) intro << " " << report::code(d);
+  doc.paragraph(intro << ".");
+
+  doc.heading(2, "Parameters");
+  report::Table parameters{{"parameter", "prior", "estimate", "std", "relative std", "identifiable", "unit"}, {}};
   for (const auto& e : result.parameters) {
     // A std only where the method gives one (as in the JSON: the parameter has a covariance row).
     const bool has_std = e.identifiable &&
                          std::find(result.estimated.begin(), result.estimated.end(), e.name) != result.estimated.end();
-    md << "| " << e.name << " | " << report_number(e.prior) << " | " << report_number(e.value) << " | "
-       << (has_std ? report_number(e.std, 3) : "—") << " | "
-       << (has_std && e.value != 0 ? report_number(100 * e.std / std::abs(e.value), 3) + " %" : "—") << " | "
-       << (e.identifiable        ? "yes"
-           : e.at_bound.empty() ? "**no** (kept at prior)"
-                                : "**no**: at its " + e.at_bound + " bound");
+    report::Inline identifiable = e.identifiable        ? "yes"
+                                  : e.at_bound.empty() ? "**no** (kept at prior)"
+                                                       : "**no**: at its " + e.at_bound + " bound";
     if (!e.confounded_with.empty()) {
-      md << "; confounded with";
-      for (const auto& c : e.confounded_with) md << " " << c;
+      identifiable << "; confounded with";
+      for (const auto& c : e.confounded_with) identifiable << " " << c;
     }
-    md << " | " << markdown_text(e.unit) << " |\n";
+    parameters.rows.push_back(
+        {e.name, report_number(e.prior), report_number(e.value), has_std ? report_number(e.std, 3) : "—",
+         has_std && e.value != 0 ? report_number(100 * e.std / std::abs(e.value), 3) + " %" : "—", identifiable,
+         report::text(e.unit)});
   }
-  md << "\n## Fit\n\n"
-     << "- residuals n = " << result.residual_count << ", estimated parameters k = " << result.estimated.size() << "\n"
-     << "- weighted RSS: prior " << report_number(result.initial_cost) << ", estimate " << report_number(result.cost) << "\n"
-     << "- NRMSE (sqrt of RSS over the weighted data's sum of squares) = " << report_number(result.nrmse, 4) << "\n"
-     << "- BIC = n log(RSS/n) + k log n = " << report_number(result.bic, 8) << "\n"
-     << "- residual variance RSS/(n-k) = " << report_number(result.residual_variance, 4) << "\n"
-     << "- starts: " << result.start_costs.size() << ", best start " << result.best_start << "; final refinement "
-     << result.iterations << " iterations, " << (result.converged ? "converged" : "not converged") << " ("
-     << result.stop_reason << ")\n";
-  md << "\nFinal cost of every start:";
-  for (double c : result.start_costs) md << " " << report_number(c, 5);
-  md << "\n\n## Modes at the estimate\n\n| f [Hz] | zeta |\n|---|---|\n";
-  for (const auto& m : result.modes) md << "| " << report_number(m.f_hz, 6) << " | " << report_number(m.zeta, 4) << " |\n";
-  md << "\n## Correlation of the estimates\n\n|";
-  for (const auto& n : result.estimated) md << " | " << n;
-  md << " |\n|---";
-  for (std::size_t i = 0; i < result.estimated.size(); ++i) md << "|---";
-  md << "|\n";
+  doc.table(std::move(parameters));
+
+  doc.heading(2, "Fit");
+  doc.list({report::Inline("residuals n = ") << result.residual_count << ", estimated parameters k = "
+                                             << result.estimated.size(),
+            "weighted RSS: prior " + report_number(result.initial_cost) + ", estimate " + report_number(result.cost),
+            "NRMSE (sqrt of RSS over the weighted data's sum of squares) = " + report_number(result.nrmse, 4),
+            "BIC = n log(RSS/n) + k log n = " + report_number(result.bic, 8),
+            "residual variance RSS/(n-k) = " + report_number(result.residual_variance, 4),
+            report::Inline("starts: ") << result.start_costs.size() << ", best start " << result.best_start
+                                       << "; final refinement " << result.iterations << " iterations, "
+                                       << (result.converged ? "converged" : "not converged") << " ("
+                                       << result.stop_reason << ")"});
+  report::Inline costs = "Final cost of every start:";
+  for (double c : result.start_costs) costs << " " << report_number(c, 5);
+  doc.paragraph(costs);
+
+  doc.heading(2, "Modes at the estimate");
+  report::Table modes{{"f [Hz]", "zeta"}, {}};
+  for (const auto& m : result.modes) modes.rows.push_back({report_number(m.f_hz, 6), report_number(m.zeta, 4)});
+  doc.table(std::move(modes));
+
+  doc.heading(2, "Correlation of the estimates");
+  report::Table correlation{{""}, {}};
+  for (const auto& n : result.estimated) correlation.header.push_back(n);
   for (std::size_t i = 0; i < result.estimated.size(); ++i) {
-    md << "| " << result.estimated[i];
+    std::vector<report::Inline>& row = correlation.rows.emplace_back(1, result.estimated[i]);
     for (std::size_t k = 0; k < result.estimated.size(); ++k)
-      md << " | " << report_number(result.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)), 3);
-    md << " |\n";
+      row.push_back(report_number(result.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)), 3));
   }
-  md << "\nSingular values of the unit-column-scaled Jacobian of all candidates:";
-  for (Eigen::Index i = 0; i < result.singular_values.size(); ++i) md << " " << report_number(result.singular_values[i], 3);
-  md << "\n\n## Data and model\n\n";
+  doc.table(std::move(correlation));
+  report::Inline singular = "Singular values of the unit-column-scaled Jacobian of all candidates:";
+  for (Eigen::Index i = 0; i < result.singular_values.size(); ++i)
+    singular << " " << report_number(result.singular_values[i], 3);
+  doc.paragraph(singular);
+  doc.heading(2, "Data and model");
 
   std::vector<std::string> scripts;
   for (std::size_t d = 0; d < data.size(); ++d) {
-    md << "### Data set " << d + 1 << ": " << markdown_code(data[d].file()) << "\n\n";
-    for (const auto& [name, value] : data[d].set()) md << "- set " << name << " = " << value.text << "\n";
+    doc.heading(3, report::Inline("Data set ") << d + 1 << ": " << report::code(data[d].file()));
+    std::vector<report::Inline> set;
+    for (const auto& [name, value] : data[d].set()) set.push_back(report::Inline("set " + name + " = ") << report::text(value.text));
+    doc.list(std::move(set));
     for (std::size_t c = 0; c < before.channels[d].size(); ++c) {
       const std::string label = before.channel_names[d][c];
       const std::string stem = "set" + std::to_string(d + 1) + "_" + file_stem(label);
@@ -154,12 +168,12 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
       }
       write_report_file(root / (stem + ".dat"), dat.str());
       scripts.push_back(stem);
-      md << "#### " << markdown_text(label) << "\n\n![" << markdown_text(label) << "](" << stem << ".svg)\n\n";
-      if (data[d].is_frf()) md << "![" << markdown_text(label) << " residual](" << stem << "_residual.svg)\n\n";
+      doc.heading(4, report::text(label));
+      doc.figure(stem + ".svg", report::text(label));
+      if (data[d].is_frf()) doc.figure(stem + "_residual.svg", report::Inline(report::text(label)) << " residual");
     }
   }
-  md << render_gnuplot(root.string(), scripts);
-  write_report_file(root / "report.md", md.str());
+  report::write_report(root.string(), std::move(doc), scripts);
 }
 
 }  // namespace mbgen

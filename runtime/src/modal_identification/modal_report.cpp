@@ -1,7 +1,8 @@
-// The report directory of `mbgen modal`: report.md with the mode table and SVG plots drawn by gnuplot from .dat
-// files and .gp scripts (the scripts stay, so plots can be redrawn where gnuplot was missing).
+// The report directory of `mbgen modal`: report.md and report.html with the mode table and SVG plots drawn by
+// gnuplot from .dat files and .gp scripts (the scripts stay, so plots can be redrawn where gnuplot was missing).
 #include "mbgen/gnuplot.hpp"
 #include "mbgen/modal_report.hpp"
+#include "mbgen/report_document.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,13 +39,6 @@ std::string fixed(double x, int decimals) {
   return text;
 }
 
-// A gnuplot single-quoted string: quotes doubled.
-std::string gp_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
 double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
 
 int stability_code(Stability s) {
@@ -74,7 +68,7 @@ std::string stabilization_plot(const ModalReportInput& in, const std::string& yl
   std::ostringstream gp;
   gp << "set terminal svg size 1000,600 dynamic font 'sans,11'\nset output 'stabilization.svg'\n"
      << "set title 'Stabilization diagram' noenhanced\nset xlabel 'f [Hz]'\nset ylabel 'model order'\n"
-     << "set y2label " << gp_quote(ylabel) << " noenhanced\nset logscale y2\nset format y2 '%.0e'\nset y2tics\n"
+     << "set y2label " << gnuplot_string(ylabel) << " noenhanced\nset logscale y2\nset format y2 '%.0e'\nset y2tics\n"
      << "set ytics nomirror\nset xrange [" << in.data.f_hz[0] << ":" << in.data.f_hz[in.data.f_hz.size() - 1] << "]\n"
      << "set yrange [0:" << (in.result.diagram.orders.empty() ? 1 : in.result.diagram.orders.back() + 1) << "]\n"
      << "set key outside right top\nset grid xtics\n";
@@ -94,8 +88,8 @@ std::string mac_plot(const std::string& stem, const std::string& title, const st
                      const std::string& ylabel) {
   std::ostringstream gp;
   gp << "set terminal svg size 560,480 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set title " << gp_quote(title) << " noenhanced\nset xlabel " << gp_quote(xlabel) << "\nset ylabel "
-     << gp_quote(ylabel) << "\nset cbrange [0:1]\nset palette defined (0 'white', 1 '#1f3b73')\n"
+     << "set title " << gnuplot_string(title) << " noenhanced\nset xlabel " << gnuplot_string(xlabel) << "\nset ylabel "
+     << gnuplot_string(ylabel) << "\nset cbrange [0:1]\nset palette defined (0 'white', 1 '#1f3b73')\n"
      << "set size ratio -1\nset tics out\nset autoscale fix\n"
      << "plot '" << stem << ".dat' using ($1 + 1):($2 + 1):3 matrix with image notitle, \\\n"
      << "     '' using ($1 + 1):($2 + 1):(sprintf('%.2f', $3)) matrix with labels font ',8' notitle\n";
@@ -115,7 +109,7 @@ std::string matrix_dat(const Eigen::MatrixXd& m) {
 std::string frf_plot(const std::string& stem, const std::string& title) {
   std::ostringstream gp;
   gp << "set terminal svg size 900,640 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set multiplot layout 2,1 title " << gp_quote(title) << " noenhanced\n"
+     << "set multiplot layout 2,1 title " << gnuplot_string(title) << " noenhanced\n"
      << "set logscale y\nset format y '%.0e'\nset grid\nset ylabel '|H|'\nset key top right\n"
      << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'measured', \\\n"
      << "     '' using 1:4 with lines lc rgb '#d62728' title 'synthesized'\n"
@@ -126,19 +120,15 @@ std::string frf_plot(const std::string& stem, const std::string& title) {
   return gp.str();
 }
 
-void mac_table(std::ostringstream& md, const Eigen::MatrixXd& mac, const std::vector<std::string>& rows,
-               const std::vector<std::string>& cols) {
-  md << "| |";
-  for (const std::string& c : cols) md << " " << c << " |";
-  md << "\n|---|";
-  for (std::size_t j = 0; j < cols.size(); ++j) md << "---|";
-  md << "\n";
+report::Table mac_table(const Eigen::MatrixXd& mac, const std::vector<std::string>& rows,
+                        const std::vector<std::string>& cols) {
+  report::Table t{{""}, {}};
+  for (const std::string& c : cols) t.header.push_back(c);
   for (Eigen::Index i = 0; i < mac.rows(); ++i) {
-    md << "| " << rows[static_cast<std::size_t>(i)] << " |";
-    for (Eigen::Index j = 0; j < mac.cols(); ++j) md << " " << fixed(mac(i, j), 2) << " |";
-    md << "\n";
+    std::vector<report::Inline>& row = t.rows.emplace_back(1, rows[static_cast<std::size_t>(i)]);
+    for (Eigen::Index j = 0; j < mac.cols(); ++j) row.push_back(fixed(mac(i, j), 2));
   }
-  md << "\n";
+  return t;
 }
 
 }  // namespace
@@ -179,72 +169,82 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
   const ModalIdentification& r = in.result;
   const StabilizationDiagram& diagram = r.diagram;
   const Eigen::Index lines = data.f_hz.size();
-  std::ostringstream md;
-  md << "# Modal analysis\n\nData:";
-  for (const std::string& f : data.files) md << " `" << f << "`";
-  md << ".\n\n- channels (" << data.channels.size() << "):";
-  for (const ModalData::Channel& c : data.channels) md << " `" << c.name << "`";
-  md << "\n- band: " << num(data.f_hz[0], 8) << " to " << num(data.f_hz[lines - 1], 8) << " Hz, " << lines << " lines\n"
-     << "- FRF quantity: " << quantity_text(in) << "\n"
-     << "- poles: "
-     << (diagram.references > 1 ? "poly-reference least-squares complex-frequency method (PolyMAX), "
-                                : "least-squares complex-frequency method (LSCF, common denominator), ")
-     << diagram.references << " reference" << (diagram.references > 1 ? "s" : "")
-     << (diagram.transposed ? " (the outputs; rows are the inputs)" : "") << ", z-domain basis with dt = 1/(2 * "
-     << num(diagram.hi_hz, 8) << " Hz), orders 1.." << (diagram.orders.empty() ? 0 : diagram.orders.back()) << "\n"
-     << "- stable between orders: frequency within " << num(100 * in.options.selection.criteria.frequency)
-     << " %, damping within " << num(100 * in.options.selection.criteria.damping) << " %, shape MAC above "
-     << num(1 - in.options.selection.criteria.shape)
-     << "; physical poles have 0 < zeta <= " << num(in.options.selection.criteria.max_zeta) << "\n"
-     << "- selection: "
-     << (in.options.select_hz.empty()
-             ? "automatic, clusters of stable poles found at " + num(100 * in.options.selection.min_orders_fraction) +
-                   " % of the orders or more"
-             : std::string("the poles nearest the frequencies given"))
-     << "\n- residues: LSFD" << (in.options.lsfd.lower_residual ? ", lower residual" : "")
-     << (in.options.lsfd.upper_residual ? ", upper residual" : "") << "\n\n";
+  report::Document doc;
+  doc.heading(1, "Modal analysis");
+  report::Inline files = "Data:";
+  for (const std::string& f : data.files) files << " " << report::code(f);
+  doc.paragraph(files << ".");
+  report::Inline channels = report::Inline("channels (") << data.channels.size() << "):";
+  for (const ModalData::Channel& c : data.channels) channels << " " << report::code(c.name);
+  doc.list({channels,
+            "band: " + num(data.f_hz[0], 8) + " to " + num(data.f_hz[lines - 1], 8) + " Hz, " +
+                std::to_string(lines) + " lines",
+            "FRF quantity: " + quantity_text(in),
+            report::Inline("poles: ")
+                << (diagram.references > 1 ? "poly-reference least-squares complex-frequency method (PolyMAX), "
+                                           : "least-squares complex-frequency method (LSCF, common denominator), ")
+                << diagram.references << " reference" << (diagram.references > 1 ? "s" : "")
+                << (diagram.transposed ? " (the outputs; rows are the inputs)" : "")
+                << ", z-domain basis with dt = 1/(2 * " << num(diagram.hi_hz, 8) << " Hz), orders 1.."
+                << (diagram.orders.empty() ? 0 : diagram.orders.back()),
+            "stable between orders: frequency within " + num(100 * in.options.selection.criteria.frequency) +
+                " %, damping within " + num(100 * in.options.selection.criteria.damping) + " %, shape MAC above " +
+                num(1 - in.options.selection.criteria.shape) +
+                "; physical poles have 0 < zeta <= " + num(in.options.selection.criteria.max_zeta),
+            "selection: " + (in.options.select_hz.empty()
+                                 ? "automatic, clusters of stable poles found at " +
+                                       num(100 * in.options.selection.min_orders_fraction) + " % of the orders or more"
+                                 : std::string("the poles nearest the frequencies given")),
+            std::string("residues: LSFD") + (in.options.lsfd.lower_residual ? ", lower residual" : "") +
+                (in.options.lsfd.upper_residual ? ", upper residual" : "")});
 
-  md << "## Modes\n\nf and zeta after the refinement (their standard deviations from its Jacobian and misfit; "
-        "before it, the LSCF cluster's median). Residues (the `shape` in the JSON) are those of the measured FRF. MPC "
-        "is "
-        "1 for a real (normal) mode shape; MPD is the mean phase deviation from a straight line. *Orders* counts the "
-        "model orders whose pole joined the mode's cluster.\n\n"
-        "| mode | f [Hz] | std f [Hz] | zeta [%] | std zeta [%] | LSCF f [Hz] | LSCF zeta [%] | MPC | MPD [deg] | "
-        "orders |";
-  if (in.model) md << " model mode | model f [Hz] | model zeta [%] | MAC |";
-  md << "\n|---|---|---|---|---|---|---|---|---|---|" << (in.model ? "---|---|---|---|" : "") << "\n";
+  doc.heading(2, "Modes");
+  doc.paragraph("f and zeta after the refinement (their standard deviations from its Jacobian and misfit; before it, "
+                "the LSCF cluster's median). Residues (the `shape` in the JSON) are those of the measured FRF. MPC is "
+                "1 for a real (normal) mode shape; MPD is the mean phase deviation from a straight line. *Orders* "
+                "counts the model orders whose pole joined the mode's cluster.");
+  report::Table modes{{"mode", "f [Hz]", "std f [Hz]", "zeta [%]", "std zeta [%]", "LSCF f [Hz]", "LSCF zeta [%]",
+                       "MPC", "MPD [deg]", "orders"},
+                      {}};
+  if (in.model)
+    for (const char* h : {"model mode", "model f [Hz]", "model zeta [%]", "MAC"}) modes.header.push_back(h);
   for (std::size_t m = 0; m < r.modes.size(); ++m) {
     const IdentifiedMode& mode = r.modes[m];
-    md << "| " << m + 1 << " | " << fixed(mode.f_hz, 3) << " | "
-       << (mode.refined ? num(mode.f_std_hz, 2) : "not refined") << " | " << num(100 * mode.zeta, 4) << " | "
-       << (mode.refined ? num(100 * mode.zeta_std, 2) : "") << " | " << fixed(mode.lscf_f_hz, 3) << " | "
-       << num(100 * mode.lscf_zeta, 4) << " | " << fixed(mode.mpc, 3) << " | " << fixed(mode.mpd_deg, 1) << " | "
-       << mode.support << (mode.user_selected ? " (selected)" : "") << " |";
+    std::vector<report::Inline> row{
+        report::Inline() << m + 1, fixed(mode.f_hz, 3), mode.refined ? num(mode.f_std_hz, 2) : "not refined",
+        num(100 * mode.zeta, 4), mode.refined ? num(100 * mode.zeta_std, 2) : "", fixed(mode.lscf_f_hz, 3),
+        num(100 * mode.lscf_zeta, 4), fixed(mode.mpc, 3), fixed(mode.mpd_deg, 1),
+        report::Inline() << mode.support << (mode.user_selected ? " (selected)" : "")};
     if (in.model) {
       const int k = in.model->pairing.model_mode[m];
-      if (k >= 0)
-        md << " " << k << " | " << fixed(in.model->modes.f_hz[static_cast<std::size_t>(k)], 3) << " | "
-           << num(100 * in.model->modes.zeta[static_cast<std::size_t>(k)], 4) << " | "
-           << fixed(in.model->pairing.best_mac[m], 3) << (in.model->pairing.shared[m] ? " (shared)" : "") << " |";
-      else
-        md << " — | | | |";
+      if (k >= 0) {
+        row.push_back(report::Inline() << k);
+        row.push_back(fixed(in.model->modes.f_hz[static_cast<std::size_t>(k)], 3));
+        row.push_back(num(100 * in.model->modes.zeta[static_cast<std::size_t>(k)], 4));
+        row.push_back(fixed(in.model->pairing.best_mac[m], 3) + (in.model->pairing.shared[m] ? " (shared)" : ""));
+      } else {
+        for (const char* cell : {"—", "", "", ""}) row.push_back(cell);
+      }
     }
-    md << "\n";
+    modes.rows.push_back(std::move(row));
   }
+  doc.table(std::move(modes));
   if (in.options.refine)
-    md << "\nRefinement (variable projection on the LSFD misfit, channels weighted by 1/RMS): weighted misfit "
-       << num(r.refinement.initial_cost) << " at the LSCF poles, " << num(r.refinement.cost) << " after.\n";
+    doc.paragraph("Refinement (variable projection on the LSFD misfit, channels weighted by 1/RMS): weighted misfit " +
+                  num(r.refinement.initial_cost) + " at the LSCF poles, " + num(r.refinement.cost) + " after.");
   for (std::size_t m = 0; m < r.refinement.notes.size(); ++m)
-    if (!r.refinement.notes[m].empty()) md << "\n- held at its LSCF value: " << r.refinement.notes[m] << "\n";
+    if (!r.refinement.notes[m].empty()) doc.list({"held at its LSCF value: " + r.refinement.notes[m]});
   if (!r.rejected.empty()) {
-    md << "\nCandidates dropped because the refinement could not hold them (the misfit has no minimum near them: no "
-          "resonance of the data):\n\n";
+    doc.paragraph("Candidates dropped because the refinement could not hold them (the misfit has no minimum near "
+                  "them: no resonance of the data):");
+    std::vector<report::Inline> dropped;
     for (const RejectedPole& p : r.rejected)
-      md << "- " << fixed(p.pole.f_hz, 3) << " Hz, zeta " << num(100 * p.pole.zeta, 3) << " %, " << p.pole.support
-         << " orders: " << p.reason << "\n";
+      dropped.push_back(report::Inline(fixed(p.pole.f_hz, 3)) << " Hz, zeta " << num(100 * p.pole.zeta, 3) << " %, "
+                                                              << p.pole.support << " orders: " << p.reason);
+    doc.list(std::move(dropped));
   }
   if (r.modes.empty())
-    md << "\nNo physical pole was found: see the stabilization diagram, and select poles by frequency.\n";
+    doc.paragraph("No physical pole was found: see the stabilization diagram, and select poles by frequency.");
 
   // Stabilization diagram over the sum of the FRFs' magnitudes.
   std::ostringstream stab, sum;
@@ -258,52 +258,57 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
   write_file(dir, "stabilization.gp",
              stabilization_plot(in, "sum of |H| (" + std::string(frf_quantity_name(data.quantity)) + ")"));
   std::vector<std::string> stems{"stabilization"};
-  md << "\n## Stabilization diagram\n\nEach pole against the nearest of the order below: grey new, blue stable in "
-        "frequency, purple also in damping, orange also in shape, red circles stable in all three; dotted green "
-        "lines are the selected modes. The grey curve is the sum of the FRFs' magnitudes.\n\n"
-        "![stabilization diagram](stabilization.svg)\n";
+  doc.heading(2, "Stabilization diagram");
+  doc.paragraph("Each pole against the nearest of the order below: grey new, blue stable in frequency, purple also in "
+                "damping, orange also in shape, red circles stable in all three; dotted green lines are the selected "
+                "modes. The grey curve is the sum of the FRFs' magnitudes.");
+  doc.figure("stabilization.svg", "stabilization diagram");
 
   std::vector<std::string> mode_labels;
   for (std::size_t m = 0; m < r.modes.size(); ++m)
     mode_labels.push_back(std::to_string(m + 1) + " (" + fixed(r.modes[m].f_hz, 1) + " Hz)");
   if (!r.modes.empty()) {
-    md << "\n## Auto-MAC\n\nMAC between the identified modes' residue vectors (off-diagonal values near 1 mean the "
-          "channels cannot tell two modes apart).\n\n";
-    mac_table(md, r.auto_mac, mode_labels, mode_labels);
+    doc.heading(2, "Auto-MAC");
+    doc.paragraph("MAC between the identified modes' residue vectors (off-diagonal values near 1 mean the channels "
+                  "cannot tell two modes apart).");
+    doc.table(mac_table(r.auto_mac, mode_labels, mode_labels));
     write_file(dir, "auto_mac.dat", matrix_dat(r.auto_mac));
     write_file(dir, "auto_mac.gp", mac_plot("auto_mac", "auto-MAC", "mode", "mode"));
     stems.push_back("auto_mac");
-    md << "![auto-MAC](auto_mac.svg)\n";
+    doc.figure("auto_mac.svg", "auto-MAC");
   }
   if (in.model && std::find(in.model->pairing.shared.begin(), in.model->pairing.shared.end(), true) !=
                       in.model->pairing.shared.end())
-    md << "\n*(shared)*: another identified mode has the same best-matching model mode. The channels cannot tell "
-          "their shapes apart (few sensors, or all on one line), or the model lacks a mode the structure has; "
-          "compare the frequencies.\n";
+    doc.paragraph("*(shared)*: another identified mode has the same best-matching model mode. The channels cannot "
+                  "tell their shapes apart (few sensors, or all on one line), or the model lacks a mode the structure "
+                  "has; compare the frequencies.");
   if (in.model && !r.modes.empty()) {
     std::vector<std::string> model_labels;
     for (std::size_t k = 0; k < in.model->modes.f_hz.size(); ++k)
       model_labels.push_back(std::to_string(k) + " (" + fixed(in.model->modes.f_hz[k], 1) + " Hz)");
-    md << "\n## MAC against the model\n\nModel `" << in.model->model_file
-       << "` at its parameter values; its residues at the measured channels (rows: identified modes, columns: model "
-          "modes as `mbgen inspect` lists them, from 0).\n\n";
-    mac_table(md, in.model->pairing.mac, mode_labels, model_labels);
+    doc.heading(2, "MAC against the model");
+    doc.paragraph(report::Inline("Model ") << report::code(in.model->model_file)
+                                           << " at its parameter values; its residues at the measured channels (rows: "
+                                              "identified modes, columns: model modes as `mbgen inspect` lists them, "
+                                              "from 0).");
+    doc.table(mac_table(in.model->pairing.mac, mode_labels, model_labels));
     write_file(dir, "model_mac.dat", matrix_dat(in.model->pairing.mac));
     write_file(dir, "model_mac.gp",
                mac_plot("model_mac", "MAC: identified vs model", "model mode + 1", "identified mode"));
     stems.push_back("model_mac");
-    md << "![MAC against the model](model_mac.svg)\n";
+    doc.figure("model_mac.svg", "MAC against the model");
   }
 
-  md << "\n## Synthesized and measured FRFs\n\nThe modal model (the selected poles, the residues and the residual "
-        "terms) against the data. Error: ||H - H_synthesized|| / ||H|| over the band.\n\n"
-        "| channel | error | lower residual | upper residual |\n|---|---|---|---|\n";
+  doc.heading(2, "Synthesized and measured FRFs");
+  doc.paragraph("The modal model (the selected poles, the residues and the residual terms) against the data. Error: "
+                "||H - H_synthesized|| / ||H|| over the band.");
+  report::Table errors{{"channel", "error", "lower residual", "upper residual"}, {}};
   for (std::size_t c = 0; c < data.channels.size(); ++c) {
     const Eigen::Index ci = static_cast<Eigen::Index>(c);
-    md << "| `" << data.channels[c].name << "` | " << num(r.fit.channel_error[ci], 3) << " | "
-       << num(r.fit.lower[ci], 4) << " | " << num(r.fit.upper[ci], 4) << " |\n";
+    errors.rows.push_back({report::code(data.channels[c].name), num(r.fit.channel_error[ci], 3),
+                           num(r.fit.lower[ci], 4), num(r.fit.upper[ci], 4)});
   }
-  md << "\n";
+  doc.table(std::move(errors));
   for (std::size_t c = 0; c < data.channels.size(); ++c) {
     const Eigen::Index ci = static_cast<Eigen::Index>(c);
     const std::string stem = "frf_" + std::to_string(c + 1);
@@ -317,10 +322,10 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
     write_file(dir, stem + ".dat", dat.str());
     write_file(dir, stem + ".gp", frf_plot(stem, data.channels[c].name));
     stems.push_back(stem);
-    md << "### `" << data.channels[c].name << "`\n\n![" << data.channels[c].name << "](" << stem << ".svg)\n\n";
+    doc.heading(3, report::code(data.channels[c].name));
+    doc.figure(stem + ".svg", report::text(data.channels[c].name));
   }
-  md << render_gnuplot(dir, stems);
-  write_file(dir, "report.md", md.str());
+  report::write_report(dir, std::move(doc), stems);
 }
 
 }  // namespace mbgen

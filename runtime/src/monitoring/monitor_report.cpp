@@ -1,8 +1,9 @@
-// The report directory of `monitor`: report.md with the changes, the series, and trend plots drawn by gnuplot.
+// The report directory of `monitor`: report.md and report.html with the changes, the series, and trend plots
+// drawn by gnuplot.
 #include "mbgen/monitor_report.hpp"
 
 #include "mbgen/gnuplot.hpp"
-#include "mbgen/markdown.hpp"
+#include "mbgen/report_document.hpp"
 #include "mbgen/report_files.hpp"
 
 #include <algorithm>
@@ -84,42 +85,55 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
   fs::create_directories(root, ec);
   if (ec) throw FitError("cannot create report directory " + dir + ": " + ec.message());
 
-  std::ostringstream md;
-  md << "# Monitoring report: " << markdown_code(r.model) << "\n\n"
-     << r.series.size() << " data sets in time order; the first " << r.baseline
-     << " are the baseline. Changes are detected by a two-sided CUSUM per parameter on its standardized shift "
-     << "(k = " << report_number(r.k, 3) << ", h = " << report_number(r.h, 4) << ": one false alarm in " << report_number(r.run_length, 6)
-     << " data sets on average over all " << r.parameters.size() << " parameters); a data set whose misfit exceeds "
-     << report_number(r.structural_ratio, 3) << " times the baseline's largest (" << report_number(r.baseline_misfit, 4)
-     << ") is a structural change.\n\n## Changes\n\n";
-  if (r.changes.empty()) md << "None.\n";
+  report::Document doc;
+  doc.heading(1, report::Inline("Monitoring report: ") << report::code(r.model));
+  doc.paragraph(report::Inline() << r.series.size() << " data sets in time order; the first " << r.baseline
+                                 << " are the baseline. Changes are detected by a two-sided CUSUM per parameter on its "
+                                    "standardized shift (k = "
+                                 << report_number(r.k, 3) << ", h = " << report_number(r.h, 4)
+                                 << ": one false alarm in " << report_number(r.run_length, 6)
+                                 << " data sets on average over all " << r.parameters.size()
+                                 << " parameters); a data set whose misfit exceeds "
+                                 << report_number(r.structural_ratio, 3) << " times the baseline's largest ("
+                                 << report_number(r.baseline_misfit, 4) << ") is a structural change.");
+  doc.heading(2, "Changes");
+  if (r.changes.empty()) doc.paragraph("None.");
+  std::vector<report::Inline> changes;
   for (const MonitorChange& c : r.changes) {
-    md << "- **data set " << c.index << "**" << (c.time ? " (" + markdown_text(*c.time) + ")" : "")
-       << (c.structural ? ", structural" : "") << ": " << markdown_text(c.text);
+    report::Inline& line = changes.emplace_back(report::Inline("**data set ") << c.index << "**");
+    if (c.time) line << " (" << report::text(*c.time) << ")";
+    line << (c.structural ? ", structural" : "") << ": " << report::text(c.text);
     if (c.structural) {
-      md << " Cause: " << (c.cause.empty() ? "not found" : markdown_code(c.cause)) << ".";
+      line << " Cause: " << (c.cause.empty() ? report::Inline("not found") : report::Inline(report::code(c.cause)))
+           << ".";
       if (!c.qualified.empty()) {
-        md << " Candidates that qualified but were not confirmed:";
-        for (const std::string& q : c.qualified) md << " " << markdown_code(q);
-        md << ".";
+        line << " Candidates that qualified but were not confirmed:";
+        for (const std::string& q : c.qualified) line << " " << report::code(q);
+        line << ".";
       }
     }
-    md << "\n";
   }
-  md << "\n## Baseline\n\n| parameter | mean | sigma | spread of the sets | fits' std | unit |\n|---|---|---|---|---|---|\n";
+  doc.list(std::move(changes));
+  doc.heading(2, "Baseline");
+  report::Table baseline{{"parameter", "mean", "sigma", "spread of the sets", "fits' std", "unit"}, {}};
   for (const MonitoredParameter& p : r.parameters)
-    md << "| " << markdown_text(p.name) << " | " << report_number(p.mean) << " | " << report_number(p.sigma, 3) << " | "
-       << report_number(p.sample_std, 3) << " | " << report_number(p.fit_std, 3) << " | " << markdown_text(p.unit) << " |\n";
-  md << "\n## Data sets\n\n| # | data | time | nrmse | misfit | starts |\n|---|---|---|---|---|---|\n";
+    baseline.rows.push_back({report::text(p.name), report_number(p.mean), report_number(p.sigma, 3),
+                             report_number(p.sample_std, 3), report_number(p.fit_std, 3), report::text(p.unit)});
+  doc.table(std::move(baseline));
+  doc.heading(2, "Data sets");
+  report::Table sets{{"#", "data", "time", "nrmse", "misfit", "starts"}, {}};
   for (std::size_t i = 0; i < r.series.size(); ++i) {
     const MonitorPoint& s = r.series[i];
-    md << "| " << i << (s.baseline ? " (baseline)" : "") << " | " << markdown_code(s.file) << " | "
-       << (s.time ? markdown_text(*s.time) : "—") << " | " << report_number(s.fit.nrmse, 4) << " | " << report_number(s.misfit, 4) << " | "
-       << s.fit.start_costs.size() << " |\n";
+    sets.rows.push_back({report::Inline() << i << (s.baseline ? " (baseline)" : ""), report::code(s.file),
+                         s.time ? report::Inline(report::text(*s.time)) : report::Inline("—"),
+                         report_number(s.fit.nrmse, 4), report_number(s.misfit, 4),
+                         report::Inline() << s.fit.start_costs.size()});
   }
-  md << "\n## Trends\n\nEach estimate with its 2-std bar; the reference level the test compares with (the baseline's "
-        "mean, re-learned after each change) with a band of 2 sigma of the scatter the baseline showed; dashed lines "
-        "mark the changes (red: parameters, purple: structural).\n\n";
+  doc.table(std::move(sets));
+  doc.heading(2, "Trends");
+  doc.paragraph("Each estimate with its 2-std bar; the reference level the test compares with (the baseline's "
+                "mean, re-learned after each change) with a band of 2 sigma of the scatter the baseline showed; dashed "
+                "lines mark the changes (red: parameters, purple: structural).");
 
   std::vector<std::string> scripts;
   for (const MonitoredParameter& p : r.parameters) {
@@ -143,7 +157,7 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
     write_report_file(root / (stem + ".gp"),
                trend_script(stem, p.name, p.unit.empty() ? p.name : p.name + " [" + p.unit + "]", r));
     scripts.push_back(stem);
-    md << "![" << markdown_text(p.name) << "](" << stem << ".svg)\n\n";
+    doc.figure(stem + ".svg", report::text(p.name));
   }
   {
     std::ostringstream dat;
@@ -153,7 +167,7 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
     write_report_file(root / "misfit.dat", dat.str());
     write_report_file(root / "misfit.gp", misfit_script("misfit", r));
     scripts.push_back("misfit");
-    md << "![misfit](misfit.svg)\n\n";
+    doc.figure("misfit.svg", "misfit");
   }
   // The feature map, for the modes every data set's estimate has (their number can differ when a mode turns
   // overdamped).
@@ -170,11 +184,12 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
     write_report_file(root / "feature_map.dat", dat.str());
     write_report_file(root / "feature_map.gp", feature_map_script("feature_map", modes));
     scripts.push_back("feature_map");
-    md << "## Feature map\n\nEach mode of the model at each data set's estimate, frequency against damping ratio, "
-          "labelled with the data set's index.\n\n![feature map](feature_map.svg)\n\n";
+    doc.heading(2, "Feature map");
+    doc.paragraph("Each mode of the model at each data set's estimate, frequency against damping ratio, labelled "
+                  "with the data set's index.");
+    doc.figure("feature_map.svg", "feature map");
   }
-  md << render_gnuplot(root.string(), scripts);
-  write_report_file(root / "report.md", md.str());
+  report::write_report(root.string(), std::move(doc), scripts);
 }
 
 }  // namespace mbgen

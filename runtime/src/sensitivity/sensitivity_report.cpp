@@ -1,6 +1,7 @@
-// The report directory of `mbgen sensitivity`: report.md with tables and SVG plots drawn by gnuplot from .dat
-// files and .gp scripts; and the terminal summary.
+// The report directory of `mbgen sensitivity`: report.md and report.html with tables and SVG plots drawn by
+// gnuplot from .dat files and .gp scripts; and the terminal summary.
 #include "mbgen/gnuplot.hpp"
+#include "mbgen/report_document.hpp"
 #include "mbgen/sensitivity_report.hpp"
 
 #include <algorithm>
@@ -31,12 +32,6 @@ std::string num(double x, int digits = 3) {
   return s.str();
 }
 
-std::string gp_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
 std::string mode_label(const Mode& m, std::size_t r) {
   char text[64];
   std::snprintf(text, sizeof text, "%zu (%.1f Hz)", r + 1, m.f_hz);
@@ -65,12 +60,13 @@ void heat_map(const std::string& dir, const std::string& stem, const std::string
   const double limit = std::max(1e-12, values.array().isFinite().select(values.cwiseAbs(), 0).maxCoeff());
   gp << "set terminal svg size " << std::max(500, 70 * static_cast<int>(cols.size()) + 200) << ","
      << 120 + 40 * rows.size() << " dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
-     << "set title " << gp_quote(title) << " noenhanced\nset palette defined (-1 '#b2182b', 0 'white', 1 '#2166ac')\n"
+     << "set title " << gnuplot_string(title)
+     << " noenhanced\nset palette defined (-1 '#b2182b', 0 'white', 1 '#2166ac')\n"
      << "set cbrange [" << -limit << ":" << limit << "]\nset xtics rotate by -45 noenhanced\nset ytics noenhanced\n"
      << "set xrange [-0.5:" << values.cols() - 0.5 << "]\nset yrange [" << values.rows() - 0.5 << ":-0.5]\nset xtics (";
-  for (std::size_t j = 0; j < cols.size(); ++j) gp << (j ? ", " : "") << gp_quote(cols[j]) << " " << j;
+  for (std::size_t j = 0; j < cols.size(); ++j) gp << (j ? ", " : "") << gnuplot_string(cols[j]) << " " << j;
   gp << ")\nset ytics (";
-  for (std::size_t i = 0; i < rows.size(); ++i) gp << (i ? ", " : "") << gp_quote(rows[i]) << " " << i;
+  for (std::size_t i = 0; i < rows.size(); ++i) gp << (i ? ", " : "") << gnuplot_string(rows[i]) << " " << i;
   gp << ")\nplot '" << stem << ".dat' using 1:2:3 with image notitle, '' using 1:2:(sprintf('%.2f', $3)) with labels "
      << "font ',8' notitle\n";
   write_file(dir, stem + ".dat", dat.str());
@@ -129,89 +125,90 @@ void write_sensitivity_report(const std::string& dir, const SensitivityReportInp
   const LocalSensitivity& l = in.local;
   std::vector<std::string> stems, mode_labels;
   for (std::size_t r = 0; r < l.modes.size(); ++r) mode_labels.push_back(mode_label(l.modes[r], r));
-  std::ostringstream md;
-  md << "# Sensitivity of the modes of `" << in.model_file << "`\n\nAt the parameter values:";
+  report::Document doc;
+  doc.heading(1, report::Inline("Sensitivity of the modes of ") << report::code(in.model_file));
+  report::Inline values = "At the parameter values:";
   for (std::size_t k = 0; k < l.parameters.size(); ++k)
-    md << (k ? ", " : " ") << "`" << l.parameters[k] << "` = " << num(l.values[static_cast<Eigen::Index>(k)], 6);
-  md << ".\n\n## Modes and their local sensitivities\n\nNormalized sensitivities `(p/f) df/dp` and `(p/zeta) "
-        "dzeta/dp`: "
-        "the relative change of a mode's frequency or damping ratio per relative change of a parameter (first-order "
-        "eigenvalue perturbation, exact). Scaling all of M, C and K together changes nothing, so each row of a "
-        "model whose parameters are all mass, damping and stiffness coefficients sums to 0. Parameters ordered by "
-        "influence on the frequencies.\n\n";
+    values << (k ? ", " : " ") << "`" << l.parameters[k] << "` = " << num(l.values[static_cast<Eigen::Index>(k)], 6);
+  doc.paragraph(values << ".");
+  doc.heading(2, "Modes and their local sensitivities");
+  doc.paragraph("Normalized sensitivities `(p/f) df/dp` and `(p/zeta) dzeta/dp`: the relative change of a mode's "
+                "frequency or damping ratio per relative change of a parameter (first-order eigenvalue perturbation, "
+                "exact). Scaling all of M, C and K together changes nothing, so each row of a model whose parameters "
+                "are all mass, damping and stiffness coefficients sums to 0. Parameters ordered by influence on the "
+                "frequencies.");
   const std::vector<std::size_t> order = by_influence(l.f_normalized);
   std::vector<std::string> ordered_names;
   for (std::size_t k : order) ordered_names.push_back(l.parameters[k]);
   for (const bool zeta : {false, true}) {
     const Eigen::MatrixXd& s = zeta ? l.zeta_normalized : l.f_normalized;
-    md << "### " << (zeta ? "Damping ratio" : "Frequency") << "\n\n| mode | f [Hz] | zeta |";
-    for (const std::string& n : ordered_names) md << " `" << n << "` |";
-    md << "\n|---|---|---|";
-    for (std::size_t k = 0; k < order.size(); ++k) md << "---|";
-    md << "\n";
+    doc.heading(3, zeta ? "Damping ratio" : "Frequency");
+    report::Table table{{"mode", "f [Hz]", "zeta"}, {}};
+    for (const std::string& n : ordered_names) table.header.push_back("`" + n + "`");
     Eigen::MatrixXd shown(s.rows(), static_cast<Eigen::Index>(order.size()));
     for (std::size_t r = 0; r < l.modes.size(); ++r) {
-      md << "| " << r + 1 << " | " << num(l.modes[r].f_hz, 6) << " | " << num(l.modes[r].zeta, 4) << " |";
+      std::vector<report::Inline>& row =
+          table.rows.emplace_back(std::vector<report::Inline>{report::Inline() << r + 1, num(l.modes[r].f_hz, 6),
+                                                              num(l.modes[r].zeta, 4)});
       for (std::size_t k = 0; k < order.size(); ++k) {
         const double v = s(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(order[k]));
         shown(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k)) = v;
-        md << " " << num(v) << " |";
+        row.push_back(num(v));
       }
-      md << "\n";
     }
+    doc.table(std::move(table));
     const std::string stem = zeta ? "local_zeta" : "local_f";
     heat_map(dir, stem, zeta ? "(p/zeta) dzeta/dp" : "(p/f) df/dp", shown, mode_labels, ordered_names);
     stems.push_back(stem);
-    md << "\n![" << stem << "](" << stem << ".svg)\n\n";
+    doc.figure(stem + ".svg", stem);
   }
 
-  md << "## Which channel sees each mode best\n\nDominance: the mode's share of the channel's response at the mode's "
-        "frequency, |modal term| / |H| (exact partial fractions). A sensor where one mode dominates separates it "
-        "best from its neighbours.\n\n| mode |";
-  for (const std::string& c : in.visibility.channels) md << " `" << c << "` |";
-  md << " best |\n|---|";
-  for (std::size_t c = 0; c < in.visibility.channels.size(); ++c) md << "---|";
-  md << "---|\n";
+  doc.heading(2, "Which channel sees each mode best");
+  doc.paragraph("Dominance: the mode's share of the channel's response at the mode's frequency, |modal term| / |H| "
+                "(exact partial fractions). A sensor where one mode dominates separates it best from its "
+                "neighbours.");
+  report::Table visibility{{"mode"}, {}};
+  for (const std::string& c : in.visibility.channels) visibility.header.push_back(report::code(c));
+  visibility.header.push_back("best");
   for (std::size_t r = 0; r < l.modes.size(); ++r) {
-    md << "| " << mode_labels[r] << " |";
+    std::vector<report::Inline>& row = visibility.rows.emplace_back(1, mode_labels[r]);
     for (std::size_t c = 0; c < in.visibility.channels.size(); ++c)
-      md << " " << num(in.visibility.dominance(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)), 4) << " |";
-    md << " `"
-       << (in.visibility.channels.empty() ? ""
-                                          : in.visibility.channels[static_cast<std::size_t>(in.visibility.best[r])])
-       << "` |\n";
+      row.push_back(num(in.visibility.dominance(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)), 4));
+    row.push_back(report::code(in.visibility.channels.empty()
+                                   ? ""
+                                   : in.visibility.channels[static_cast<std::size_t>(in.visibility.best[r])]));
   }
+  doc.table(std::move(visibility));
 
   if (in.global) {
     const GlobalSensitivity& g = *in.global;
-    md << "\n## Global sensitivity: Sobol indices\n\nParameters uniform over " << in.range_text
-       << ":\n\n| parameter | from | to |\n|---|---|---|\n";
-    for (const ParameterRange& r : g.ranges)
-      md << "| `" << r.name << "` | " << num(r.lo, 6) << " | " << num(r.hi, 6) << " |\n";
-    md << "\nFirst-order indices S (Saltelli 2010) and total indices ST (Jansen), N = " << in.sobol.samples << ", seed "
-       << in.sobol.seed << ", " << g.f.evaluations
-       << " modal analyses; +- one standard error. ST - S is what a parameter "
-          "does through interactions; sum of S near 1 means an additive model.\n\n";
+    doc.heading(2, "Global sensitivity: Sobol indices");
+    doc.paragraph("Parameters uniform over " + in.range_text + ":");
+    report::Table ranges{{"parameter", "from", "to"}, {}};
+    for (const ParameterRange& r : g.ranges) ranges.rows.push_back({"`" + r.name + "`", num(r.lo, 6), num(r.hi, 6)});
+    doc.table(std::move(ranges));
+    doc.paragraph(report::Inline("First-order indices S (Saltelli 2010) and total indices ST (Jansen), N = ")
+                  << in.sobol.samples << ", seed " << in.sobol.seed << ", " << g.f.evaluations
+                  << " modal analyses; +- one standard error. ST - S is what a parameter does through interactions; "
+                     "sum of S near 1 means an additive model.");
     std::vector<std::string> names;
     for (const ParameterRange& r : g.ranges) names.push_back(r.name);
     for (const bool zeta : {false, true}) {
       const SobolIndices& s = zeta ? g.zeta : g.f;
-      md << "### " << (zeta ? "Damping ratio" : "Frequency") << "\n\n| mode | std of " << (zeta ? "zeta" : "f [Hz]")
-         << " |";
-      for (const std::string& n : names) md << " `" << n << "` S / ST |";
-      md << "\n|---|---|";
-      for (std::size_t k = 0; k < names.size(); ++k) md << "---|";
-      md << "\n";
+      doc.heading(3, zeta ? "Damping ratio" : "Frequency");
+      report::Table table{{"mode", zeta ? "std of zeta" : "std of f [Hz]"}, {}};
+      for (const std::string& n : names) table.header.push_back("`" + n + "` S / ST");
       for (std::size_t r = 0; r < g.nominal.size(); ++r) {
         const Eigen::Index ri = static_cast<Eigen::Index>(r);
-        md << "| " << mode_label(g.nominal[r], r) << " | " << num(std::sqrt(s.variance[ri]), 3) << " |";
+        std::vector<report::Inline>& row = table.rows.emplace_back(
+            std::vector<report::Inline>{mode_label(g.nominal[r], r), num(std::sqrt(s.variance[ri]), 3)});
         for (std::size_t k = 0; k < names.size(); ++k) {
           const Eigen::Index ki = static_cast<Eigen::Index>(k);
-          md << " " << num(s.first(ri, ki), 2) << " +- " << num(s.first_std(ri, ki), 1) << " / "
-             << num(s.total(ri, ki), 2) << " +- " << num(s.total_std(ri, ki), 1) << " |";
+          row.push_back(num(s.first(ri, ki), 2) + " +- " + num(s.first_std(ri, ki), 1) + " / " +
+                        num(s.total(ri, ki), 2) + " +- " + num(s.total_std(ri, ki), 1));
         }
-        md << "\n";
       }
+      doc.table(std::move(table));
       const std::string stem = zeta ? "sobol_zeta" : "sobol_f";
       heat_map(
           dir, stem, zeta ? "total Sobol indices of zeta" : "total Sobol indices of f", s.total,
@@ -222,13 +219,15 @@ void write_sensitivity_report(const std::string& dir, const SensitivityReportInp
           }(),
           names);
       stems.push_back(stem);
-      md << "\n![" << stem << "](" << stem << ".svg)\n\n";
+      doc.figure(stem + ".svg", stem);
     }
   }
 
-  if (!in.maps.empty())
-    md << "\n## Feature maps\n\nEach mode's frequency against its damping ratio as one parameter "
-          "sweeps (the others at their values); the modes are followed by MAC from step to step.\n\n";
+  if (!in.maps.empty()) {
+    doc.heading(2, "Feature maps");
+    doc.paragraph("Each mode's frequency against its damping ratio as one parameter sweeps (the others at their "
+                  "values); the modes are followed by MAC from step to step.");
+  }
   for (std::size_t i = 0; i < in.maps.size(); ++i) {
     const FeatureMap& m = in.maps[i];
     const std::string stem = "feature_map_" + std::to_string(i + 1);
@@ -241,13 +240,13 @@ void write_sensitivity_report(const std::string& dir, const SensitivityReportInp
     }
     gp << "set terminal svg size 900,600 dynamic font 'sans,11'\nset output '" << stem << ".svg'\n"
        << "set title "
-       << gp_quote("feature map: " + m.parameter + " from " + num(m.values[0], 4) + " (circle) to " +
+       << gnuplot_string("feature map: " + m.parameter + " from " + num(m.values[0], 4) + " (circle) to " +
                    num(m.values[m.values.size() - 1], 4) + " (triangle)")
        << " noenhanced\nset xlabel 'f [Hz]'\nset ylabel 'zeta'\nset grid\nset key outside right top\nplot ";
     for (Eigen::Index t = 0; t < m.f_hz.cols(); ++t)
       gp << (t ? ", \\\n     " : "") << "'" << stem << ".dat' index " << t
          << " using 2:3 with linespoints pt 7 ps 0.4 lc " << t + 1 << " title "
-         << gp_quote("mode " + mode_label(m.start[static_cast<std::size_t>(t)], static_cast<std::size_t>(t)))
+         << gnuplot_string("mode " + mode_label(m.start[static_cast<std::size_t>(t)], static_cast<std::size_t>(t)))
          << ", '' index " << t << " every ::0::0 using 2:3 with points pt 6 ps 1.5 lc " << t + 1
          << " notitle, '' index " << t << " every ::" << m.values.size() - 1 << " using 2:3 with points pt 8 ps 1.5 lc "
          << t + 1 << " notitle";
@@ -255,10 +254,10 @@ void write_sensitivity_report(const std::string& dir, const SensitivityReportInp
     write_file(dir, stem + ".dat", dat.str());
     write_file(dir, stem + ".gp", gp.str());
     stems.push_back(stem);
-    md << "### " << m.parameter << "\n\n![feature map " << m.parameter << "](" << stem << ".svg)\n\n";
+    doc.heading(3, m.parameter);
+    doc.figure(stem + ".svg", "feature map " + m.parameter);
   }
-  md << render_gnuplot(dir, stems);
-  write_file(dir, "report.md", md.str());
+  report::write_report(dir, std::move(doc), stems);
 }
 
 }  // namespace mbgen

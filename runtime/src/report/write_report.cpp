@@ -1,0 +1,19 @@
+// A report directory's two renderings of one document: report.md and report.html, after the plots are drawn.
+#include "mbgen/gnuplot.hpp"
+#include "mbgen/report_document.hpp"
+#include "mbgen/report_files.hpp"
+
+#include <filesystem>
+
+namespace mbgen::report {
+
+void write_report(const std::string& dir, Document doc, const std::vector<std::string>& plot_stems) {
+  const std::string note = render_gnuplot(dir, plot_stems);
+  if (!note.empty()) doc.paragraph(note);
+  const std::filesystem::path root(dir);
+  write_report_file((root / "report.md").string(), to_markdown(doc));
+  // After the plots: the HTML embeds the files gnuplot wrote.
+  write_report_file((root / "report.html").string(), to_html(doc, dir));
+}
+
+}  // namespace mbgen::report
