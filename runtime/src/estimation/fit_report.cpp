@@ -5,6 +5,8 @@
 #include "mbgen/markdown.hpp"
 #include "mbgen/report_files.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <complex>
 #include <algorithm>
@@ -77,7 +79,14 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   md << "# Fit report: " << markdown_code(result.model) << "\n\n";
   md << "Method: `" << result.method << "`. Data:";
   for (const auto& d : result.data) md << " " << markdown_code(d);
-  md << ".\n\n## Parameters\n\n| parameter | prior | estimate | std | relative std | identifiable | unit |\n"
+  md << ".\n\n";
+  // A method's own one-line account of what it did (method_details.NAME.summary), e.g. two-step's route.
+  for (const auto& [name, text] : result.method_details) {
+    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_object() && j.contains("summary") && j["summary"].is_string())
+      md << markdown_code(name) << ": " << markdown_text(j["summary"].get<std::string>()) << ".\n\n";
+  }
+  md << "## Parameters\n\n| parameter | prior | estimate | std | relative std | identifiable | unit |\n"
      << "|---|---|---|---|---|---|---|\n";
   for (const auto& e : result.parameters) {
     // A std only where the method gives one (as in the JSON: the parameter has a covariance row).
