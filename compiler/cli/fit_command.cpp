@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
@@ -19,6 +21,8 @@
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
+#include "methods/analytical_solver.hpp"
+#include "symbolic/derive.hpp"
 
 namespace mbgen::cli {
 
@@ -48,7 +52,27 @@ std::string summary(const FitResult& r) {
     std::snprintf(line, sizeof line, " %.1f Hz (%.3g)", m.f_hz, m.zeta);
     out += line;
   }
-  return out + "\n";
+  out += "\n";
+  // A method's own account of what it did (method_details.NAME.summary), e.g. two-step's route.
+  for (const auto& [name, text] : r.method_details) {
+    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_object() && j.contains("summary") && j["summary"].is_string())
+      out += name + ": " + j["summary"].get<std::string>() + "\n";
+  }
+  return out;
+}
+
+// Maps --two-step-route to the runtime's solver and, where the analytical route may be taken, gives it GiNaC's exact
+// solver on the model's symbolic coefficients (compiler/methods/analytical_solver.hpp).
+TwoStepOptions two_step_options(const ir::Model& model, const symbolic::DeriveOptions& derive, TwoStepOptions o,
+                                const std::string& route) {
+  o.solver = route == "numerical" ? "newton" : route;
+  if (route == "auto" || route == "analytical") {
+    symbolic::DeriveOptions d = derive;
+    d.transfer_functions = false;  // derived per pair, as the solver needs them
+    o.analytical = analytical::make_analytical_solver(std::make_shared<const symbolic::SymbolicModel>(symbolic::derive(model, d)));
+  }
+  return o;
 }
 
 }  // namespace
@@ -73,6 +97,14 @@ int run_fit(int argc, char** argv) {
   app.add_option("--starts", options.starts, "number of starts of the global search (default 16)")->check(CLI::PositiveNumber);
   app.add_option("--seed", options.seed, "seed of the global search (default 1)");
   app.add_option("--band", band, "fit only the FRF lines within LO:HI Hz (the band the model is meant to represent)");
+  TwoStepOptions two_step;
+  std::string two_step_route = "auto";
+  app.add_option("--two-step-route", two_step_route, "two-step: step two's route: auto (analytical where the "
+                 "coefficient equations have a closed form, else numerical where square, else minimisation), "
+                 "analytical, numerical or minimisation")
+      ->check(CLI::IsMember({"auto", "analytical", "numerical", "minimisation"}));
+  app.add_option("--two-step-criterion", two_step.criterion, "two-step from records: the order criterion, aic (default), "
+                 "bic or fpe")->check(CLI::IsMember({"aic", "bic", "fpe"}));
   EkfOptions ekf;
   app.add_option("--ekf-drift", ekf.drift, "ekf: each parameter's random walk, its relative std over the whole data "
                  "(default 0.05; 0: constant parameters)")->check(CLI::NonNegativeNumber);
@@ -103,7 +135,7 @@ int run_fit(int argc, char** argv) {
     };
     FitResult result;
     if (method == "direct") result = fit_direct(*evaluator, data, options);
-    else if (method == "two-step") result = fit_two_step(*evaluator, data, options);
+    else if (method == "two-step") result = fit_two_step(*evaluator, data, options, two_step_options(model, derive, two_step, two_step_route));
     else if (method == "hybrid") result = fit_hybrid(*evaluator, data, options);
     else if (method == "ekf") result = fit_ekf(*evaluator, data, options, ekf);
     else if (method == "arx-two-stage") result = fit_arx_two_stage(*evaluator, data, options);

@@ -6,6 +6,8 @@
 #include "mbgen/report_document.hpp"
 #include "mbgen/report_files.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <complex>
 #include <algorithm>
@@ -79,6 +81,12 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   report::Inline intro = report::Inline("Method: `") << result.method << "`. Data:";
   for (const auto& d : result.data) intro << " " << report::code(d);
   doc.paragraph(intro << ".");
+  // A method's own one-line account of what it did (method_details.NAME.summary), e.g. two-step's route.
+  for (const auto& [name, text] : result.method_details) {
+    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_object() && j.contains("summary") && j["summary"].is_string())
+      doc.paragraph(report::Inline(report::code(name)) << ": " << report::text(j["summary"].get<std::string>()) << ".");
+  }
 
   doc.heading(2, "Parameters");
   report::Table parameters{{"parameter", "prior", "estimate", "std", "relative std", "identifiable", "unit"}, {}};

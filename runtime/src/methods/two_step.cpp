@@ -4,6 +4,7 @@
 #include "../estimation/levenberg_marquardt.hpp"
 #include "../estimation/multistart.hpp"
 #include "../estimation/value_checks.hpp"
+#include "analytical_route.hpp"
 #include "coefficient_problem.hpp"
 #include "method_result.hpp"
 #include "model_coefficients.hpp"
@@ -120,26 +121,13 @@ std::optional<Eigen::VectorXd> newton(const CoefficientProblem& problem, const s
   return v;
 }
 
-bool admissible(const Model& model, const Eigen::VectorXd& v, const std::vector<int>& free) {
-  const ModelInfo& info = model.info();
-  for (int i : free) {
-    const ParameterInfo& p = info.parameters[static_cast<std::size_t>(i)];
-    if (!(v[i] >= p.lower && v[i] <= p.upper)) return false;
-  }
-  try {
-    estimation::check_parameter_values(model, v, "two-step");
-  } catch (const std::exception&) {
-    return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, const FitOptions& options,
                        const TwoStepOptions& two_step) {
-  if (two_step.solver != "auto" && two_step.solver != "minimisation" && two_step.solver != "newton")
-    throw FitError("two-step: unknown solver " + two_step.solver + " (auto, minimisation or newton)");
+  if (two_step.solver != "auto" && two_step.solver != "minimisation" && two_step.solver != "newton" &&
+      two_step.solver != "analytical")
+    throw FitError("two-step: unknown solver " + two_step.solver + " (auto, analytical, newton or minimisation)");
   if (two_step.weighting != "normalised" && two_step.weighting != "covariance")
     throw FitError("two-step: unknown weighting " + two_step.weighting + " (normalised or covariance)");
   if (two_step.criterion != "aic" && two_step.criterion != "bic" && two_step.criterion != "fpe")
@@ -254,7 +242,7 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
           break;
         }
       }
-      if (!known) roots.push_back({*root, residual, admissible(model, *root, free), 1});
+      if (!known) roots.push_back({*root, residual, methods::admissible(model, *root, free), 1});
     }
     nlohmann::json sols = nlohmann::json::array();
     for (const auto& r : roots) {
@@ -270,11 +258,26 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
                                   " parameters: not square; the minimisation is the least-squares solution"}};
   }
 
-  // The estimate: Newton's admissible root nearest the minimum where the system is square (Table 3.2: the numerical
-  // solution before the minimisation), else the minimum.
+  // ---- step two (a): the analytical solution, where a solver is given ----
+  methods::AnalyticalOutcome analytical;
+  if (two_step.solver == "auto" || two_step.solver == "analytical") {
+    analytical = methods::analytical_route(model, one.tfs, free, prior, minimum, two_step.analytical);
+    if (!analytical.solved && two_step.solver == "analytical")
+      throw FitError("two-step: the analytical route cannot be taken: " + analytical.reason);
+  } else {
+    analytical.reason = "not tried: route " + std::string(two_step.solver == "newton" ? "numerical" : two_step.solver) + " asked for";
+    analytical.details = {{"available", nullptr}, {"reason", analytical.reason}};
+  }
+
+  // The estimate (Table 3.2): the analytical solution where there is an admissible one, else Newton's admissible root
+  // nearest the minimum where the system is square (the numerical solution before the minimisation), else the
+  // minimum.
   Eigen::VectorXd values = minimum;
   std::string solver = "minimisation";
-  if (square && two_step.solver != "minimisation") {
+  if (analytical.solved) {
+    values = analytical.values;
+    solver = "analytical";
+  } else if (square && two_step.solver != "minimisation") {
     double nearest = std::numeric_limits<double>::infinity();
     for (const auto& r : roots) {
       if (!r.admissible) continue;
@@ -298,7 +301,11 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
   const Eigen::MatrixXd sigma_hat = problem.identified_covariance();
   Eigen::MatrixXd cov;
   std::string uncertainty_note;
-  if (sigma_hat.size()) {
+  if (solver == "analytical" && analytical.covariance.size()) {
+    cov = analytical.covariance;
+    uncertainty_note = "step one's coefficient covariance propagated through the exact solution of the chosen square "
+                       "subsystem S: J_S^-1 S_S J_S^-T";
+  } else if (sigma_hat.size()) {
     const Eigen::MatrixXd W = problem.weight();
     Eigen::VectorXd sc(static_cast<Eigen::Index>(free.size()));
     for (std::size_t j = 0; j < free.size(); ++j) sc[static_cast<Eigen::Index>(j)] = std::max(std::abs(values[free[j]]), 1e-300);
@@ -396,7 +403,21 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
                             {"model", number(model_coefficients[i])},
                             {"relative_mismatch", number((model_coefficients[i] - t.value) / std::abs(t.value))}});
   }
+  const std::string route = solver == "newton" ? "numerical" : solver;
+  std::string route_reason;
+  if (solver == "analytical") {
+    route_reason = "the exact solution of " + std::to_string(analytical.equations.size()) + " of the " +
+                   std::to_string(n_eq) + " coefficient equations";
+  } else {
+    route_reason = two_step.solver == "auto" ? "analytical route not taken: " + analytical.reason + "; " : "";
+    route_reason += solver == "newton" ? "Newton's admissible root of the square system"
+                    : !square         ? "the minimisation (the least-squares solution of the overdetermined system)"
+                    : two_step.solver == "minimisation" ? "the minimisation, as asked"
+                                                        : "the minimisation (Newton found no admissible root)";
+  }
   nlohmann::json step_two = {
+      {"route", route},
+      {"route_reason", route_reason},
       {"solver", solver},
       {"equations", n_eq},
       {"unknowns", static_cast<int>(free.size())},
@@ -408,6 +429,7 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
       {"minimisation", {{"starts", starts}, {"best_start", result.best_start}, {"starts_at_best", at_best},
                         {"cost", number(best.cost)}, {"start_costs", start_costs}}},
       {"newton", newton_json},
+      {"analytical", analytical.details},
       {"uncertainty", uncertainty_note}};
   nlohmann::json zero_pole = nlohmann::json::array(), checks = nlohmann::json::array();
   int suspect = 0;
@@ -422,6 +444,7 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
     suspect += val.suspect_poles;
   }
   nlohmann::json details;
+  details["summary"] = "step two by the " + route + " route: " + route_reason;
   details["step_one"] = one.details;
   details["step_two"] = step_two;
   details["zero_pole"] = zero_pole;

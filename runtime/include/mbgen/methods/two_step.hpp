@@ -17,15 +17,21 @@
 #pragma once
 
 #include "mbgen/fit.hpp"
+#include "mbgen/methods/two_step_analytical.hpp"
 
 #include <string>
 
 namespace mbgen {
 
 struct TwoStepOptions {
-  // Step two: "auto" (Newton where the system is square and it finds an admissible solution, else minimisation),
-  // "minimisation" or "newton" (square systems only; FitError otherwise).
+  // Step two's route: "auto" (the analytical solution where `analytical` is given and finds an admissible one, else
+  // Newton where the system is square and it finds an admissible root, else the minimisation), "analytical" (FitError
+  // when it cannot: no solver, no closed form, no admissible real solution), "newton" (the numerical route; square
+  // systems only, FitError otherwise) or "minimisation".
   std::string solver = "auto";
+  // The exact solver of route (a) (two_step_analytical.hpp); empty: the route is unavailable (the runtime has no
+  // computer algebra; `mbgen fit` supplies GiNaC's).
+  AnalyticalSolver analytical;
   // Step two's residuals: "normalised" (the thesis's (L(p) - L^) / |L^|, Eq. 3.98) or "covariance" (those whitened by
   // step one's coefficient covariance: the Markov estimate; FRF data only, ARX gives no covariance).
   std::string weighting = "normalised";
