@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
   const auto model = evaluator::make_evaluator(ir);
   const double t_model = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_model0).count();
   const ModelInfo& info = model->info();
-  std::mt19937_64 rng(1000 + draw);
+  std::mt19937_64 rng(draw);
   std::uniform_real_distribution<double> factor(1 - spread, 1 + spread);
   std::vector<double> m(bodies), k(bodies), c(bodies);
   Eigen::VectorXd truth = info.default_values();
