@@ -18,8 +18,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <Eigen/Eigenvalues>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -32,6 +30,7 @@
 
 #include "emit/cpp_emitter.hpp"
 #include "frontend/parser.hpp"
+#include "natural_frequencies.hpp"
 #include "symbolic/derive.hpp"
 #include "symbolic/test_chain_model.hpp"
 #include "symbolic/transfer_functions.hpp"
@@ -68,25 +67,6 @@ CommandRun run_command(const std::vector<std::string>& args) {
   return r;
 }
 
-double to_double(const GiNaC::ex& e, const GiNaC::exmap& values) {
-  return GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(e.subs(values))).to_double();
-}
-
-std::vector<double> natural_frequencies(const mbgen::symbolic::SymbolicModel& sm) {
-  const GiNaC::exmap values = sm.values();
-  const unsigned n = sm.M.rows();
-  Eigen::MatrixXd M(n, n), K(n, n);
-  for (unsigned i = 0; i < n; ++i)
-    for (unsigned j = 0; j < n; ++j) {
-      M(i, j) = to_double(sm.M(i, j), values);
-      K(i, j) = to_double(sm.K(i, j), values);
-    }
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
-  std::vector<double> f;
-  for (int i = 0; i < eig.eigenvalues().size(); ++i) f.push_back(std::sqrt(eig.eigenvalues()[i]) / (2 * M_PI));
-  return f;
-}
-
 double growth(const std::vector<double>& x, const std::vector<double>& y) {
   double mx = 0, my = 0;
   for (std::size_t k = 0; k < x.size(); ++k) mx += x[k] / static_cast<double>(x.size()), my += y[k] / static_cast<double>(x.size());
@@ -111,7 +91,7 @@ void compare_with_sympy(int max_n, int timeout_s, const std::string& dir) {
     const auto t0 = std::chrono::steady_clock::now();
     const mbgen::symbolic::SymbolicModel sm = mbgen::symbolic::derive(model, {{}, false});
     const double derive = seconds_since(t0);
-    const std::vector<double> ours = natural_frequencies(sm);
+    const std::vector<double> ours = mbgen::bench::natural_frequencies(sm);
     const std::string command = "timeout " + std::to_string(timeout_s) + " python3 " MBGEN_SOURCE_DIR
                                 "/bench/derive_chain_sympy.py " + std::to_string(n);
     std::string out;

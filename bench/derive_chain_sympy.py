@@ -22,16 +22,9 @@ import time
 
 import sympy as sp
 
+from derive_spindle_sympy import rot  # the same rotation matrices (this directory)
+
 R = sp.Rational
-
-
-def rot(axis, a):
-    c, s = sp.cos(a), sp.sin(a)
-    if axis == 0:
-        return sp.Matrix([[1, 0, 0], [0, c, -s], [0, s, c]])
-    if axis == 1:
-        return sp.Matrix([[c, 0, s], [0, 1, 0], [-s, 0, c]])
-    return sp.Matrix([[c, -s, 0], [s, c, 0], [0, 0, 1]])
 
 
 def chain(n):

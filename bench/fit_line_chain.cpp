@@ -20,7 +20,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -34,47 +33,9 @@ namespace {
 using namespace mbgen;
 namespace lc = mbgen::test::line_chain;
 
-constexpr int kEvery = 3, kLines = 400;
-constexpr double kNoise = 0.01;
+constexpr int kEvery = 3;
 
 double cpu_now() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-
-// The truth's masses, stiffnesses and dampers and their synthetic FRFs (the noise from the same seeded stream).
-FrfData synthetic_data(const ModelInfo& info, int bodies, unsigned seed, double spread, Eigen::VectorXd& truth) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> factor(1 - spread, 1 + spread);
-  std::vector<double> m(static_cast<std::size_t>(bodies)), k(m.size()), c(m.size());
-  truth = info.default_values();
-  for (int i = 0; i < bodies; ++i) {
-    const std::string n = std::to_string(i + 1);
-    m[i] = lc::nominal_mass(i + 1) * factor(rng);
-    k[i] = lc::nominal_stiffness(i + 1) * factor(rng);
-    c[i] = lc::nominal_damping(i + 1) * factor(rng);
-    truth[info.parameter_index("m" + n)] = m[i];
-    truth[info.parameter_index("k" + n)] = k[i];
-    truth[info.parameter_index("c" + n)] = c[i];
-  }
-  const std::vector<int> sensors = lc::sensor_bodies(bodies, kEvery);
-  FrfData data;
-  data.file = "line chain " + std::to_string(bodies) + " seed " + std::to_string(seed) + " (synthetic)";
-  data.f_hz.resize(kLines);
-  for (int j = 0; j < kLines; ++j) data.f_hz[j] = 2.0 * std::pow(200.0, double(j) / (kLines - 1));
-  for (int b : sensors) {
-    FrfChannel ch;
-    ch.output = lc::output_name(b);
-    ch.input = "F";
-    ch.values.resize(kLines);
-    ch.coherence = Eigen::VectorXd::Constant(kLines, 1 / (1 + kNoise * kNoise));
-    data.channels.push_back(ch);
-  }
-  std::normal_distribution<double> noise(0.0, kNoise / std::sqrt(2.0));
-  for (int j = 0; j < kLines; ++j) {
-    const auto h = lc::accelerance(m, k, c, sensors, data.f_hz[j]);
-    for (std::size_t s = 0; s < sensors.size(); ++s)
-      data.channels[s].values[j] = h[s] * std::complex<double>(1 + noise(rng), noise(rng));
-  }
-  return data;
-}
 
 }  // namespace
 
@@ -99,8 +60,9 @@ int main(int argc, char** argv) {
     const auto model = evaluator::make_evaluator(ir);
     const ModelInfo& info = model->info();
     for (int draw = 1; draw <= draws; ++draw) {
-      Eigen::VectorXd truth;
-      const FrfData data = synthetic_data(info, n, static_cast<unsigned>(draw), spread, truth);
+      const lc::Draw d = lc::draw(info, n, kEvery, static_cast<unsigned>(draw), spread);
+      const Eigen::VectorXd& truth = d.truth;
+      const FrfData& data = d.data;
       FitOptions options;
       options.starts = starts;
       options.spread = 1.3;

@@ -14,59 +14,14 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <random>
 
 using namespace mbgen;
 namespace lc = mbgen::test::line_chain;
 
 namespace {
 
-constexpr int kBodies = 13, kEvery = 3, kLines = 400;
-constexpr double kNoise = 0.01, kSpread = 0.2;
-
-struct Case {
-  Eigen::VectorXd truth;
-  FrfData data;
-};
-
-// Truth: every parameter times a factor uniform in [1 - kSpread, 1 + kSpread] from the seed; FRFs at kLines
-// log-spaced lines over 2..400 Hz (the modes lie between 11 and 230 Hz, damping ratios 0.5-10 %).
-Case make_case(const ModelInfo& info, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> factor(1 - kSpread, 1 + kSpread);
-  std::vector<double> m(kBodies), k(kBodies), c(kBodies);
-  Case out;
-  out.truth = info.default_values();
-  for (int i = 0; i < kBodies; ++i) {
-    const std::string n = std::to_string(i + 1);
-    m[i] = lc::nominal_mass(i + 1) * factor(rng);
-    k[i] = lc::nominal_stiffness(i + 1) * factor(rng);
-    c[i] = lc::nominal_damping(i + 1) * factor(rng);
-    out.truth[info.parameter_index("m" + n)] = m[i];
-    out.truth[info.parameter_index("k" + n)] = k[i];
-    out.truth[info.parameter_index("c" + n)] = c[i];
-  }
-  const std::vector<int> sensors = lc::sensor_bodies(kBodies, kEvery);
-  out.data.file = "line chain seed " + std::to_string(seed) + " (synthetic)";
-  out.data.f_hz.resize(kLines);
-  for (int j = 0; j < kLines; ++j) out.data.f_hz[j] = 2.0 * std::pow(200.0, double(j) / (kLines - 1));
-  for (int b : sensors) {
-    FrfChannel ch;
-    ch.output = lc::output_name(b);
-    ch.input = "F";
-    ch.values.resize(kLines);
-    // Coherence g2 with (1 - g2) / g2 = kNoise^2: FrfWeighting's H1 variance is then (kNoise |H|)^2.
-    ch.coherence = Eigen::VectorXd::Constant(kLines, 1 / (1 + kNoise * kNoise));
-    out.data.channels.push_back(ch);
-  }
-  std::normal_distribution<double> noise(0.0, kNoise / std::sqrt(2.0));
-  for (int j = 0; j < kLines; ++j) {
-    const auto h = lc::accelerance(m, k, c, sensors, out.data.f_hz[j]);
-    for (std::size_t s = 0; s < sensors.size(); ++s)
-      out.data.channels[s].values[j] = h[s] * std::complex<double>(1 + noise(rng), noise(rng));
-  }
-  return out;
-}
+constexpr int kBodies = 13, kEvery = 3;
+constexpr double kSpread = 0.2;  // the truth within +-20 % of the model's defaults
 
 }  // namespace
 
@@ -77,7 +32,8 @@ TEST_CASE("a 39-parameter chain along one axis is identifiable and fitted to the
   REQUIRE(info.parameters.size() == 3 * kBodies);
   REQUIRE(info.outputs.size() == 5);  // bodies 13, 10, 7, 4 and 1
   for (unsigned seed : {101u, 202u}) {
-    const Case c = make_case(info, seed);
+    // The modes lie between 11 and 230 Hz (damping ratios 0.5-10 %); the data's lines span 2..400 Hz.
+    const lc::Draw c = lc::draw(info, kBodies, kEvery, seed, kSpread);
     double prior_error = 0;
     for (Eigen::Index i = 0; i < c.truth.size(); ++i)
       prior_error = std::max(prior_error, std::fabs(info.parameters[static_cast<std::size_t>(i)].value / c.truth[i] - 1));
@@ -99,7 +55,7 @@ TEST_CASE("a 39-parameter chain along one axis is identifiable and fitted to the
     REQUIRE(r.singular_values.size() == static_cast<Eigen::Index>(info.parameters.size()));
     CHECK(r.singular_values.tail(1)[0] / r.singular_values[0] > 1e-4);
     // The residual is the noise: nrmse = 1 % (the noise is 1 % of |H| at every line).
-    CHECK(r.nrmse == Approx(kNoise).epsilon(0.05));
+    CHECK(r.nrmse == Approx(lc::kNoise).epsilon(0.05));
 
     double worst_mk = 0, worst_c = 0, sum_z2 = 0;
     for (const ParameterEstimate& p : r.parameters) {

@@ -8,12 +8,16 @@
 // Two independent routes to the same FRFs, for the tests and bench/fit_line_chain:
 //   - model_text(): the .mdl text, which the code under test parses, derives and evaluates;
 //   - accelerance(): M, C, K assembled here by hand (tridiagonal) and solved by the Thomas algorithm, sharing
-//     nothing with the compiler or the runtime.
+//     nothing with the compiler or the runtime (draw() puts its values with noise into an FrfData).
 #pragma once
+
+#include "mbgen/frf_data.hpp"
+#include "mbgen/model.hpp"
 
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -92,6 +96,54 @@ inline std::vector<std::complex<double>> accelerance(const std::vector<double>& 
   for (std::size_t i = n - 1; i-- > 0;) x[i] = dp[i] - cp[i] * x[i + 1];
   std::vector<cd> out;
   for (int b : sensors) out.push_back(-w * w * x[static_cast<std::size_t>(b - 1)]);
+  return out;
+}
+
+// One synthetic measurement: the truth (every parameter's nominal value times a factor uniform in
+// [1 - spread, 1 + spread] from `seed`) and its accelerances at kLines log-spaced lines over 2..400 Hz with kNoise
+// complex noise proportional to |H| (the same seeded stream), carrying the matching coherence: FrfWeighting's H1
+// variance (1 - g2) / g2 |H|^2 is then the noise's, so the fit's std are meant to hold.
+constexpr int kLines = 400;
+constexpr double kNoise = 0.01;
+
+struct Draw {
+  Eigen::VectorXd truth;  // in the model's parameter order
+  FrfData data;
+};
+
+inline Draw draw(const ModelInfo& info, int bodies, int every, unsigned seed, double spread) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> factor(1 - spread, 1 + spread);
+  std::vector<double> m(static_cast<std::size_t>(bodies)), k(m.size()), c(m.size());
+  Draw out;
+  out.truth = info.default_values();
+  for (int i = 0; i < bodies; ++i) {
+    const std::string n = std::to_string(i + 1);
+    m[i] = nominal_mass(i + 1) * factor(rng);
+    k[i] = nominal_stiffness(i + 1) * factor(rng);
+    c[i] = nominal_damping(i + 1) * factor(rng);
+    out.truth[info.parameter_index("m" + n)] = m[i];
+    out.truth[info.parameter_index("k" + n)] = k[i];
+    out.truth[info.parameter_index("c" + n)] = c[i];
+  }
+  const std::vector<int> sensors = sensor_bodies(bodies, every);
+  out.data.file = "line chain " + std::to_string(bodies) + " seed " + std::to_string(seed) + " (synthetic)";
+  out.data.f_hz.resize(kLines);
+  for (int j = 0; j < kLines; ++j) out.data.f_hz[j] = 2.0 * std::pow(200.0, double(j) / (kLines - 1));
+  for (int b : sensors) {
+    FrfChannel ch;
+    ch.output = output_name(b);
+    ch.input = "F";
+    ch.values.resize(kLines);
+    ch.coherence = Eigen::VectorXd::Constant(kLines, 1 / (1 + kNoise * kNoise));  // (1 - g2) / g2 = kNoise^2
+    out.data.channels.push_back(ch);
+  }
+  std::normal_distribution<double> noise(0.0, kNoise / std::sqrt(2.0));
+  for (int j = 0; j < kLines; ++j) {
+    const auto h = accelerance(m, k, c, sensors, out.data.f_hz[j]);
+    for (std::size_t s = 0; s < sensors.size(); ++s)
+      out.data.channels[s].values[j] = h[s] * std::complex<double>(1 + noise(rng), noise(rng));
+  }
   return out;
 }
 
