@@ -5,7 +5,6 @@
 //
 // Prints the median wall time of each, their ratio, and the undamped natural frequencies both derivations give
 // (they must agree: a benchmark of a wrong derivation is worthless).
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "frontend/parser.hpp"
+#include "natural_frequencies.hpp"
 #include "symbolic/derive.hpp"
 
 namespace {
@@ -25,25 +25,6 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
-
-double to_double(const GiNaC::ex& e, const GiNaC::exmap& values) {
-  return GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(e.subs(values))).to_double();
-}
-
-std::vector<double> natural_frequencies(const mbgen::symbolic::SymbolicModel& sm) {
-  const GiNaC::exmap values = sm.values();
-  const unsigned n = sm.M.rows();
-  Eigen::MatrixXd M(n, n), K(n, n);
-  for (unsigned i = 0; i < n; ++i)
-    for (unsigned j = 0; j < n; ++j) {
-      M(i, j) = to_double(sm.M(i, j), values);
-      K(i, j) = to_double(sm.K(i, j), values);
-    }
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
-  std::vector<double> f;
-  for (int i = 0; i < eig.eigenvalues().size(); ++i) f.push_back(std::sqrt(eig.eigenvalues()[i]) / (2 * M_PI));
-  return f;
 }
 
 // Runs the SymPy script and returns its JSON line.
@@ -95,7 +76,7 @@ int main(int argc, char** argv) {
     if (r == 0) {
       tf_count = sm.transfer_functions.size();
       blocks = sm.blocks.size();
-      freqs = natural_frequencies(sm);
+      freqs = mbgen::bench::natural_frequencies(sm);
     }
   }
   const double ours = median(with_tf);

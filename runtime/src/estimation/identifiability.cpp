@@ -1,5 +1,6 @@
 #include "mbgen/identifiability.hpp"
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
 
 #include <algorithm>
@@ -26,15 +27,36 @@ IdentifiabilityAnalysis analyse_identifiability(const Eigen::MatrixXd& J, const 
     else
       kept.push_back(static_cast<int>(j));
   }
-  auto unit_columns = [&](const std::vector<int>& cols) {
-    Eigen::MatrixXd U(J.rows(), static_cast<Eigen::Index>(cols.size()));
-    for (std::size_t c = 0; c < cols.size(); ++c) U.col(static_cast<Eigen::Index>(c)) = J.col(cols[c]) / a.column_norms[cols[c]];
-    return U;
-  };
   if (kept.empty()) {
     a.singular_values = Eigen::VectorXd();
     return a;
   }
+  // A tall Jacobian (many residuals: an FRF fit has thousands of rows per parameter) is first reduced to the
+  // triangular factor of its kept columns, J_kept = Q R: any subset of R's columns has the singular values and
+  // right singular vectors of the same subset of J's, so every SVD below works on k x k instead of rows x k, and
+  // the one QR is blocked (the SVD's own column-pivoting QR is not). Columns index J's through `position`.
+  const Eigen::Index rows = J.rows();
+  Eigen::MatrixXd reduced;
+  std::vector<Eigen::Index> position(static_cast<std::size_t>(k), -1);
+  for (std::size_t c = 0; c < kept.size(); ++c) position[static_cast<std::size_t>(kept[c])] = static_cast<Eigen::Index>(c);
+  const bool reduce = rows > 2 * static_cast<Eigen::Index>(kept.size());
+  if (reduce) {
+    Eigen::MatrixXd Jk(rows, static_cast<Eigen::Index>(kept.size()));
+    for (std::size_t c = 0; c < kept.size(); ++c) Jk.col(static_cast<Eigen::Index>(c)) = J.col(kept[c]);
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Jk);
+    reduced = qr.matrixQR().topRows(Jk.cols()).triangularView<Eigen::Upper>();
+  }
+  auto unit_columns = [&](const std::vector<int>& cols) {
+    Eigen::MatrixXd U(reduce ? reduced.rows() : rows, static_cast<Eigen::Index>(cols.size()));
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      const double norm = a.column_norms[cols[c]];
+      if (reduce)
+        U.col(static_cast<Eigen::Index>(c)) = reduced.col(position[static_cast<std::size_t>(cols[c])]) / norm;
+      else
+        U.col(static_cast<Eigen::Index>(c)) = J.col(cols[c]) / norm;
+    }
+    return U;
+  };
   bool first = true;
   while (!kept.empty()) {
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(unit_columns(kept), Eigen::ComputeThinV);
