@@ -30,8 +30,7 @@ std::unique_ptr<Model> spindle_model() {
 }
 
 DataSet spindle_data() {
-  const DataFile f = read_data_file(kData);
-  return std::visit([](const auto& d) { return DataSet(d); }, f);
+  return read_data_file(kData);
 }
 
 std::map<std::string, double> truth_parameters() {

@@ -17,8 +17,7 @@ using test::LinearModel;
 namespace {
 
 DataSet example_data(const std::string& relative) {
-  const DataFile f = read_data_file(std::string(MBGEN_SOURCE_DIR) + "/" + relative);
-  return std::visit([](const auto& d) { return DataSet(d); }, f);
+  return read_data_file(std::string(MBGEN_SOURCE_DIR) + "/" + relative);
 }
 
 }  // namespace

@@ -30,8 +30,7 @@ inline TruthgenData truthgen_data(const std::string& arguments, const std::strin
   const std::string command =
       "/usr/bin/python3 " MBGEN_SOURCE_DIR "/scripts/truthgen/truthgen.py " + arguments + " -o " + path + ".csv";
   REQUIRE(std::system(command.c_str()) == 0);
-  const DataFile f = read_data_file(path + ".csv");
-  TruthgenData g{std::visit([](const auto& d) { return DataSet(d); }, f), {}};
+  TruthgenData g{read_data_file(path + ".csv"), {}};
   std::ifstream in(path + ".truth.json");
   const nlohmann::json parameters = nlohmann::json::parse(in).at("parameters");
   for (auto it = parameters.begin(); it != parameters.end(); ++it) g.truth[it.key()] = it.value().get<double>();
