@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "mbgen_test/files.hpp"
+
 #include "mbgen/data_error.hpp"
 #include "mbgen/data_set.hpp"
 
@@ -14,11 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path temp_dir() {
-  const fs::path dir = fs::path(MBGEN_BINARY_DIR) / "test-tmp" / "data_set_test";
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir() { return mbgen::test::test_dir("data_set_test"); }
 
 std::string write(const std::string& name, const std::string& text) {
   const fs::path p = temp_dir() / name;
