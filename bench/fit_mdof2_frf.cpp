@@ -3,7 +3,7 @@
 // run. Prints both times (median of repeats), the ratio, and both final costs (they must agree).
 //
 //   fit_mdof2_frf [REPEATS]     (run from anywhere; finds fit_scipy.py through MBGEN_SOURCE_DIR)
-#include "../runtime/src/estimation/test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include "mbgen/csv.hpp"
 #include "mbgen/fit.hpp"

@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
   const std::string source = MBGEN_SOURCE_DIR;
   const std::string mdl = source + "/examples/spindle/spindle.mdl", csv = source + "/examples/spindle/data/frf_Fx.csv";
   const auto model = evaluator::make_evaluator(frontend::parse_file(mdl));
-  const DataSet data = std::visit([](const auto& d) { return DataSet(d); }, read_data_file(csv));
+  const DataSet data = read_data_file(csv);
 
   FitOptions local;
   local.starts = 1;

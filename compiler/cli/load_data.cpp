@@ -16,10 +16,7 @@ namespace mbgen::cli {
 
 std::vector<DataSet> load_data(const std::vector<std::string>& paths, const ModelInfo& model) {
   std::vector<DataSet> out;
-  for (const std::string& path : paths) {
-    DataFile file = read_data_file(path, model.inputs, model.outputs);
-    out.push_back(std::visit([](auto&& d) { return DataSet(std::move(d)); }, std::move(file)));
-  }
+  for (const std::string& path : paths) out.push_back(read_data_file(path, model.inputs, model.outputs));
   return out;
 }
 

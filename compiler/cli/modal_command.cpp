@@ -91,10 +91,9 @@ int run_modal(int argc, char** argv) {
     std::string quantity_source;
     for (std::size_t d = 0; d < data_paths.size(); ++d) {
       const std::string& path = data_paths[d];
-      DataFile file = model ? read_data_file(path, model->info().inputs, model->info().outputs) : read_data_file(path);
-      if (std::holds_alternative<TimeRecord>(file))
-        throw DataError(path, 0, 0, "modal analysis needs FRFs, but this is a time record");
-      frfs.push_back(std::get<FrfData>(std::move(file)));
+      DataSet file = model ? read_data_file(path, model->info().inputs, model->info().outputs) : read_data_file(path);
+      if (!file.is_frf()) throw DataError(path, 0, 0, "modal analysis needs FRFs, but this is a time record");
+      frfs.push_back(std::get<FrfData>(std::move(file.content)));
       const FrfQuantity here = is_uff_path(path) ? uff_frf_quantity(read_uff58(path)) : FrfQuantity::Unknown;
       quantity = d == 0 || here == quantity ? here : FrfQuantity::Unknown;
     }

@@ -4,6 +4,7 @@
 //
 // The test lives beside the evaluator because it needs the model from the .mdl: the runtime's own tests cannot
 // link the compiler, and the in-process evaluator is what `mbgen fit` uses.
+#include "mbgen_test/example_data.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
 
@@ -23,19 +24,15 @@ using namespace mbgen;
 
 namespace {
 
-const std::string kData = MBGEN_SOURCE_DIR "/examples/spindle/data/frf_Fx.csv";
 
 std::unique_ptr<Model> spindle_model() {
-  return evaluator::make_evaluator(frontend::parse_file(MBGEN_SOURCE_DIR "/examples/spindle/spindle.mdl"));
+  return evaluator::make_evaluator(frontend::parse_file(test::example_model_path("spindle")));
 }
 
-DataSet spindle_data() {
-  const DataFile f = read_data_file(kData);
-  return std::visit([](const auto& d) { return DataSet(d); }, f);
-}
+DataSet spindle_data() { return test::example_data("examples/spindle/data/frf_Fx.csv"); }
 
 std::map<std::string, double> truth_parameters() {
-  std::ifstream in(MBGEN_SOURCE_DIR "/examples/spindle/data/frf_Fx.truth.json");
+  std::ifstream in(test::source_path("examples/spindle/data/frf_Fx.truth.json"));
   const nlohmann::json j = nlohmann::json::parse(in);
   std::map<std::string, double> out;
   for (const auto& [name, value] : j.at("parameters").items()) out[name] = value.get<double>();

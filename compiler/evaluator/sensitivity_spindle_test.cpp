@@ -1,6 +1,7 @@
 // Feature maps of the spindle (examples/spindle/spindle.mdl): the front bearing's x stiffness standing for its
 // preload (thesis Sec. 5.4.4, Fig. 5.34). Beside the evaluator because it needs the model from the .mdl, as
 // fit_spindle_test does.
+#include "mbgen_test/files.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
 
@@ -13,7 +14,7 @@
 using namespace mbgen;
 
 TEST_CASE("sensitivity: the spindle's feature map over the front bearing's stiffness", "[sensitivity][spindle]") {
-  const auto model = evaluator::make_evaluator(frontend::parse_file(MBGEN_SOURCE_DIR "/examples/spindle/spindle.mdl"));
+  const auto model = evaluator::make_evaluator(frontend::parse_file(mbgen::test::example_model_path("spindle")));
   const Eigen::VectorXd p = model->info().default_values();
   const int k_fx = model->info().parameter_index("k_fx");
   REQUIRE(k_fx >= 0);

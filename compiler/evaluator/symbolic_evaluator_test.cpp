@@ -1,3 +1,4 @@
+#include "mbgen_test/files.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 
 #include <catch2/catch.hpp>
@@ -54,12 +55,12 @@ void check_against_ginac(const std::string& file) {
 }  // namespace
 
 TEST_CASE("the evaluator agrees with exact evaluation of the symbolic matrices", "[evaluator]") {
-  check_against_ginac(MBGEN_SOURCE_DIR "/examples/mdof2/mdof2.mdl");
-  check_against_ginac(MBGEN_SOURCE_DIR "/examples/spindle/spindle.mdl");
+  check_against_ginac(mbgen::test::example_model_path("mdof2"));
+  check_against_ginac(mbgen::test::example_model_path("spindle"));
 }
 
 TEST_CASE("the evaluator's derivatives agree with central differences", "[evaluator]") {
-  const ir::Model model = frontend::parse_file(MBGEN_SOURCE_DIR "/examples/spindle/spindle.mdl");
+  const ir::Model model = frontend::parse_file(mbgen::test::example_model_path("spindle"));
   const auto eval = evaluator::make_evaluator(model);
   const Eigen::VectorXd p = random_values(eval->info(), 7);
   ModelDerivatives d;
@@ -88,7 +89,7 @@ TEST_CASE("the evaluator's derivatives agree with central differences", "[evalua
 }
 
 TEST_CASE("the evaluator reports the model's metadata", "[evaluator]") {
-  const ir::Model model = frontend::parse_file(MBGEN_SOURCE_DIR "/examples/mdof2/mdof2.mdl");
+  const ir::Model model = frontend::parse_file(mbgen::test::example_model_path("mdof2"));
   const auto eval = evaluator::make_evaluator(model);
   const ModelInfo& info = eval->info();
   CHECK(info.name == "mdof2");

@@ -1,3 +1,4 @@
+#include "mbgen_test/files.hpp"
 #include "frontend/model_writer.hpp"
 
 #include <catch2/catch.hpp>
@@ -143,7 +144,7 @@ void check_round_trip(const ir::Model& m) {
 TEST_CASE("the examples survive write and parse", "[writer]") {
   for (const char* name : {"mdof2", "spindle"}) {
     INFO(name);
-    check_round_trip(frontend::parse_file(std::string(MBGEN_SOURCE_DIR) + "/examples/" + name + "/" + name + ".mdl"));
+    check_round_trip(frontend::parse_file(mbgen::test::example_model_path(name)));
   }
 }
 

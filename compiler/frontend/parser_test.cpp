@@ -1,3 +1,4 @@
+#include "mbgen_test/files.hpp"
 #include "frontend/parser.hpp"
 
 #include <catch2/catch.hpp>
@@ -28,7 +29,7 @@ spring s { from g; to b; along x; stiffness k }
 }  // namespace
 
 TEST_CASE("the example models parse", "[parser]") {
-  const ir::Model mdof2 = frontend::parse_file(MBGEN_SOURCE_DIR "/examples/mdof2/mdof2.mdl");
+  const ir::Model mdof2 = frontend::parse_file(mbgen::test::example_model_path("mdof2"));
   CHECK(mdof2.name == "mdof2");
   CHECK(mdof2.parameters.size() == 8);
   CHECK(mdof2.bodies.size() == 2);
@@ -38,7 +39,7 @@ TEST_CASE("the example models parse", "[parser]") {
   CHECK(mdof2.find_parameter("k11")->unit == "N/m");
   CHECK(ir::to_string(*mdof2.find_parameter("k11")->upper) == "1e9");
 
-  const ir::Model spindle = frontend::parse_file(MBGEN_SOURCE_DIR "/examples/spindle/spindle.mdl");
+  const ir::Model spindle = frontend::parse_file(mbgen::test::example_model_path("spindle"));
   CHECK(spindle.bodies.size() == 2);
   CHECK(spindle.elements.size() == 9);
   CHECK(spindle.find_body("spindle")->dofs.size() == 5);

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "mbgen_test/files.hpp"
 #include "symbolic/derive.hpp"
 #include "symbolic/test_support.hpp"
 
@@ -16,12 +17,7 @@ using namespace mbgen::symbolic::test;
 
 namespace {
 
-std::string example_text(const std::string& name) {
-  std::ifstream in(std::string(MBGEN_SOURCE_DIR) + "/examples/" + name + "/" + name + ".mdl");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string example_text(const std::string& name) { return mbgen::test::example_model_text(name); }
 
 bool symmetric(const GiNaC::matrix& m) {
   for (unsigned i = 0; i < m.rows(); ++i)

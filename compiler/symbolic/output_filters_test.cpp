@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "mbgen_test/files.hpp"
 #include "frontend/diagnostics.hpp"
 #include "frontend/parser.hpp"
 #include "symbolic/derive.hpp"
@@ -16,12 +17,7 @@ using namespace mbgen::symbolic::test;
 
 namespace {
 
-std::string mdof2_text() {
-  std::ifstream in(std::string(MBGEN_SOURCE_DIR) + "/examples/mdof2/mdof2.mdl");
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string mdof2_text() { return mbgen::test::example_model_text("mdof2"); }
 
 GiNaC::ex ratio(const TransferFunction& tf, const GiNaC::symbol& s) {
   GiNaC::ex num = 0, den = 0;

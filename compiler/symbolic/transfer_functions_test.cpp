@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "mbgen_test/files.hpp"
 #include "frontend/parser.hpp"
 #include "symbolic/derive.hpp"
 #include "symbolic/test_support.hpp"
@@ -56,12 +57,7 @@ void check_against_direct_solve(const SymbolicModel& sm) {
   }
 }
 
-std::string example_text(const std::string& name) {
-  std::ifstream in(std::string(MBGEN_SOURCE_DIR) + "/examples/" + name + "/" + name + ".mdl");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string example_text(const std::string& name) { return mbgen::test::example_model_text(name); }
 
 }  // namespace
 

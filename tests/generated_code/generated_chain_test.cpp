@@ -9,8 +9,8 @@
 #include <regex>
 #include <sstream>
 
-#include "chain_split.hpp"
-#include "chain_whole.hpp"
+#include "chain_split_model.hpp"
+#include "chain_whole_model.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
 #include "symbolic/derive.hpp"
@@ -84,9 +84,9 @@ int pieces_in(const std::string& text) {
 
 TEST_CASE("chain16: the split source is spread over three files, the whole one has no pieces") {
   static_assert(whole::num_coordinates == 96 && split::num_coordinates == 96, "a chain of 16 bodies");
-  CHECK(pieces_in(read("chain_whole.cpp")) == 0);
-  CHECK(pieces_in(read("chain_split.cpp")) == 0);  // declarations only
-  const int part1 = pieces_in(read("chain_split_part1.cpp")), part2 = pieces_in(read("chain_split_part2.cpp"));
+  CHECK(pieces_in(read("chain_whole_model.cpp")) == 0);
+  CHECK(pieces_in(read("chain_split_model.cpp")) == 0);  // declarations only
+  const int part1 = pieces_in(read("chain_split_model_part1.cpp")), part2 = pieces_in(read("chain_split_model_part2.cpp"));
   CHECK(part1 > 0);
   CHECK(part2 > 0);
   // Functions of at most 500 operations: the 96-coordinate Jacobians alone have thousands of entries.

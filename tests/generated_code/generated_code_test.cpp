@@ -10,9 +10,9 @@
 
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
-#include "mdof2.hpp"
-#include "spindle.hpp"
-#include "spindle_spin.hpp"
+#include "mdof2_model.hpp"
+#include "spindle_model.hpp"
+#include "spindle_spin_model.hpp"
 #include "symbolic/derive.hpp"
 
 namespace {

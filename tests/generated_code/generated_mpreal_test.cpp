@@ -11,9 +11,9 @@
 #include <string>
 
 #define MBGEN_GENERATED_TEMPLATES_ONLY
-#include "mdof2.cpp"
-#include "spindle.cpp"
-#include "spindle_spin.cpp"
+#include "mdof2_model.cpp"
+#include "spindle_model.cpp"
+#include "spindle_spin_model.cpp"
 #undef MBGEN_GENERATED_TEMPLATES_ONLY
 
 #include "frontend/parser.hpp"

@@ -4,6 +4,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -14,8 +15,16 @@
 
 namespace mbgen {
 
-// What a data file holds. (The estimator wraps it as mbgen::DataSet, fit.hpp, with the data set's `# set` values.)
-using DataFile = std::variant<TimeRecord, FrfData>;
+// One measured data set, as a data file holds it: an FRF table or a time record, each with its file name and its
+// `# set` values (which override parameters for this data set alone). What the readers return and the estimators take.
+struct DataSet {
+  std::variant<FrfData, TimeRecord> content;
+  DataSet(FrfData frf) : content(std::move(frf)) {}         // NOLINT: implicit on purpose
+  DataSet(TimeRecord record) : content(std::move(record)) {}  // NOLINT
+  const std::string& file() const;
+  const SetMap& set() const;
+  bool is_frf() const { return std::holds_alternative<FrfData>(content); }
+};
 
 // Reads a data file of any supported kind (docs/data.md):
 // - UFF 58/58b when the name ends in .uff or .unv (any case) or the first non-blank line is "-1". The
@@ -23,16 +32,13 @@ using DataFile = std::variant<TimeRecord, FrfData>;
 //   or else get default names ("node1:+X").
 // - CSV otherwise: a time record when the header's first column is `t`, FRFs when it is `f_hz`.
 // PATH "-" reads standard input (a UFF mapping must then be passed explicitly). Throws DataError.
-DataFile read_data_file(const std::string& path, const std::optional<ChannelNames>& known = std::nullopt,
-                       const std::optional<UffMapping>& uff_mapping = std::nullopt);
-DataFile read_data_file(const std::string& path, const std::vector<std::string>& known_inputs,
-                       const std::vector<std::string>& known_outputs);
+DataSet read_data_file(const std::string& path, const std::optional<ChannelNames>& known = std::nullopt,
+                      const std::optional<UffMapping>& uff_mapping = std::nullopt);
+DataSet read_data_file(const std::string& path, const std::vector<std::string>& known_inputs,
+                      const std::vector<std::string>& known_outputs);
 // The same from a stream; `file_name` serves the messages and the UFF-by-extension rule.
-DataFile read_data(std::istream& in, const std::string& file_name,
+DataSet read_data(std::istream& in, const std::string& file_name,
                   const std::optional<ChannelNames>& known = std::nullopt,
                   const std::optional<UffMapping>& uff_mapping = std::nullopt);
-
-const std::string& data_file(const DataFile& data);
-const SetMap& data_set_values(const DataFile& data);
 
 }  // namespace mbgen

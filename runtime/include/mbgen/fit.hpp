@@ -14,6 +14,7 @@
 // the data cannot determine are reported identifiable = false and kept at their prior (identifiability.hpp).
 #pragma once
 
+#include "mbgen/data_set.hpp"
 #include "mbgen/frf_data.hpp"
 #include "mbgen/modal.hpp"
 #include "mbgen/model.hpp"
@@ -26,20 +27,9 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <variant>
 #include <vector>
 
 namespace mbgen {
-
-// One measured data set: an FRF table or a time record. Its `# set` values override parameters for it alone.
-struct DataSet {
-  std::variant<FrfData, TimeRecord> content;
-  DataSet(FrfData frf) : content(std::move(frf)) {}         // NOLINT: implicit on purpose
-  DataSet(TimeRecord record) : content(std::move(record)) {}  // NOLINT
-  const std::string& file() const;
-  const SetMap& set() const;
-  bool is_frf() const { return std::holds_alternative<FrfData>(content); }
-};
 
 // Bad fit input (unknown channel or parameter names, empty data, ...). what() names the file where known.
 class FitError : public std::runtime_error {

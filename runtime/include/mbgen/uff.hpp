@@ -9,7 +9,6 @@
 #include <map>
 #include <optional>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "mbgen/data_settings.hpp"
@@ -17,6 +16,8 @@
 #include "mbgen/time_record.hpp"
 
 namespace mbgen {
+
+struct DataSet;  // mbgen/data_set.hpp
 
 // One dataset 58 or 58b as written in the file.
 struct Uff58Record {
@@ -81,8 +82,8 @@ std::string uff_channel_name(const UffMapping& mapping, int node, int direction)
 // - Time responses (type 1, real, even spacing) become a TimeRecord with one signal per response point; all
 //   must share the time axis.
 // Mixed kinds, other function types, and (with `known`) names that are not model channels are DataErrors.
-std::variant<TimeRecord, FrfData> uff_to_data_set(const std::vector<Uff58Record>& records,
-                                                  const std::string& file_name, const UffMapping& mapping,
-                                                  const std::optional<ChannelNames>& known = std::nullopt);
+// (Callers include mbgen/data_set.hpp for the result's type.)
+DataSet uff_to_data_set(const std::vector<Uff58Record>& records, const std::string& file_name,
+                        const UffMapping& mapping, const std::optional<ChannelNames>& known = std::nullopt);
 
 }  // namespace mbgen

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "mbgen/csv.hpp"
+#include "mbgen_test/files.hpp"
+
 #include "mbgen/data_error.hpp"
 
 using namespace mbgen;
@@ -15,11 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path temp_dir() {
-  const fs::path dir = fs::path(MBGEN_BINARY_DIR) / "test-tmp" / "csv_test";
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir() { return mbgen::test::test_dir("csv_test"); }
 
 // The message of the DataError that reading `text` as a time record (or FRF) throws; fails if none is thrown.
 std::string time_error(const std::string& text, const std::optional<ChannelNames>& known = std::nullopt) {

@@ -75,7 +75,7 @@ Kind detect(std::istream& in, const std::string& file_name) {
   throw DataError(file_name, 0, 0, any ? "no header row (only comments)" : "empty file");
 }
 
-DataFile parse(Kind kind, std::istream& body, const std::string& file_name, const std::optional<ChannelNames>& known,
+DataSet parse(Kind kind, std::istream& body, const std::string& file_name, const std::optional<ChannelNames>& known,
                const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
   switch (kind) {
     case Kind::Time: return read_time_record_csv(body, file_name, known);
@@ -88,12 +88,10 @@ DataFile parse(Kind kind, std::istream& body, const std::string& file_name, cons
     mapping = *uff_mapping;
   else if (!sidecar.empty() && std::filesystem::exists(sidecar))
     mapping = read_uff_mapping(sidecar);
-  const auto set = uff_to_data_set(records, file_name, mapping, known);
-  if (std::holds_alternative<TimeRecord>(set)) return std::get<TimeRecord>(set);
-  return std::get<FrfData>(set);
+  return uff_to_data_set(records, file_name, mapping, known);
 }
 
-DataFile read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
+DataSet read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
                  const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
   // A file is parsed from the stream itself after a look at its first lines, and so never held as text beside its
   // numbers (docs/limits.md, "Memory of a time record"). Standard input cannot be rewound: it is read whole first.
@@ -120,12 +118,12 @@ DataFile read_any(std::istream& in, const std::string& file_name, const std::opt
 
 }  // namespace
 
-DataFile read_data(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
+DataSet read_data(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
                   const std::optional<UffMapping>& uff_mapping) {
   return read_any(in, file_name, known, uff_mapping, "");
 }
 
-DataFile read_data_file(const std::string& path, const std::optional<ChannelNames>& known,
+DataSet read_data_file(const std::string& path, const std::optional<ChannelNames>& known,
                        const std::optional<UffMapping>& uff_mapping) {
   if (path == "-") return read_data(std::cin, path, known, uff_mapping);
   std::error_code ec;
@@ -135,17 +133,17 @@ DataFile read_data_file(const std::string& path, const std::optional<ChannelName
   return read_any(in, path, known, uff_mapping, path + ".map");
 }
 
-DataFile read_data_file(const std::string& path, const std::vector<std::string>& known_inputs,
+DataSet read_data_file(const std::string& path, const std::vector<std::string>& known_inputs,
                        const std::vector<std::string>& known_outputs) {
   return read_data_file(path, ChannelNames{known_inputs, known_outputs});
 }
 
-const std::string& data_file(const DataFile& data) {
-  return std::visit([](const auto& d) -> const std::string& { return d.file; }, data);
+const std::string& DataSet::file() const {
+  return std::visit([](const auto& d) -> const std::string& { return d.file; }, content);
 }
 
-const SetMap& data_set_values(const DataFile& data) {
-  return std::visit([](const auto& d) -> const SetMap& { return d.set; }, data);
+const SetMap& DataSet::set() const {
+  return std::visit([](const auto& d) -> const SetMap& { return d.set; }, content);
 }
 
 }  // namespace mbgen

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "mbgen_test/files.hpp"
+
 #include "mbgen/data_error.hpp"
 #include "mbgen/data_set.hpp"
 
@@ -14,11 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path temp_dir() {
-  const fs::path dir = fs::path(MBGEN_BINARY_DIR) / "test-tmp" / "data_set_test";
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir() { return mbgen::test::test_dir("data_set_test"); }
 
 std::string write(const std::string& name, const std::string& text) {
   const fs::path p = temp_dir() / name;
@@ -32,14 +30,14 @@ std::string sample(const std::string& name) { return std::string(MBGEN_TEST_DATA
 
 TEST_CASE("CSV kinds are told by the first header column") {
   const auto time = read_data_file(write("a.csv", "# set k=2\nt,F,x\n0,1,2\n0.5,1,2\n"), {"F"}, {"x"});
-  REQUIRE(std::holds_alternative<TimeRecord>(time));
-  CHECK(std::get<TimeRecord>(time).samples() == 2);
-  CHECK(data_set_values(time).at("k").value == 2);
-  CHECK(data_file(time).find("a.csv") != std::string::npos);
+  REQUIRE(std::holds_alternative<TimeRecord>(time.content));
+  CHECK(std::get<TimeRecord>(time.content).samples() == 2);
+  CHECK(time.set().at("k").value == 2);
+  CHECK(time.file().find("a.csv") != std::string::npos);
 
   const auto frf = read_data_file(write("b.txt", "\n# FRF\nf_hz,x/F.re,x/F.im\n1,2,3\n"));
-  REQUIRE(std::holds_alternative<FrfData>(frf));
-  CHECK(std::get<FrfData>(frf).channels.at(0).values[0] == std::complex<double>(2, 3));
+  REQUIRE(frf.is_frf());
+  CHECK(std::get<FrfData>(frf.content).channels.at(0).values[0] == std::complex<double>(2, 3));
 
   CHECK_THROWS_WITH(read_data_file(write("c.csv", "# x\nfreq,a\n1,2\n")),
                     Catch::Contains("c.csv:2:1: error: cannot tell the kind of data: the header starts with 'freq'"));
@@ -51,12 +49,12 @@ TEST_CASE("CSV kinds are told by the first header column") {
 
 TEST_CASE("streams: standard-input style reading") {
   std::istringstream in("t,F\n0,1\n1,2\n");
-  CHECK(std::holds_alternative<TimeRecord>(read_data(in, "-")));
+  CHECK(std::holds_alternative<TimeRecord>(read_data(in, "-").content));
   // UFF recognised by content when the name says nothing.
   std::ifstream uff(sample("non_ascii_header.uff"), std::ios::binary);
   const auto set = read_data(uff, "-");
-  REQUIRE(std::holds_alternative<FrfData>(set));
-  CHECK(std::get<FrfData>(set).f_hz.size() == 6);
+  REQUIRE(std::holds_alternative<FrfData>(set.content));
+  CHECK(std::get<FrfData>(set.content).f_hz.size() == 6);
 }
 
 TEST_CASE("UFF files, with the sidecar mapping PATH.map or an explicit one") {
@@ -69,7 +67,7 @@ TEST_CASE("UFF files, with the sidecar mapping PATH.map or an explicit one") {
   CHECK_THROWS_WITH(read_data_file(path, {"F"}, {"acc"}), Catch::Contains("'0:S = NAME'"));
   write("th.uff.map", "# mapping\n0:S = acc\nset n_sp=300\nhold=none\n");
   const auto set = read_data_file(path, {"F"}, {"acc"});
-  const TimeRecord& rec = std::get<TimeRecord>(set);
+  const TimeRecord& rec = std::get<TimeRecord>(set.content);
   CHECK(rec.signals.at(0).name == "acc");
   CHECK(rec.hold == HoldMode::None);
   CHECK(rec.set.at("n_sp").text == "300");
@@ -77,8 +75,8 @@ TEST_CASE("UFF files, with the sidecar mapping PATH.map or an explicit one") {
   UffMapping explicit_map;
   explicit_map.names["0:S"] = "mic";
   const auto other = read_data_file(path, ChannelNames{{"F"}, {"mic"}}, explicit_map);
-  CHECK(std::get<TimeRecord>(other).signals.at(0).name == "mic");
+  CHECK(std::get<TimeRecord>(other.content).signals.at(0).name == "mic");
   // The shared samples are read by extension.
-  CHECK(std::holds_alternative<TimeRecord>(read_data_file(sample("binary8byte.uff"))));
+  CHECK(std::holds_alternative<TimeRecord>(read_data_file(sample("binary8byte.uff")).content));
   CHECK_THROWS_WITH(read_data_file(sample("dataset_milestone_in_header.uff")), Catch::Contains("cut off"));
 }

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "mbgen/data_error.hpp"
+#include "mbgen/data_set.hpp"
 #include "mbgen/uff.hpp"
 #include "text_parsing.hpp"
 
@@ -207,9 +208,8 @@ UffMapping read_uff_mapping(const std::string& path) {
   return read_uff_mapping(in, path);
 }
 
-std::variant<TimeRecord, FrfData> uff_to_data_set(const std::vector<Uff58Record>& records,
-                                                  const std::string& file_name, const UffMapping& mapping,
-                                                  const std::optional<ChannelNames>& known) {
+DataSet uff_to_data_set(const std::vector<Uff58Record>& records, const std::string& file_name,
+                        const UffMapping& mapping, const std::optional<ChannelNames>& known) {
   std::vector<const Uff58Record*> time, frf, coherence;
   for (const auto& r : records) {
     if (r.function_type == 1)

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "mbgen/data_error.hpp"
+#include "mbgen/data_set.hpp"
 #include "mbgen/uff.hpp"
 
 using namespace mbgen;
@@ -75,7 +76,7 @@ TEST_CASE("sample: non-ASCII header, complex single-precision FRF") {
 
   // Nodes and directions are 0 in this file: scalar point 0, default names.
   const auto set = uff_to_data_set(records, "non_ascii_header.uff", UffMapping{});
-  const FrfData& frf = std::get<FrfData>(set);
+  const FrfData& frf = std::get<FrfData>(set.content);
   REQUIRE(frf.channels.size() == 1);
   CHECK(frf.channels[0].output == "node0:S");
   CHECK(frf.channels[0].input == "node0:S");
@@ -104,7 +105,7 @@ TEST_CASE("sample: time history with a short last line and three-digit exponents
   map.names["0:S"] = "acc";
   map.set["n_sp"] = SetValue{"300", 300};
   const auto set = uff_to_data_set(records, "th.uff", map, ChannelNames{{"F"}, {"acc"}});
-  const TimeRecord& rec = std::get<TimeRecord>(set);
+  const TimeRecord& rec = std::get<TimeRecord>(set.content);
   CHECK(rec.hold == HoldMode::ZeroOrder);
   CHECK(rec.set.at("n_sp").value == 300);
   REQUIRE(rec.signals.size() == 1);
@@ -141,7 +142,7 @@ TEST_CASE("sample: 58b binary, single precision, 79 292 samples") {
   CHECK(r.y[1].real() == static_cast<double>(-0.017295705154538155f));
   CHECK(r.y[79291].real() == static_cast<double>(-0.004314688965678215f));
   const auto set = uff_to_data_set(records, "s.uff", UffMapping{});
-  CHECK(std::get<TimeRecord>(set).signals.at(0).name == "node0:+X");
+  CHECK(std::get<TimeRecord>(set.content).signals.at(0).name == "node0:+X");
 }
 
 TEST_CASE("sample: 58b binary, double precision: a 5 Hz sine") {
@@ -189,7 +190,7 @@ TEST_CASE("fixture: ASCII complex double, uneven abscissa, run-together numbers,
   map.names["3:+Z"] = "x1";
   map.names["7:-Y"] = "F";
   const auto set = uff_to_data_set(records, "fix.uff", map, ChannelNames{{"F"}, {"x1"}});
-  const FrfData& frf = std::get<FrfData>(set);
+  const FrfData& frf = std::get<FrfData>(set.content);
   REQUIRE(frf.channels.size() == 1);
   CHECK(frf.channels[0].output == "x1");
   CHECK(frf.channels[0].input == "F");

@@ -1,7 +1,9 @@
 #include "mbgen/frf.hpp"
 
 #include "mbgen/dynamics_error.hpp"
-#include "test_models.hpp"
+#include "mbgen_test/mdof2.hpp"
+#include "mbgen_test/random_affine_model.hpp"
+#include "mbgen_test/finite_difference.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -17,25 +19,6 @@ namespace {
 using cd = std::complex<double>;
 const double pi = std::acos(-1.0);
 
-// docs/reference-models.md closed form: G11 = (b2 s^2 + b1 s + b0) / (s^4 + a3 s^3 + a2 s^2 + a1 s + a0), G21 with
-// numerator b1* s + b0*.
-struct Mdof2ClosedForm {
-  double m1 = 1.39, m2 = 1.09, k11 = 1.38e6, k22 = 0.24e6, k12 = 0.12e6, c11 = 13.42, c22 = 0.47, c12 = 0;
-  cd denominator(cd s) const {
-    const double mm = m1 * m2;
-    const double a3 = (c11 * m2 + c12 * m1 + c12 * m2 + c22 * m1) / mm;
-    const double a2 = (c11 * c12 + c11 * c22 + c12 * c22 + k11 * m2 + k12 * m1 + k12 * m2 + k22 * m1) / mm;
-    const double a1 = (c11 * k12 + c11 * k22 + c12 * k11 + c12 * k22 + c22 * k11 + c22 * k12) / mm;
-    const double a0 = (k11 * k12 + k11 * k22 + k12 * k22) / mm;
-    return s * s * s * s + a3 * s * s * s + a2 * s * s + a1 * s + a0;
-  }
-  cd g11(cd s) const {
-    const double mm = m1 * m2;
-    return (s * s / m1 + (c12 + c22) / mm * s + (k12 + k22) / mm) / denominator(s);
-  }
-  cd g21(cd s) const { return (c12 / (m1 * m2) * s + k12 / (m1 * m2)) / denominator(s); }
-};
-
 std::vector<double> test_frequencies() {
   // Spread over the band, including points close to both modes (89.72 Hz, 166.29 Hz) and 0 Hz.
   return {0.0, 1.0, 30.0, 89.0, 89.72, 89.8, 120.0, 166.0, 166.29, 170.0, 400.0, 2000.0};
@@ -48,18 +31,19 @@ TEST_CASE("mdof2 FRF matches the closed-form polynomial ratio") {
   const auto freqs = test_frequencies();
   const auto result = mbgen::frf(model, model.info().default_values(), freqs);
   REQUIRE(result.H.size() == freqs.size());
-  const Mdof2ClosedForm ref;
+  const mbgen::test::Mdof2Values v;  // the closed form of docs/reference-models.md
   for (std::size_t k = 0; k < freqs.size(); ++k) {
     const cd s(0, 2 * pi * freqs[k]);
+    const cd g11 = mbgen::test::mdof2_g11(v, freqs[k]), g21 = mbgen::test::mdof2_g21(v, freqs[k]);
     const Eigen::MatrixXcd& H = result.H[k];
     REQUIRE(H.rows() == 4);
     REQUIRE(H.cols() == 1);
     INFO("f = " << freqs[k] << " Hz");
-    CHECK(std::abs(H(0, 0) - ref.g11(s)) <= 1e-10 * std::abs(ref.g11(s)));
-    CHECK(std::abs(H(1, 0) - ref.g21(s)) <= 1e-10 * std::abs(ref.g21(s)));
+    CHECK(std::abs(H(0, 0) - g11) <= 1e-10 * std::abs(g11));
+    CHECK(std::abs(H(1, 0) - g21) <= 1e-10 * std::abs(g21));
     // v1 = s d1, a2 = s^2 d2.
-    CHECK(std::abs(H(2, 0) - s * ref.g11(s)) <= 1e-10 * std::abs(s * ref.g11(s)) + 1e-300);
-    CHECK(std::abs(H(3, 0) - s * s * ref.g21(s)) <= 1e-10 * std::abs(s * s * ref.g21(s)) + 1e-300);
+    CHECK(std::abs(H(2, 0) - s * g11) <= 1e-10 * std::abs(s * g11) + 1e-300);
+    CHECK(std::abs(H(3, 0) - s * s * g21) <= 1e-10 * std::abs(s * s * g21) + 1e-300);
   }
   // Static compliance at 0 Hz: G11(0) = (k12 + k22) / (k11 k12 + k11 k22 + k12 k22).
   CHECK(result.H[0](0, 0).real() == Approx((0.12e6 + 0.24e6) / (1.38e6 * 0.12e6 + 1.38e6 * 0.24e6 + 0.12e6 * 0.24e6)));
@@ -67,19 +51,6 @@ TEST_CASE("mdof2 FRF matches the closed-form polynomial ratio") {
 }
 
 namespace {
-
-// Central finite differences of the whole FRF with respect to parameter i.
-std::vector<Eigen::MatrixXcd> central_difference(const mbgen::Model& model, const Eigen::VectorXd& p, int i,
-                                                 const std::vector<double>& freqs) {
-  const double h = 1e-6 * std::max(std::abs(p[i]), 1.0);
-  Eigen::VectorXd plus = p, minus = p;
-  plus[i] += h;
-  minus[i] -= h;
-  const auto Hp = mbgen::frf(model, plus, freqs).H, Hm = mbgen::frf(model, minus, freqs).H;
-  std::vector<Eigen::MatrixXcd> dH(freqs.size());
-  for (std::size_t k = 0; k < freqs.size(); ++k) dH[k] = (Hp[k] - Hm[k]) / (2 * h);
-  return dH;
-}
 
 void check_jacobian_against_finite_differences(const mbgen::Model& model, const std::vector<double>& freqs) {
   const Eigen::VectorXd p = model.info().default_values();
@@ -89,7 +60,9 @@ void check_jacobian_against_finite_differences(const mbgen::Model& model, const 
   CHECK(result.lu_factorizations == freqs.size());
   for (std::size_t k = 0; k < freqs.size(); ++k) CHECK((result.H[k] - plain.H[k]).norm() == 0.0);
   for (int i = 0; i < static_cast<int>(p.size()); ++i) {
-    const auto fd = central_difference(model, p, i, freqs);
+    const double h = mbgen::test::central_step(p[i]);
+    const auto fd = mbgen::test::central_difference(
+        [&](const Eigen::VectorXd& q) { return mbgen::frf(model, q, freqs).H; }, p, i, h);
     // Compare entry by entry, relative to the size of that entry's derivative over the whole band (an entry
     // that is exactly zero analytically must also be zero to rounding in the differences).
     for (std::size_t k = 0; k < freqs.size(); ++k) {
@@ -97,9 +70,8 @@ void check_jacobian_against_finite_differences(const mbgen::Model& model, const 
       REQUIRE(result.dH[k].cols() == p.size());
       const Eigen::MatrixXcd analytic = result.derivative(k, i);
       INFO("parameter " << model.info().parameters[static_cast<std::size_t>(i)].name << ", f = " << freqs[k]);
-      // Central differences cannot resolve less than the rounding of H over the step, ~eps |H| / h (h as in
-      // central_difference); allow ten times that where the derivative itself is that small.
-      const double h = 1e-6 * std::max(std::abs(p[i]), 1.0);
+      // Central differences cannot resolve less than the rounding of H over the step, ~eps |H| / h; allow ten
+      // times that where the derivative itself is that small.
       const double rounding = 10 * std::numeric_limits<double>::epsilon() * result.H[k].norm() / h;
       CHECK((analytic - fd[k]).norm() <= 1e-6 * analytic.norm() + rounding);
     }

@@ -1,7 +1,7 @@
 #include "mbgen/modal.hpp"
 
 #include "mbgen/dynamics_error.hpp"
-#include "test_models.hpp"
+#include "mbgen_test/mdof2.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -15,17 +15,8 @@ namespace {
 
 const double pi = std::acos(-1.0);
 
-mbgen::ModelMatrices mdof2_matrices() {
-  // Table 5.1, assembled by hand (independent of test_models.hpp).
-  const double m1 = 1.39, m2 = 1.09, k11 = 1.38e6, k22 = 0.24e6, k12 = 0.12e6, c11 = 13.42, c22 = 0.47, c12 = 0;
-  mbgen::ModelMatrices m;
-  m.M = Eigen::Vector2d(m1, m2).asDiagonal();
-  m.K.resize(2, 2);
-  m.K << k11 + k12, -k12, -k12, k22 + k12;
-  m.C.resize(2, 2);
-  m.C << c11 + c12, -c12, -c12, c22 + c12;
-  return m;
-}
+// Table 5.1, assembled by hand (independent of the model classes).
+mbgen::ModelMatrices mdof2_matrices() { return mbgen::test::mdof2_matrices(); }
 
 }  // namespace
 

@@ -1,7 +1,8 @@
 #include "mbgen/simulate.hpp"
 
 #include "mbgen/dynamics_error.hpp"
-#include "test_models.hpp"
+#include "mbgen_test/mdof2.hpp"
+#include "mbgen_test/random_affine_model.hpp"
 #include "test_rk4.hpp"
 
 #include <catch2/catch.hpp>

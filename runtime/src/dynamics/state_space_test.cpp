@@ -1,7 +1,9 @@
 #include "mbgen/state_space.hpp"
 
 #include "mbgen/dynamics_error.hpp"
-#include "test_models.hpp"
+#include "mbgen_test/mdof2.hpp"
+#include "mbgen_test/random_affine_model.hpp"
+#include "mbgen_test/finite_difference.hpp"
 #include "test_rk4.hpp"
 
 #include <catch2/catch.hpp>
@@ -17,12 +19,7 @@ namespace {
 using cd = std::complex<double>;
 const double pi = std::acos(-1.0);
 
-mbgen::ModelMatrices mdof2_matrices(bool extra_outputs) {
-  mbgen::test::Mdof2Model model(extra_outputs);
-  mbgen::ModelMatrices m;
-  model.evaluate(model.info().default_values(), m);
-  return m;
-}
+mbgen::ModelMatrices mdof2_matrices(bool extra_outputs) { return mbgen::test::mdof2_matrices({}, extra_outputs); }
 
 Eigen::MatrixXd simulate_positions(const mbgen::DiscreteStateSpace& sys, const Eigen::MatrixXd& u, Eigen::Index n) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(sys.Phi.rows());
@@ -81,11 +78,8 @@ template <class Eval>
 void check_derivatives_by_central_differences(const mbgen::Model& model, Eval eval_flat, double rel) {
   const Eigen::VectorXd p = model.info().default_values();
   for (int i = 0; i < static_cast<int>(p.size()); ++i) {
-    const double h = 1e-6 * std::max(std::abs(p[i]), 1.0);
-    Eigen::VectorXd plus = p, minus = p;
-    plus[i] += h;
-    minus[i] -= h;
-    const Eigen::VectorXd fd = (eval_flat(plus, -1) - eval_flat(minus, -1)) / (2 * h);
+    const Eigen::VectorXd fd = mbgen::test::central_difference(
+        [&](const Eigen::VectorXd& q) { return eval_flat(q, -1); }, p, i, mbgen::test::central_step(p[i]));
     const Eigen::VectorXd analytic = eval_flat(p, i);
     INFO("parameter " << model.info().parameters[static_cast<std::size_t>(i)].name);
     CHECK((analytic - fd).norm() <= rel * std::max(analytic.norm(), 1e-12 * eval_flat(p, -1).norm() / std::max(std::abs(p[i]), 1.0)));

@@ -1,5 +1,12 @@
+// The output-error fit (fit.hpp) as a sequence of named steps over a FitContext (what stays fixed: the problem, its
+// parameterisation, the solver's settings) and a FitState (what the steps move: the free parameters, the estimate),
+// in the manner of Pinocchio's algorithm(model, data, ...):
+//
+//   screen_at_prior -> search_globally -> refit_where_rank_is_lost -> linearise_at_estimate -> hold_at_bounds
+//   -> parameter_covariance -> parameter_estimates -> modes_at
 #include "mbgen/fit.hpp"
 
+#include "estimator.hpp"
 #include "fit_setup.hpp"
 #include "levenberg_marquardt.hpp"
 #include "multistart.hpp"
@@ -20,6 +27,7 @@
 
 namespace mbgen {
 
+using estimation::Estimator;
 using estimation::LmOptions;
 using estimation::LmResult;
 using estimation::OutputErrorProblem;
@@ -28,55 +36,88 @@ using estimation::ResidualKind;
 
 namespace {
 
-// The fit over one set of free parameters, in internal coordinates.
-class Estimator {
+using IterationCallback = std::function<void(int iteration, double cost)>;
+
+// FitOptions::progress, called from worker threads one call at a time.
+class ProgressReporter {
  public:
-  Estimator(const OutputErrorProblem& problem, const Eigen::VectorXd& prior, std::vector<ParameterTransform> transforms)
-      : problem_(problem), prior_(prior), transforms_(std::move(transforms)) {}
-
-  Eigen::VectorXd full_values(const std::vector<int>& free, const Eigen::VectorXd& theta) const {
-    return estimation::physical_values(prior_, free, transforms_, theta);
-  }
-  Eigen::VectorXd internal(const std::vector<int>& free, const Eigen::VectorXd& full) const {
-    return estimation::internal_values(free, transforms_, full);
-  }
-
-  ResidualFunction function(const std::vector<int>& free, ResidualKind kind) const {
-    return [this, free, kind](const Eigen::VectorXd& theta, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
-      const Eigen::VectorXd full = full_values(free, theta);
-      try {
-        problem_.evaluate(full, free, kind, r, J);
-      } catch (const std::exception&) {
-        return false;  // e.g. a singular mass matrix far from the prior: a failed trial step
-      }
-      if (J)
-        for (std::size_t j = 0; j < free.size(); ++j)
-          J->col(static_cast<Eigen::Index>(j)) *=
-              transforms_[static_cast<std::size_t>(free[j])].derivative(theta[static_cast<Eigen::Index>(j)]);
-      return true;
+  explicit ProgressReporter(const FitOptions& options) : options_(options) {}
+  IterationCallback operator()(int start, int starts, const char* stage) const {
+    return [this, start, starts, stage](int iteration, double cost) {
+      if (!options_.progress) return;
+      std::lock_guard<std::mutex> lock(mutex_);
+      options_.progress(FitProgress{start, starts, iteration, cost, stage});
     };
   }
 
-  // Jacobian in physical units with columns multiplied by `scale` (relative sensitivities).
-  Eigen::MatrixXd scaled_jacobian(const std::vector<int>& free, const Eigen::VectorXd& full,
-                                  Eigen::VectorXd* scale_out, Eigen::VectorXd* r_out = nullptr) const {
-    Eigen::VectorXd r;
-    Eigen::MatrixXd J;
-    problem_.evaluate(full, free, ResidualKind::Weighted, r, &J);
-    Eigen::VectorXd scale(static_cast<Eigen::Index>(free.size()));
-    for (std::size_t j = 0; j < free.size(); ++j) {
-      const double v = std::abs(full[free[j]]);
-      scale[static_cast<Eigen::Index>(j)] = v > 0 ? v : transforms_[static_cast<std::size_t>(free[j])].scale;
-    }
-    if (scale_out) *scale_out = scale;
-    if (r_out) *r_out = r;
-    return J * scale.asDiagonal();
-  }
-
  private:
-  const OutputErrorProblem& problem_;
-  Eigen::VectorXd prior_;
-  std::vector<ParameterTransform> transforms_;
+  const FitOptions& options_;
+  mutable std::mutex mutex_;
+};
+
+LmOptions lm_options(const FitOptions& options) {
+  LmOptions lm;
+  lm.max_iterations = options.max_iterations;
+  lm.cost_tolerance = options.cost_tolerance;
+  lm.step_tolerance = options.step_tolerance;
+  lm.gradient_tolerance = options.gradient_tolerance;
+  return lm;
+}
+
+IdentifiabilityOptions identifiability_options(const FitOptions& options) {
+  IdentifiabilityOptions id;
+  id.zero_tolerance = options.zero_tolerance;
+  id.rank_tolerance = options.rank_tolerance;
+  return id;
+}
+
+// What stays fixed during one fit. Not copyable: the estimator refers to the problem.
+struct FitContext {
+  FitContext(const Model& m, const std::vector<DataSet>& d, const FitOptions& o)
+      : model(m), info(m.info()), data(d), options(o), setup(estimation::prepare_fit(m, d, o)),
+        problem(m, d, o.frf_weighting), estimator(problem, setup.prior, setup.transforms),
+        id_options(identifiability_options(o)), lm(lm_options(o)), progress(o) {}
+  FitContext(const FitContext&) = delete;
+  FitContext& operator=(const FitContext&) = delete;
+
+  const Model& model;
+  const ModelInfo& info;
+  const std::vector<DataSet>& data;
+  const FitOptions& options;
+  const estimation::FitSetup setup;  // prior, candidates, transforms
+  const OutputErrorProblem problem;
+  const Estimator estimator;
+  const IdentifiabilityOptions id_options;
+  const LmOptions lm;
+  const ProgressReporter progress;
+};
+
+// Which candidates the data determine, and what each is confounded with; gathered over every identifiability
+// analysis of the fit (at the prior, and wherever rank is lost at an estimate).
+struct CandidateIdentifiability {
+  std::vector<bool> identifiable;            // per candidate
+  std::vector<std::vector<int>> confounded;  // per candidate: model indices, possibly repeated
+
+  explicit CandidateIdentifiability(std::size_t candidates) : identifiable(candidates, true), confounded(candidates) {}
+
+  // Records analysis `a` of the Jacobian whose columns are the model parameters `cols` (all candidates).
+  void record(const std::vector<int>& candidates, const std::vector<int>& cols, const IdentifiabilityAnalysis& a) {
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      const auto pos = static_cast<std::size_t>(std::find(candidates.begin(), candidates.end(), cols[c]) - candidates.begin());
+      if (!a.identifiable[c]) identifiable[pos] = false;
+      for (int o : a.confounded_with[c]) confounded[pos].push_back(cols[static_cast<std::size_t>(o)]);
+    }
+  }
+};
+
+// What the steps move.
+struct FitState {
+  explicit FitState(std::size_t candidates) : identifiability(candidates) {}
+
+  CandidateIdentifiability identifiability;
+  std::vector<int> free;   // model indices of the parameters being fitted
+  LmResult best;           // the local fit that stands
+  Eigen::VectorXd values;  // all model parameters at the estimate
 };
 
 std::vector<int> select(const std::vector<int>& cols, const std::vector<bool>& keep) {
@@ -86,228 +127,303 @@ std::vector<int> select(const std::vector<int>& cols, const std::vector<bool>& k
   return out;
 }
 
-}  // namespace
-
-FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options) {
-  const ModelInfo& info = model.info();
-  const estimation::FitSetup setup = estimation::prepare_fit(model, data, options);
-  const Eigen::VectorXd& prior = setup.prior;
-  const std::vector<int>& candidates = setup.candidates;
-  const std::vector<ParameterTransform>& transforms = setup.transforms;
-  const OutputErrorProblem problem(model, data, options.frf_weighting);
-  const Estimator estimator(problem, prior, transforms);
-  IdentifiabilityOptions id_options;
-  id_options.zero_tolerance = options.zero_tolerance;
-  id_options.rank_tolerance = options.rank_tolerance;
-
+// The result's description of the fit: model, data, method, prior, number of residuals.
+FitResult describe_fit(const FitContext& ctx) {
   FitResult result;
-  result.model = info.name;
-  for (const auto& d : data) result.data.push_back(d.file());
-  result.method = problem.has_frf() ? (problem.has_time() ? "mixed-output-error" : "frf-output-error")
-                                    : "time-output-error";
-  result.prior_values = prior;
-  result.residual_count = static_cast<long>(problem.residual_count());
+  result.model = ctx.info.name;
+  for (const auto& d : ctx.data) result.data.push_back(d.file());
+  result.method = ctx.problem.has_frf() ? (ctx.problem.has_time() ? "mixed-output-error" : "frf-output-error")
+                                        : "time-output-error";
+  result.prior_values = ctx.setup.prior;
+  result.residual_count = static_cast<long>(ctx.problem.residual_count());
+  return result;
+}
 
-  // Identifiability at the prior: drop what the data cannot determine before searching.
-  std::vector<bool> identifiable(candidates.size(), true);
-  std::vector<std::vector<int>> confounded(candidates.size());
-  auto mark = [&](const std::vector<int>& cols, const IdentifiabilityAnalysis& a) {
-    for (std::size_t c = 0; c < cols.size(); ++c) {
-      const auto pos = static_cast<std::size_t>(std::find(candidates.begin(), candidates.end(), cols[c]) - candidates.begin());
-      if (!a.identifiable[c]) identifiable[pos] = false;
-      for (int o : a.confounded_with[c]) confounded[pos].push_back(cols[static_cast<std::size_t>(o)]);
-    }
-  };
+// Identifiability at the prior: what the data cannot determine is dropped before searching. Returns the cost at
+// the prior.
+double screen_at_prior(const FitContext& ctx, FitState& state) {
+  const std::vector<int>& candidates = ctx.setup.candidates;
   Eigen::VectorXd r0;
-  {
-    const Eigen::MatrixXd J0 = estimator.scaled_jacobian(candidates, prior, nullptr, &r0);
-    mark(candidates, analyse_identifiability(J0, id_options));
-  }
-  result.initial_cost = r0.squaredNorm();
-  std::vector<int> free = select(candidates, identifiable);
+  const Eigen::MatrixXd J0 = ctx.estimator.scaled_jacobian(candidates, ctx.setup.prior, nullptr, &r0);
+  state.identifiability.record(candidates, candidates, analyse_identifiability(J0, ctx.id_options));
+  state.free = select(candidates, state.identifiability.identifiable);
+  return r0.squaredNorm();
+}
 
-  LmOptions lm;
-  lm.max_iterations = options.max_iterations;
-  lm.cost_tolerance = options.cost_tolerance;
-  lm.step_tolerance = options.step_tolerance;
-  lm.gradient_tolerance = options.gradient_tolerance;
-
-  std::mutex progress_mutex;
-  auto reporter = [&](int start, int starts, const char* stage) {
-    return [&, start, starts, stage](int iteration, double cost) {
-      if (!options.progress) return;
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      options.progress(FitProgress{start, starts, iteration, cost, stage});
-    };
-  };
-
-  // Starting points in internal coordinates: the prior, then uniform within +-log(spread) of it (fit_setup.hpp).
-  const int starts = std::max(1, options.starts);
-  Eigen::VectorXd chosen_start = prior;
+// Starting points in internal coordinates: the prior, FitOptions::also_start_at, then uniform within
+// +-log(spread) of the prior (fit_setup.hpp).
+std::vector<Eigen::VectorXd> starting_points(const FitContext& ctx, const std::vector<int>& free) {
+  const FitOptions& options = ctx.options;
+  Eigen::VectorXd chosen_start = ctx.setup.prior;
   for (const auto& [name, value] : options.also_start_at) {
-    const int idx = info.parameter_index(name);
+    const int idx = ctx.info.parameter_index(name);
     if (idx < 0) throw FitError("fit: a start value for " + name + ": the model has no parameter " + name);
     chosen_start[idx] = value;
   }
-  const std::vector<Eigen::VectorXd> start_points = estimation::start_points(
-      estimator.internal(free, prior), free, transforms, options,
-      options.also_start_at.empty() ? std::nullopt : std::optional<Eigen::VectorXd>(estimator.internal(free, chosen_start)));
-  const ResidualFunction weighted = estimator.function(free, ResidualKind::Weighted);
-  LmOptions search_lm = lm;
-  search_lm.cost_tolerance = std::max(lm.cost_tolerance, options.search_cost_tolerance);
-  // The multi-start search: on the FRF data itself, or on FRFs estimated from time records (spectral_companion.hpp).
-  std::optional<estimation::SpectralCompanion> companion;
-  if (problem.has_time() && options.spectral_search && starts > 1) companion = estimation::spectral_companion(info, data);
-  std::optional<OutputErrorProblem> companion_problem;
-  std::optional<Estimator> companion_estimator;
-  if (companion) {
-    FrfWeighting w = options.frf_weighting;
-    w.averages = std::max(w.averages, companion->averages);
-    companion_problem.emplace(model, companion->data, w);
-    companion_estimator.emplace(*companion_problem, prior, transforms);
+  return estimation::start_points(
+      ctx.estimator.internal(free, ctx.setup.prior), free, ctx.setup.transforms, options,
+      options.also_start_at.empty() ? std::nullopt
+                                    : std::optional<Eigen::VectorXd>(ctx.estimator.internal(free, chosen_start)));
+}
+
+// Where the multi-start search runs: on the data themselves, or, for time records, on FRFs estimated from them
+// (spectral_companion.hpp), whose best start is then refined on the records. Not copyable: the companion's
+// estimator refers to its problem.
+class SearchProblem {
+ public:
+  SearchProblem(const FitContext& ctx, int starts) : data_estimator_(ctx.estimator) {
+    const OutputErrorProblem& problem = ctx.problem;
+    if (problem.has_time() && ctx.options.spectral_search && starts > 1)
+      companion_ = estimation::spectral_companion(ctx.info, ctx.data);
+    if (companion_) {
+      FrfWeighting w = ctx.options.frf_weighting;
+      w.averages = std::max(w.averages, companion_->averages);
+      problem_.emplace(ctx.model, companion_->data, w);
+      estimator_.emplace(*problem_, ctx.setup.prior, ctx.setup.transforms);
+    }
+    log_ratio_first_ = ctx.options.log_search && (companion_ || (problem.has_frf() && !problem.has_time()));
   }
-  const Estimator& searcher = companion ? *companion_estimator : estimator;
-  const bool log_search = options.log_search && (companion || (problem.has_frf() && !problem.has_time()));
-  const ResidualFunction search_weighted = searcher.function(free, ResidualKind::Weighted);
-  const ResidualFunction log_ratio = searcher.function(free, ResidualKind::LogRatio);
-  const std::vector<LmResult> runs = estimation::run_starts(starts, options.threads, [&](int s) {
+  SearchProblem(const SearchProblem&) = delete;
+  SearchProblem& operator=(const SearchProblem&) = delete;
+
+  const Estimator& estimator() const { return estimator_ ? *estimator_ : data_estimator_; }
+  bool on_companion() const { return companion_.has_value(); }
+  // FRFs only (the data's or the companion's): each start is first fitted on log-ratio residuals.
+  bool log_ratio_first() const { return log_ratio_first_; }
+
+ private:
+  const Estimator& data_estimator_;
+  std::optional<estimation::SpectralCompanion> companion_;
+  std::optional<OutputErrorProblem> problem_;
+  std::optional<Estimator> estimator_;
+  bool log_ratio_first_ = false;
+};
+
+// One local fit from every starting point on the search problem: log-ratio search first where it applies, then the
+// weighted refinement. Results by start index.
+std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem& search, const std::vector<int>& free,
+                                      const std::vector<Eigen::VectorXd>& start_points) {
+  const int starts = static_cast<int>(start_points.size());
+  LmOptions search_lm = ctx.lm;
+  search_lm.cost_tolerance = std::max(ctx.lm.cost_tolerance, ctx.options.search_cost_tolerance);
+  const ResidualFunction weighted = search.estimator().function(free, ResidualKind::Weighted);
+  const ResidualFunction log_ratio = search.estimator().function(free, ResidualKind::LogRatio);
+  return estimation::run_starts(starts, ctx.options.threads, [&](int s) {
     Eigen::VectorXd theta = start_points[static_cast<std::size_t>(s)];
-    if (log_search) theta = estimation::levenberg_marquardt(log_ratio, theta, search_lm, reporter(s, starts, "search")).x;
-    return estimation::levenberg_marquardt(search_weighted, theta, lm, reporter(s, starts, "refine"));
+    if (search.log_ratio_first())
+      theta = estimation::levenberg_marquardt(log_ratio, theta, search_lm, ctx.progress(s, starts, "search")).x;
+    return estimation::levenberg_marquardt(weighted, theta, ctx.lm, ctx.progress(s, starts, "refine"));
   });
+}
+
+// After a search on the spectral companion: its best start refined on the records, and the prior too, so that an H1
+// too coarse to lead the search (a short record) never leaves the result worse than a plain fit from the prior.
+// The lower time-domain cost wins (the spectral start on a tie); `best_start` becomes 0 when the prior wins.
+LmResult refine_on_records(const FitContext& ctx, const std::vector<int>& free, const LmResult& best_search,
+                           const Eigen::VectorXd& prior_start, int starts, int& best_start) {
+  const ResidualFunction weighted = ctx.estimator.function(free, ResidualKind::Weighted);
+  const std::vector<Eigen::VectorXd> refine_from = {best_search.x, prior_start};
+  const std::vector<LmResult> refined = estimation::run_starts(2, ctx.options.threads, [&](int s) {
+    return estimation::levenberg_marquardt(weighted, refine_from[static_cast<std::size_t>(s)], ctx.lm,
+                                           ctx.progress(s == 0 ? best_start : 0, starts, "refine records"));
+  });
+  const int winner = estimation::best_start(refined);
+  if (winner == 1) best_start = 0;
+  return refined[static_cast<std::size_t>(winner)];
+}
+
+// The deterministic multi-start search (fit.hpp, FitOptions::starts): sets the best local fit and the values there,
+// and the result's start costs, best start and cost history.
+void search_globally(const FitContext& ctx, FitState& state, FitResult& result) {
+  const int starts = std::max(1, ctx.options.starts);
+  const std::vector<Eigen::VectorXd> start_points = starting_points(ctx, state.free);
+  const SearchProblem search(ctx, starts);
+  const std::vector<LmResult> runs = fit_every_start(ctx, search, state.free, start_points);
   for (const auto& run : runs) result.start_costs.push_back(run.cost);
   result.best_start = estimation::best_start(runs);
-  LmResult best = runs[static_cast<std::size_t>(result.best_start)];
-  if (companion) {
-    // The best spectral start refined on the records; and the prior too, so that an H1 too coarse to lead the
-    // search (a short record) never leaves the result worse than a plain fit from the prior. The lower
-    // time-domain cost wins (the spectral start on a tie).
-    const std::vector<Eigen::VectorXd> refine_from = {best.x, start_points.front()};
-    const std::vector<LmResult> refined = estimation::run_starts(2, options.threads, [&](int s) {
-      return estimation::levenberg_marquardt(weighted, refine_from[static_cast<std::size_t>(s)], lm,
-                                             reporter(s == 0 ? result.best_start : 0, starts, "refine records"));
-    });
-    const int winner = estimation::best_start(refined);
-    best = refined[static_cast<std::size_t>(winner)];
-    if (winner == 1) result.best_start = 0;
-  }
-  if (!std::isfinite(best.cost)) throw FitError("fit: the model cannot be evaluated at any starting point");
-  result.cost_history = best.history;
-  Eigen::VectorXd values = estimator.full_values(free, best.x);
+  state.best = runs[static_cast<std::size_t>(result.best_start)];
+  if (search.on_companion())
+    state.best = refine_on_records(ctx, state.free, state.best, start_points.front(), starts, result.best_start);
+  if (!std::isfinite(state.best.cost)) throw FitError("fit: the model cannot be evaluated at any starting point");
+  result.cost_history = state.best.history;
+  state.values = ctx.estimator.full_values(state.free, state.best.x);
+}
 
-  // Identifiability at the estimate: rank can be lost away from the prior. Fix what is lost, refit.
-  for (;;) {
-    if (free.empty()) break;
-    const IdentifiabilityAnalysis a = analyse_identifiability(estimator.scaled_jacobian(free, values, nullptr), id_options);
+// Identifiability at the estimate: rank can be lost away from the prior. What is lost goes back to its prior and
+// the rest is refitted, until the free parameters have full rank.
+void refit_where_rank_is_lost(const FitContext& ctx, FitState& state, FitResult& result) {
+  const Eigen::VectorXd& prior = ctx.setup.prior;
+  while (!state.free.empty()) {
+    const std::vector<int>& free = state.free;
+    const IdentifiabilityAnalysis a =
+        analyse_identifiability(ctx.estimator.scaled_jacobian(free, state.values, nullptr), ctx.id_options);
     if (a.rank() == static_cast<int>(free.size())) break;
-    mark(free, a);
-    const std::vector<int> kept = select(free, a.identifiable);
+    state.identifiability.record(ctx.setup.candidates, free, a);
     for (std::size_t j = 0; j < free.size(); ++j)
-      if (!a.identifiable[j]) values[free[j]] = prior[free[j]];
-    free = kept;
-    best = estimation::levenberg_marquardt(estimator.function(free, ResidualKind::Weighted),
-                                           estimator.internal(free, values), lm, reporter(0, 1, "final"));
-    result.cost_history.insert(result.cost_history.end(), best.history.begin(), best.history.end());
-    values = estimator.full_values(free, best.x);
+      if (!a.identifiable[j]) state.values[free[j]] = prior[free[j]];
+    state.free = select(free, a.identifiable);
+    state.best = estimation::levenberg_marquardt(ctx.estimator.function(state.free, ResidualKind::Weighted),
+                                                 ctx.estimator.internal(state.free, state.values), ctx.lm,
+                                                 ctx.progress(0, 1, "final"));
+    result.cost_history.insert(result.cost_history.end(), state.best.history.begin(), state.best.history.end());
+    state.values = ctx.estimator.full_values(state.free, state.best.x);
   }
-  result.iterations = best.iterations;
-  result.converged = best.converged;
-  result.stop_reason = best.stop_reason;
+}
 
-  // Uncertainty from the linearisation at the estimate: cov = s^2 (J^T J)^-1, s^2 = RSS / (n - k).
-  Eigen::VectorXd r;
+// The weighted residuals and the scaled Jacobian of the free parameters at the estimate.
+struct Linearisation {
+  Eigen::VectorXd r;      // model minus measured, weighted
+  Eigen::MatrixXd J;      // scaled_jacobian (estimator.hpp): physical units times `scale` per column
   Eigen::VectorXd scale;
-  Eigen::MatrixXd Js = estimator.scaled_jacobian(free, values, &scale, &r);
+};
+
+Linearisation linearise(const Estimator& estimator, const std::vector<int>& cols, const Eigen::VectorXd& values) {
+  Linearisation l;
+  l.J = estimator.scaled_jacobian(cols, values, &l.scale, &l.r);
+  return l;
+}
+
+// Cost, residual variance s^2 = RSS / (n - k), nrmse and BIC from the residuals of k fitted parameters.
+void goodness_of_fit(const OutputErrorProblem& problem, const Eigen::VectorXd& r, std::size_t fitted,
+                     FitResult& result) {
   const double n = double(problem.residual_count());
-  const double k = double(free.size());
+  const double k = double(fitted);
   result.cost = r.squaredNorm();
   result.residual_variance = n > k ? result.cost / (n - k) : std::numeric_limits<double>::quiet_NaN();
   result.nrmse = problem.measured_sum_squares() > 0 ? std::sqrt(result.cost / problem.measured_sum_squares())
                                                     : std::numeric_limits<double>::quiet_NaN();
   result.bic = n * std::log(std::max(result.cost, std::numeric_limits<double>::min()) / n) + k * std::log(n);
-  auto covariance_of = [&](const Eigen::MatrixXd& J, const Eigen::VectorXd& column_scale) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
-    const Eigen::VectorXd s = svd.singularValues();
-    Eigen::VectorXd inv2 = Eigen::VectorXd::Zero(s.size());
-    for (Eigen::Index i = 0; i < s.size(); ++i)
-      if (s[i] > s[0] * 1e-14) inv2[i] = 1 / (s[i] * s[i]);
-    const Eigen::MatrixXd cov_scaled = svd.matrixV() * inv2.asDiagonal() * svd.matrixV().transpose();
-    return Eigen::MatrixXd(result.residual_variance * column_scale.asDiagonal() * cov_scaled *
-                           column_scale.asDiagonal());
-  };
-  const Eigen::MatrixXd J_free = Js;  // of every fitted parameter at the estimate: their pulls (below)
-  // Parameters the optimum pressed against a bound (bound_reached, parameterization.hpp): reported at the bound,
-  // without a std, and held there for the others' covariance.
-  std::map<int, std::string> at_bound;
-  if (!free.empty()) {
-    const Eigen::VectorXd sd = covariance_of(Js, scale).diagonal().cwiseMax(0).cwiseSqrt();
-    for (std::size_t j = 0; j < free.size(); ++j) {
-      const int i = free[j];
-      const ParameterTransform& t = transforms[static_cast<std::size_t>(i)];
-      const std::string side = bound_reached(t, values[i], sd[static_cast<Eigen::Index>(j)]);
-      if (side.empty()) continue;
-      at_bound[i] = side;
-      values[i] = side == "lower" ? t.lower : t.upper;
-    }
-  }
-  std::vector<int> interior;
-  for (int i : free)
-    if (!at_bound.count(i)) interior.push_back(i);
-  if (interior.size() != free.size() && !interior.empty()) Js = estimator.scaled_jacobian(interior, values, &scale);
-  result.values = values;
-  for (int i : interior) result.estimated.push_back(info.parameters[static_cast<std::size_t>(i)].name);
-  if (!interior.empty()) {
-    result.covariance = covariance_of(Js, scale);
-    const Eigen::VectorXd sd = result.covariance.diagonal().cwiseMax(0).cwiseSqrt();
-    result.correlation = result.covariance.cwiseQuotient(sd * sd.transpose());
-  }
-  {
-    if (!candidates.empty())
-      result.singular_values =
-          analyse_identifiability(estimator.scaled_jacobian(candidates, values, nullptr), id_options).singular_values;
-  }
+}
 
+// Uncertainty from the linearisation at the estimate, in physical units: cov = s^2 (J^T J)^-1 with J's columns
+// unscaled, by a pseudo-inverse that ignores singular values below 1e-14 of the largest.
+Eigen::MatrixXd parameter_covariance(const Eigen::MatrixXd& J, const Eigen::VectorXd& column_scale,
+                                     double residual_variance) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
+  const Eigen::VectorXd s = svd.singularValues();
+  Eigen::VectorXd inv2 = Eigen::VectorXd::Zero(s.size());
+  for (Eigen::Index i = 0; i < s.size(); ++i)
+    if (s[i] > s[0] * 1e-14) inv2[i] = 1 / (s[i] * s[i]);
+  const Eigen::MatrixXd cov_scaled = svd.matrixV() * inv2.asDiagonal() * svd.matrixV().transpose();
+  return Eigen::MatrixXd(residual_variance * column_scale.asDiagonal() * cov_scaled * column_scale.asDiagonal());
+}
+
+// Parameters the optimum pressed against a bound (bound_reached, parameterization.hpp): set to the bound in `values`
+// and returned with the side ("lower", "upper"); they are reported without a std and held there for the others'
+// covariance.
+std::map<int, std::string> hold_at_bounds(const FitContext& ctx, const std::vector<int>& free,
+                                          const Linearisation& at_estimate, double residual_variance,
+                                          Eigen::VectorXd& values) {
+  std::map<int, std::string> at_bound;
+  if (free.empty()) return at_bound;
+  const Eigen::VectorXd sd =
+      parameter_covariance(at_estimate.J, at_estimate.scale, residual_variance).diagonal().cwiseMax(0).cwiseSqrt();
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    const int i = free[j];
+    const ParameterTransform& t = ctx.setup.transforms[static_cast<std::size_t>(i)];
+    const std::string side = bound_reached(t, values[i], sd[static_cast<Eigen::Index>(j)]);
+    if (side.empty()) continue;
+    at_bound[i] = side;
+    values[i] = side == "lower" ? t.lower : t.upper;
+  }
+  return at_bound;
+}
+
+// The one-parameter Newton step from the estimate along column j of the Jacobian: the cost C = |r|^2 drops by
+// (r . J_j)^2 / |J_j|^2 (physical units: the column's scale cancels). Parameters at a bound included: there the
+// pull is what holds them.
+void pull_of(const Linearisation& at_estimate, Eigen::Index j, double residual_variance, ParameterEstimate& e) {
+  const double along = at_estimate.r.dot(at_estimate.J.col(j)), norm2 = at_estimate.J.col(j).squaredNorm();
+  if (norm2 > 0 && residual_variance > 0) {
+    e.pull_chi2 = along * along / (norm2 * residual_variance);
+    // r is model minus measured: the cost falls for a step -along/norm2 in the scaled parameter.
+    e.toward = along > 0 ? -1 : along < 0 ? 1 : 0;
+  }
+}
+
+// One report per candidate, in model order.
+std::vector<ParameterEstimate> parameter_estimates(const FitContext& ctx, const FitState& state,
+                                                   const std::vector<int>& interior,
+                                                   const std::map<int, std::string>& at_bound,
+                                                   const Linearisation& at_estimate, const FitResult& result) {
+  std::vector<ParameterEstimate> out;
+  const std::vector<int>& candidates = ctx.setup.candidates;
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int i = candidates[c];
-    const ParameterInfo& pi = info.parameters[static_cast<std::size_t>(i)];
+    const ParameterInfo& pi = ctx.info.parameters[static_cast<std::size_t>(i)];
+    const bool identifiable = state.identifiability.identifiable[c];
     ParameterEstimate e;
     e.name = pi.name;
     e.unit = pi.unit;
-    e.prior = prior[i];
-    e.value = values[i];
-    e.estimated = identifiable[c];
-    e.identifiable = identifiable[c] && !at_bound.count(i);
-    if (at_bound.count(i)) e.at_bound = at_bound[i];
+    e.prior = ctx.setup.prior[i];
+    e.value = state.values[i];
+    e.estimated = identifiable;
+    e.identifiable = identifiable && !at_bound.count(i);
+    if (const auto it = at_bound.find(i); it != at_bound.end()) e.at_bound = it->second;
     if (const auto it = std::find(interior.begin(), interior.end(), i); it != interior.end()) {
       const Eigen::Index j = it - interior.begin();
       e.std = std::sqrt(std::max(result.covariance(j, j), 0.0));
     }
-    if (const auto it = std::find(free.begin(), free.end(), i); it != free.end()) {
-      const Eigen::Index j = it - free.begin();
-      // The one-parameter Newton step from the estimate: cost C = |r|^2 drops by (r . J_j)^2 / |J_j|^2 moving
-      // along column j of the Jacobian (physical units: Js's columns are J's times the scale, which cancels).
-      // Parameters at a bound included: there the pull is what holds them.
-      const double along = r.dot(J_free.col(j)), norm2 = J_free.col(j).squaredNorm();
-      if (norm2 > 0 && result.residual_variance > 0) {
-        e.pull_chi2 = along * along / (norm2 * result.residual_variance);
-        // r is model minus measured: the cost falls for a step -along/norm2 in the scaled parameter.
-        e.toward = along > 0 ? -1 : along < 0 ? 1 : 0;
-      }
-    }
-    std::vector<int> conf = confounded[c];
+    if (const auto it = std::find(state.free.begin(), state.free.end(), i); it != state.free.end())
+      pull_of(at_estimate, it - state.free.begin(), result.residual_variance, e);
+    std::vector<int> conf = state.identifiability.confounded[c];
     std::sort(conf.begin(), conf.end());
     conf.erase(std::unique(conf.begin(), conf.end()), conf.end());
-    for (int o : conf) e.confounded_with.push_back(info.parameters[static_cast<std::size_t>(o)].name);
-    result.parameters.push_back(e);
+    for (int o : conf) e.confounded_with.push_back(ctx.info.parameters[static_cast<std::size_t>(o)].name);
+    out.push_back(e);
   }
+  return out;
+}
 
+// The model's modes at `values`; none where they cannot be computed (e.g. a singular mass matrix).
+std::vector<Mode> modes_at(const Model& model, const Eigen::VectorXd& values) {
   ModelMatrices m;
   model.evaluate(values, m);
   try {
-    result.modes = modal_analysis(m.M, m.C, m.K);
+    return modal_analysis(m.M, m.C, m.K);
   } catch (const std::exception&) {
-    result.modes.clear();  // e.g. a singular mass matrix: no modes to report
+    return {};
   }
+}
+
+}  // namespace
+
+FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options) {
+  const FitContext ctx(model, data, options);
+  FitState state(ctx.setup.candidates.size());
+  FitResult result = describe_fit(ctx);
+
+  result.initial_cost = screen_at_prior(ctx, state);
+  search_globally(ctx, state, result);
+  refit_where_rank_is_lost(ctx, state, result);
+  result.iterations = state.best.iterations;
+  result.converged = state.best.converged;
+  result.stop_reason = state.best.stop_reason;
+
+  const Linearisation at_estimate = linearise(ctx.estimator, state.free, state.values);
+  goodness_of_fit(ctx.problem, at_estimate.r, state.free.size(), result);
+  const std::map<int, std::string> at_bound =
+      hold_at_bounds(ctx, state.free, at_estimate, result.residual_variance, state.values);
+  std::vector<int> interior;
+  for (int i : state.free)
+    if (!at_bound.count(i)) interior.push_back(i);
+  result.values = state.values;
+  for (int i : interior) result.estimated.push_back(ctx.info.parameters[static_cast<std::size_t>(i)].name);
+  if (!interior.empty()) {
+    // The interior parameters' Jacobian: that of all free ones unless some are held at a bound.
+    const Linearisation interior_at_estimate =
+        interior.size() != state.free.size() ? linearise(ctx.estimator, interior, state.values) : at_estimate;
+    result.covariance = parameter_covariance(interior_at_estimate.J, interior_at_estimate.scale, result.residual_variance);
+    const Eigen::VectorXd sd = result.covariance.diagonal().cwiseMax(0).cwiseSqrt();
+    result.correlation = result.covariance.cwiseQuotient(sd * sd.transpose());
+  }
+  if (!ctx.setup.candidates.empty())
+    result.singular_values =
+        analyse_identifiability(ctx.estimator.scaled_jacobian(ctx.setup.candidates, state.values, nullptr), ctx.id_options)
+            .singular_values;
+
+  result.parameters = parameter_estimates(ctx, state, interior, at_bound, at_estimate, result);
+  result.modes = modes_at(model, state.values);
   return result;
 }
 

@@ -2,7 +2,8 @@
 // of the truth model, truth parameters 3-10 % off nominal, 40 dB SNR, coherence column), starting from the
 // models' default values as in `mbgen fit examples/mdof2/mdof2.mdl --data examples/mdof2/data/frf_F1.csv`.
 // The model is written by hand here (the runtime does not link the compiler), with the .mdl's values and bounds.
-#include "test_support.hpp"
+#include "mbgen_test/estimation.hpp"
+#include "mbgen_test/example_data.hpp"
 
 #include "mbgen/data_set.hpp"
 #include "mbgen/fit.hpp"
@@ -14,14 +15,7 @@
 using namespace mbgen;
 using test::LinearModel;
 
-namespace {
-
-DataSet example_data(const std::string& relative) {
-  const DataFile f = read_data_file(std::string(MBGEN_SOURCE_DIR) + "/" + relative);
-  return std::visit([](const auto& d) { return DataSet(d); }, f);
-}
-
-}  // namespace
+using test::example_data;
 
 TEST_CASE("slow: mdof2 FRF example: the global fit from the model's defaults reaches the truth", "[fit][frf][examples]") {
   const LinearModel model = test::mdof2_model({}, true);  // the .mdl's defaults and bounds

@@ -1,6 +1,6 @@
 // Frequency-domain output-error fits of mdof2 on FRFs from the closed-form transfer functions of
 // docs/reference-models.md (test_support.hpp), with noise at 40 dB SNR.
-#include "test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include "mbgen/fit.hpp"
 #include "mbgen/parameterization.hpp"

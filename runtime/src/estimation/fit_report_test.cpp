@@ -1,5 +1,5 @@
 // The mbgen-fit/1 JSON and the report directory.
-#include "test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include "mbgen/fit_report.hpp"
 

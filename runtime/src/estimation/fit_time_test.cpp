@@ -1,6 +1,6 @@
 // Time-domain output-error fits of mdof2 ("one step" method) on records simulated exactly by modal
 // superposition in the test (test_support.hpp), independent of the estimator's own discretisation.
-#include "test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include "mbgen/fit.hpp"
 

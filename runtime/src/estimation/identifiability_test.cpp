@@ -1,6 +1,6 @@
 // Unidentifiable parameters: two springs that only act as a sum, and an uncoupled block the data never excite.
 // Also the identifiability analysis on hand-made Jacobians with known rank.
-#include "test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include "mbgen/fit.hpp"
 #include "mbgen/identifiability.hpp"

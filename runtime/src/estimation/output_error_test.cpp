@@ -2,7 +2,8 @@
 // dynamics library on the full model, and the Jacobians against central finite differences of the residuals.
 #include "excited_block.hpp"
 #include "output_error.hpp"
-#include "test_support.hpp"
+#include "mbgen_test/estimation.hpp"
+#include "mbgen_test/finite_difference.hpp"
 
 #include "mbgen/frf.hpp"
 
@@ -115,18 +116,13 @@ namespace {
 // Central differences of the residuals in physical units, column by column.
 Eigen::MatrixXd finite_difference_jacobian(const estimation::OutputErrorProblem& problem, const Eigen::VectorXd& p,
                                            const std::vector<int>& free, estimation::ResidualKind kind) {
-  Eigen::MatrixXd J(problem.residual_count(), static_cast<Eigen::Index>(free.size()));
-  for (std::size_t j = 0; j < free.size(); ++j) {
-    // Relative steps; a parameter at 0 (the link spring) gets the stiffnesses' order of magnitude.
-    const double h = 1e-6 * (p[free[j]] != 0 ? std::abs(p[free[j]]) : 1e4);
-    Eigen::VectorXd pp = p, pm = p, rp, rm;
-    pp[free[j]] += h;
-    pm[free[j]] -= h;
-    problem.evaluate(pp, free, kind, rp, nullptr);
-    problem.evaluate(pm, free, kind, rm, nullptr);
-    J.col(static_cast<Eigen::Index>(j)) = (rp - rm) / (2 * h);
-  }
-  return J;
+  const auto residuals = [&](const Eigen::VectorXd& q) {
+    Eigen::VectorXd r;
+    problem.evaluate(q, free, kind, r, nullptr);
+    return r;
+  };
+  // Relative steps; a parameter at 0 (the link spring) gets the stiffnesses' order of magnitude.
+  return test::central_difference_jacobian(residuals, p, free, [](double v) { return 1e-6 * (v != 0 ? std::abs(v) : 1e4); });
 }
 
 void check_against_differences(const estimation::OutputErrorProblem& problem, const Eigen::VectorXd& p,

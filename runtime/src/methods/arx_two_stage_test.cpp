@@ -2,7 +2,7 @@
 // independent route from the runtime's matrix-exponential discretisation. The masses are known, as the method needs.
 #include "mbgen/methods/arx_two_stage.hpp"
 
-#include "../estimation/test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

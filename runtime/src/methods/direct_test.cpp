@@ -1,7 +1,7 @@
 // The direct method on hand-assembled models with data from closed forms (test_support.hpp: mdof2's transfer
 // functions from docs/reference-models.md, an exact modal zero-order-hold simulation), independent of the code
 // under test.
-#include "../estimation/test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include "mbgen/methods/direct.hpp"
 

@@ -4,7 +4,7 @@
 // the state carried through (a concatenation of two records would restart from rest).
 #include "mbgen/methods/ekf.hpp"
 
-#include "../estimation/test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

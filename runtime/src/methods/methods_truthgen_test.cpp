@@ -1,8 +1,8 @@
 // direct and hybrid on mdof2 data made by the independent truth generator (scripts/truthgen: numpy, its own model
 // assembly and simulation), truth drawn at random (--draw: every estimable parameter 3-10 % off the model's values),
 // 40 dB SNR, FRFs and time records. The model is test_support's hand-written mdof2 with the .mdl's values and bounds.
-#include "../estimation/test_support.hpp"
-#include "truthgen_test_support.hpp"
+#include "mbgen_test/estimation.hpp"
+#include "mbgen_test/truthgen.hpp"
 
 #include "mbgen/data_set.hpp"
 #include "mbgen/methods/direct.hpp"

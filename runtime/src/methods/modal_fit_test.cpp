@@ -1,8 +1,8 @@
 // fit_modal on mdof2 FRFs made by the independent truth generator (scripts/truthgen: numpy, its own model assembly),
 // truth drawn at random (--draw: every estimable parameter 3-10 % off the model's values), 40 dB SNR. The model is
 // test_support's hand-written mdof2 with the .mdl's values and bounds.
-#include "../estimation/test_support.hpp"
-#include "truthgen_test_support.hpp"
+#include "mbgen_test/estimation.hpp"
+#include "mbgen_test/truthgen.hpp"
 
 #include "mbgen/methods/modal.hpp"
 

@@ -1,7 +1,7 @@
 // The two-step method on noiseless data made by routes independent of it (test_support.hpp: the closed-form
 // transfer functions of mdof2, an exact modal zero-order-hold simulation): both steps must then recover the truth
 // exactly, up to rounding. Noisy data and the examples: tests/two_step (truthgen, the command line).
-#include "../estimation/test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include "mbgen/methods/two_step.hpp"
 

@@ -24,7 +24,7 @@ ModalIdentification from_uff() {
   const std::string path = kDir + "measurement.uff";
   const FrfQuantity quantity = uff_frf_quantity(read_uff58(path));
   CHECK(quantity == FrfQuantity::Accelerance);
-  return identify_modes(modal_data({std::get<FrfData>(read_data_file(path))}, {}, quantity));
+  return identify_modes(modal_data({std::get<FrfData>(read_data_file(path).content)}, {}, quantity));
 }
 
 }  // namespace

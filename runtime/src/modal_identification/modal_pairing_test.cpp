@@ -1,7 +1,7 @@
 #include "mbgen/frf.hpp"
 #include "mbgen/modal.hpp"
 #include "mbgen/modal_pairing.hpp"
-#include "../dynamics/test_models.hpp"
+#include "mbgen_test/mdof2.hpp"
 
 #include <Eigen/LU>
 #include <catch2/catch.hpp>

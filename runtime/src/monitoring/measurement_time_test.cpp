@@ -1,5 +1,6 @@
 // `# time=` lines: their form, their value, and the order they give.
 #include "mbgen/data_error.hpp"
+#include "mbgen_test/files.hpp"
 #include "mbgen/measurement_time.hpp"
 
 #include <catch2/catch.hpp>
@@ -26,8 +27,7 @@ TEST_CASE("ISO 8601 times are read as UTC seconds", "[monitor]") {
 }
 
 TEST_CASE("the time line is read from a CSV preamble and orders the data sets", "[monitor]") {
-  const auto dir = std::filesystem::temp_directory_path() / "mbgen_measurement_time_test";
-  std::filesystem::create_directories(dir);
+  const auto dir = mbgen::test::test_dir("measurement_time_test");
   auto write = [&](const std::string& name, const std::string& text) {
     std::ofstream((dir / name).string()) << text;
     return (dir / name).string();

@@ -1,6 +1,6 @@
 // The monitoring loop on mdof2 FRFs from the closed-form transfer functions (estimation/test_support.hpp), 40 dB:
 // no alarm on scatter, one change naming the stepped parameter, a structural change when the truth leaves the model.
-#include "../estimation/test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 
 #include "mbgen/change_detection.hpp"
 #include "mbgen/monitor.hpp"

@@ -1,5 +1,5 @@
 #include "mbgen/sensitivity.hpp"
-#include "../dynamics/test_models.hpp"
+#include "mbgen_test/mdof2.hpp"
 
 #include <catch2/catch.hpp>
 

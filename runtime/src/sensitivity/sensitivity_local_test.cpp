@@ -1,7 +1,7 @@
 #include "mbgen/frf.hpp"
 #include "mbgen/modal.hpp"
 #include "mbgen/sensitivity.hpp"
-#include "../dynamics/test_models.hpp"
+#include "mbgen_test/mdof2.hpp"
 
 #include <catch2/catch.hpp>
 

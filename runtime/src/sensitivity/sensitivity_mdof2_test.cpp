@@ -1,6 +1,6 @@
 // Sobol indices of mdof2's modes against brute force: the variance of the conditional mean, by a double loop.
 #include "mbgen/sensitivity.hpp"
-#include "../dynamics/test_models.hpp"
+#include "mbgen_test/mdof2.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,86 +1,17 @@
-// Test helpers: hand-written mbgen::Model implementations with hand-derived matrices and derivatives, for tests
-// of the runtime that must not depend on the compiler. Header-only; include from *_test.cpp files.
+// A random mbgen::Model whose every matrix depends on some parameter: for the derivative code paths of all seven
+// matrices. Header-only; include from *_test.cpp files only.
 #pragma once
 
 #include "mbgen/model.hpp"
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace mbgen::test {
-
-// mdof2 (docs/reference-models.md): two masses, coordinates mass1.x and mass2.x, input F1 on mass1, outputs
-// d1 = q1 and d2 = q2. Parameters in model order m1, m2, k11, k22, k12, c11, c22, c12 (Table 5.1 defaults).
-// With `extra_outputs` two more outputs are appended to exercise the velocity and acceleration paths:
-// v1 = q1' and a2 = q2''.
-class Mdof2Model : public Model {
- public:
-  enum Param { m1, m2, k11, k22, k12, c11, c22, c12, count };
-
-  explicit Mdof2Model(bool extra_outputs = false) : extra_(extra_outputs) {
-    info_.name = "mdof2";
-    auto add = [&](const char* name, double value, ParameterRole role, const char* unit) {
-      ParameterInfo p;
-      p.name = name;
-      p.value = value;
-      p.role = role;
-      p.unit = unit;
-      p.lower = 0;
-      info_.parameters.push_back(p);
-    };
-    add("m1", 1.39, ParameterRole::Estimate, "kg");
-    add("m2", 1.09, ParameterRole::Estimate, "kg");
-    add("k11", 1.38e6, ParameterRole::Estimate, "N/m");
-    add("k22", 0.24e6, ParameterRole::Estimate, "N/m");
-    add("k12", 0.12e6, ParameterRole::Estimate, "N/m");
-    add("c11", 13.42, ParameterRole::Estimate, "N s/m");
-    add("c22", 0.47, ParameterRole::Estimate, "N s/m");
-    add("c12", 0.0, ParameterRole::Fixed, "N s/m");
-    info_.coordinates = {"mass1.x", "mass2.x"};
-    info_.inputs = {"F1"};
-    info_.outputs = {"d1", "d2"};
-    if (extra_) {
-      info_.outputs.push_back("v1");
-      info_.outputs.push_back("a2");
-    }
-  }
-
-  const ModelInfo& info() const override { return info_; }
-
-  void evaluate(const Eigen::VectorXd& p, ModelMatrices& out) const override {
-    out.M.resize(2, 2);
-    out.M << p[m1], 0, 0, p[m2];
-    out.K.resize(2, 2);
-    out.K << p[k11] + p[k12], -p[k12], -p[k12], p[k22] + p[k12];
-    out.C.resize(2, 2);
-    out.C << p[c11] + p[c12], -p[c12], -p[c12], p[c22] + p[c12];
-    out.B.resize(2, 1);
-    out.B << 1, 0;
-    const Eigen::Index ny = extra_ ? 4 : 2;
-    out.Cd = Eigen::MatrixXd::Zero(ny, 2);
-    out.Cv = Eigen::MatrixXd::Zero(ny, 2);
-    out.Ca = Eigen::MatrixXd::Zero(ny, 2);
-    out.Cd(0, 0) = 1;
-    out.Cd(1, 1) = 1;
-    if (extra_) {
-      out.Cv(2, 0) = 1;
-      out.Ca(3, 1) = 1;
-    }
-  }
-
-  void derivatives(const Eigen::VectorXd&, ModelDerivatives& out) const override {
-    out = ModelDerivatives{};
-    out.M = {{m1, 0, 0, 1}, {m2, 1, 1, 1}};
-    out.K = {{k11, 0, 0, 1}, {k12, 0, 0, 1}, {k12, 0, 1, -1}, {k12, 1, 0, -1}, {k12, 1, 1, 1}, {k22, 1, 1, 1}};
-    out.C = {{c11, 0, 0, 1}, {c12, 0, 0, 1}, {c12, 0, 1, -1}, {c12, 1, 0, -1}, {c12, 1, 1, 1}, {c22, 1, 1, 1}};
-  }
-
- private:
-  ModelInfo info_;
-  bool extra_;
-};
 
 // A random model whose matrices are affine in the parameters, X(p) = X0 + sum_i p_i X_i, with every X_i sparse
 // (a few entries) and every matrix (M, C, K, B, Cd, Cv, Ca) depending on some parameter, so that derivative

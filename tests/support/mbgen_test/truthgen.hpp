@@ -1,7 +1,9 @@
-// For the methods' tests: a data set made by the independent truth generator (scripts/truthgen: numpy, its own model
-// assembly and simulation) and its truth parameters (from the .truth.json beside it, for the comparison only).
+// For the estimators' tests: a data set made by the independent truth generator (scripts/truthgen: numpy, its own
+// model assembly and simulation) and its truth parameters (from the .truth.json beside it, for the comparison only).
 // Test-only header (Catch2).
 #pragma once
+
+#include "mbgen_test/files.hpp"
 
 #include "mbgen/data_set.hpp"
 #include "mbgen/fit.hpp"
@@ -28,10 +30,9 @@ inline TruthgenData truthgen_data(const std::string& arguments, const std::strin
   std::filesystem::create_directories(folder);
   const std::string path = (folder / stem).string();
   const std::string command =
-      "/usr/bin/python3 " MBGEN_SOURCE_DIR "/scripts/truthgen/truthgen.py " + arguments + " -o " + path + ".csv";
+      "/usr/bin/python3 " + source_path("scripts/truthgen/truthgen.py") + " " + arguments + " -o " + path + ".csv";
   REQUIRE(std::system(command.c_str()) == 0);
-  const DataFile f = read_data_file(path + ".csv");
-  TruthgenData g{std::visit([](const auto& d) { return DataSet(d); }, f), {}};
+  TruthgenData g{read_data_file(path + ".csv"), {}};
   std::ifstream in(path + ".truth.json");
   const nlohmann::json parameters = nlohmann::json::parse(in).at("parameters");
   for (auto it = parameters.begin(); it != parameters.end(); ++it) g.truth[it.key()] = it.value().get<double>();

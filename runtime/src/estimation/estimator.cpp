@@ -1,0 +1,49 @@
+#include "estimator.hpp"
+
+#include "fit_setup.hpp"
+
+#include <cmath>
+#include <exception>
+
+namespace mbgen::estimation {
+
+Eigen::VectorXd Estimator::full_values(const std::vector<int>& free, const Eigen::VectorXd& theta) const {
+  return physical_values(prior_, free, transforms_, theta);
+}
+
+Eigen::VectorXd Estimator::internal(const std::vector<int>& free, const Eigen::VectorXd& full) const {
+  return internal_values(free, transforms_, full);
+}
+
+ResidualFunction Estimator::function(const std::vector<int>& free, ResidualKind kind) const {
+  return [this, free, kind](const Eigen::VectorXd& theta, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    const Eigen::VectorXd full = full_values(free, theta);
+    try {
+      problem_.evaluate(full, free, kind, r, J);
+    } catch (const std::exception&) {
+      return false;  // e.g. a singular mass matrix far from the prior: a failed trial step
+    }
+    if (J)
+      for (std::size_t j = 0; j < free.size(); ++j)
+        J->col(static_cast<Eigen::Index>(j)) *=
+            transforms_[static_cast<std::size_t>(free[j])].derivative(theta[static_cast<Eigen::Index>(j)]);
+    return true;
+  };
+}
+
+Eigen::MatrixXd Estimator::scaled_jacobian(const std::vector<int>& free, const Eigen::VectorXd& full,
+                                           Eigen::VectorXd* scale_out, Eigen::VectorXd* r_out) const {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J;
+  problem_.evaluate(full, free, ResidualKind::Weighted, r, &J);
+  Eigen::VectorXd scale(static_cast<Eigen::Index>(free.size()));
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    const double v = std::abs(full[free[j]]);
+    scale[static_cast<Eigen::Index>(j)] = v > 0 ? v : transforms_[static_cast<std::size_t>(free[j])].scale;
+  }
+  if (scale_out) *scale_out = scale;
+  if (r_out) *r_out = r;
+  return J * scale.asDiagonal();
+}
+
+}  // namespace mbgen::estimation
