@@ -1,12 +1,12 @@
 // The two-step method's analytical route (a): elimination on hand-built systems, mdof2's coefficient equations
 // solved exactly from exact identified coefficients (computed here from the closed forms of
 // docs/reference-models.md, not from the compiler's derivation), and the route inside fit_two_step on noiseless and
-// noisy closed-form FRFs (runtime/src/estimation/test_support.hpp, an independent assembly) against the numerical
+// noisy closed-form FRFs (tests/support/mbgen_test/estimation.hpp, an independent assembly) against the numerical
 // route. The truthgen data sets and the command line: tests/two_step.
 #include "methods/analytical_solver.hpp"
 #include "methods/elimination.hpp"
 
-#include "../../runtime/src/estimation/test_support.hpp"
+#include "mbgen_test/estimation.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
 #include "symbolic/derive.hpp"

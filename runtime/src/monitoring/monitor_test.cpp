@@ -1,4 +1,4 @@
-// The monitoring loop on mdof2 FRFs from the closed-form transfer functions (estimation/test_support.hpp), 40 dB:
+// The monitoring loop on mdof2 FRFs from the closed-form transfer functions (tests/support/mbgen_test/estimation.hpp), 40 dB:
 // no alarm on scatter, one change naming the stepped parameter, a structural change when the truth leaves the model.
 #include "mbgen_test/estimation.hpp"
 
