@@ -219,106 +219,142 @@ class Diagnoser {
     return evaluator::make_evaluator(model, derive);
   }
 
+  // The loop of the method (docs/diagnosis.md): fit and judge the nominal model, extend it greedily one candidate
+  // per round while a candidate explains what is wrong, then keep the extension only if it explains enough.
   DiagnosisResult run(const ir::Model& model, const std::string& text) {
     DiagnosisResult result;
     result.model_file = model.file;
     for (const DataSet& d : data_) result.data.push_back(d.file());
+    result.nominal = assess_nominal(model, text);
+    ModelState current = result.nominal;
+    std::set<std::string> promising;  // ids that qualified in the previous round (later rounds re-fit only those)
+    for (int round = 1; round <= options_.max_extensions; ++round)
+      if (!extend_once(round, result, current, promising)) break;
+    keep_only_full_explanations(result, current);
+    if (!result.selected.empty()) current.text = with_estimates(current.text, current.values, added_parameters(result));
+    result.final = current;
+    result.verdict = verdict_of(result);
+    say("verdict: " + result.verdict);
+    return result;
+  }
+
+ private:
+  // Fits and judges the nominal model; its findings steer the candidates (sensor outputs), and with records the
+  // screening runs on the records' H1 estimates, where a fit needs no simulation (records too short for them are
+  // screened on themselves).
+  ModelState assess_nominal(const ir::Model& model, const std::string& text) {
     say("nominal model: fitting " + std::to_string(model.parameters.size()) + " parameters");
-    result.nominal = assess(model, text, {}, options_.fit.starts);
-    sensor_outputs_ = outputs_missed_alone(result.nominal.channels);
+    ModelState nominal = assess(model, text, {}, options_.fit.starts);
+    sensor_outputs_ = outputs_missed_alone(nominal.channels);
     if (has_records_) {
-      // Screening runs on the records' H1 estimates: a fit there needs no simulation. (Records too short for them
-      // are screened on themselves.)
-      if (const auto companion = estimation::spectral_companion(result.nominal.info, split_.fit)) {
+      if (const auto companion = estimation::spectral_companion(nominal.info, split_.fit)) {
         screen_data_ = companion->data;
         screen_averages_ = companion->averages;
       }
     }
-    say(format("nominal model: nrmse %.4g, validation %.4g, mean normalized residual %.3g", result.nominal.fit.nrmse,
-               result.nominal.validation_nrmse, result.nominal.residual.mean_z));
-    for (const Discrepancy& d : result.nominal.residual.discrepancies) say("  finding: " + d.text);
+    say(format("nominal model: nrmse %.4g, validation %.4g, mean normalized residual %.3g", nominal.fit.nrmse,
+               nominal.validation_nrmse, nominal.residual.mean_z));
+    for (const Discrepancy& d : nominal.residual.discrepancies) say("  finding: " + d.text);
+    return nominal;
+  }
 
-    ModelState current = result.nominal;
-    std::set<std::string> promising;  // ids that qualified in the previous round (later rounds re-fit only those)
-    for (int round = 1; round <= options_.max_extensions; ++round) {
-      prior_peaks_ = prior_peaks(current.model);
-      const ExtensionContext ctx = context(current);
-      std::string hints;
-      for (double f : ctx.peak_hz) hints += format(" %.1f", f);
-      if (!hints.empty()) say("round " + std::to_string(round) + ": peaks to place new modes at (Hz):" + hints);
-      std::vector<Extension> extensions = enumerate_extensions(current.model, current.text, ctx);
-      if (round > 1)
-        extensions.erase(std::remove_if(extensions.begin(), extensions.end(),
-                                        [&](const Extension& e) { return !promising.count(e.id); }),
-                         extensions.end());
-      if (extensions.empty()) break;
-      std::vector<CandidateOutcome> outcomes;
-      std::vector<ModelState> states;
-      score_all(extensions, current, round, outcomes, states);
-      keep_best_variants(outcomes, states);
-      result.candidates.insert(result.candidates.end(), outcomes.begin(), outcomes.end());
-      const std::size_t first_of_round = result.candidates.size() - outcomes.size();
-      int best = best_qualifying(outcomes);
-      // A candidate may win only because its search found a better optimum of the parameters it shares with the
-      // current model. Re-fit the current model from the winner's estimates: if that closes the gap, the gain was
-      // a better fit, not an effect; the current model improves and the candidates are judged again against it.
-      for (int guard = 0; best >= 0 && guard < 3; ++guard) {
-        ModelState refit = assess(current.model, current.text, states[static_cast<std::size_t>(best)].values,
-                                  options_.candidate_starts);
-        if (!(refit.fit.cost < current.fit.cost * (1.0 - 1e-9))) break;
-        say("the current model fits better started from the estimate of " + outcomes[static_cast<std::size_t>(best)].id +
-            format(" (BIC %.1f -> %.1f): a better optimum, not an effect; judging the candidates again",
-                   current.fit.bic, refit.fit.bic));
-        if (round == 1) result.nominal = refit;
-        current = std::move(refit);
-        for (std::size_t k = 0; k < outcomes.size(); ++k) {
-          CandidateOutcome& o = outcomes[k];
-          if (!o.error.empty() || !o.fully_fitted) continue;
-          rank_against(current, o);
-          result.candidates[first_of_round + k] = o;
-        }
-        best = best_qualifying(outcomes);
+  // One round of the greedy forward selection: the candidates on the current model (in later rounds only those
+  // that qualified before), scored; the best qualifying one is taken if it explains the discrepancy. False when
+  // the search ends.
+  bool extend_once(int round, DiagnosisResult& result, ModelState& current, std::set<std::string>& promising) {
+    prior_peaks_ = prior_peaks(current.model);
+    const ExtensionContext ctx = context(current);
+    std::string hints;
+    for (double f : ctx.peak_hz) hints += format(" %.1f", f);
+    if (!hints.empty()) say("round " + std::to_string(round) + ": peaks to place new modes at (Hz):" + hints);
+    std::vector<Extension> extensions = enumerate_extensions(current.model, current.text, ctx);
+    if (round > 1)
+      extensions.erase(std::remove_if(extensions.begin(), extensions.end(),
+                                      [&](const Extension& e) { return !promising.count(e.id); }),
+                       extensions.end());
+    if (extensions.empty()) return false;
+    std::vector<CandidateOutcome> outcomes;
+    std::vector<ModelState> states;
+    score_all(extensions, current, round, outcomes, states);
+    keep_best_variants(outcomes, states);
+    result.candidates.insert(result.candidates.end(), outcomes.begin(), outcomes.end());
+    const std::size_t first_of_round = result.candidates.size() - outcomes.size();
+    const int best = best_after_refits(round, result, current, outcomes, states, first_of_round);
+    promising.clear();
+    for (const CandidateOutcome& o : outcomes)
+      if (o.qualifies) promising.insert(o.id);
+    if (best < 0) return false;
+    ModelState& chosen = states[static_cast<std::size_t>(best)];
+    if (!explains(current, chosen)) return false;
+    result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
+    for (const std::string& id : equivalents(outcomes, best))
+      say("  " + id + " fits exactly as well: the same extension in another place");
+    promising.erase(outcomes[static_cast<std::size_t>(best)].id);
+    say("selected " + result.selected.back());
+    current = std::move(chosen);
+    return !promising.empty();
+  }
+
+  // The best qualifying candidate of a round, once the current model's own fit has been checked against it. A
+  // candidate may win only because its search found a better optimum of the parameters it shares with the
+  // current model. Re-fit the current model from the winner's estimates: if that closes the gap, the gain was a
+  // better fit, not an effect; the current model improves and the candidates are judged again against it.
+  int best_after_refits(int round, DiagnosisResult& result, ModelState& current,
+                        std::vector<CandidateOutcome>& outcomes, const std::vector<ModelState>& states,
+                        std::size_t first_of_round) {
+    int best = best_qualifying(outcomes);
+    for (int guard = 0; best >= 0 && guard < 3; ++guard) {
+      ModelState refit = assess(current.model, current.text, states[static_cast<std::size_t>(best)].values,
+                                options_.candidate_starts);
+      if (!(refit.fit.cost < current.fit.cost * (1.0 - 1e-9))) break;
+      say("the current model fits better started from the estimate of " + outcomes[static_cast<std::size_t>(best)].id +
+          format(" (BIC %.1f -> %.1f): a better optimum, not an effect; judging the candidates again",
+                 current.fit.bic, refit.fit.bic));
+      if (round == 1) result.nominal = refit;
+      current = std::move(refit);
+      for (std::size_t k = 0; k < outcomes.size(); ++k) {
+        CandidateOutcome& o = outcomes[k];
+        if (!o.error.empty() || !o.fully_fitted) continue;
+        rank_against(current, o);
+        result.candidates[first_of_round + k] = o;
       }
-      promising.clear();
-      for (const CandidateOutcome& o : outcomes)
-        if (o.qualifies) promising.insert(o.id);
-      if (best < 0) break;
-      ModelState& chosen = states[static_cast<std::size_t>(best)];
-      // The extension must explain the discrepancy, not merely shave the cost: the residual's excess over the
-      // noise level (mean normalized residual minus 1) at least halves. Otherwise it is a partial, likely wrong,
-      // explanation and is not taken.
-      const double before = current.residual.mean_z, after = chosen.residual.mean_z;
-      if (!(before > 1.0 && after - 1.0 <= 0.5 * (before - 1.0))) {
-        say(format("best candidate leaves the mean normalized residual at %.3g (from %.3g; noise alone gives 1): "
-                   "not an explanation", after, before));
-        break;
-      }
-      result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
-      for (const std::string& id : equivalents(outcomes, best))
-        say("  " + id + " fits exactly as well: the same extension in another place");
-      promising.erase(outcomes[static_cast<std::size_t>(best)].id);
-      say("selected " + result.selected.back());
-      current = std::move(chosen);
-      if (promising.empty()) break;
+      best = best_qualifying(outcomes);
     }
+    return best;
+  }
+
+  // The extension must explain the discrepancy, not merely shave the cost: the residual's excess over the noise
+  // level (mean normalized residual minus 1) at least halves. Otherwise it is a partial, likely wrong, explanation
+  // and is not taken.
+  bool explains(const ModelState& current, const ModelState& chosen) const {
+    const double before = current.residual.mean_z, after = chosen.residual.mean_z;
+    if (before > 1.0 && after - 1.0 <= 0.5 * (before - 1.0)) return true;
+    say(format("best candidate leaves the mean normalized residual at %.3g (from %.3g; noise alone gives 1): "
+               "not an explanation", after, before));
+    return false;
+  }
+
+  // The selected extensions are kept only if together they explain enough; otherwise nothing is selected and the
+  // current model is the nominal one again.
+  void keep_only_full_explanations(DiagnosisResult& result, ModelState& current) const {
+    if (result.selected.empty()) return;
     // An extension that leaves a clear discrepancy (the residual well above the noise level) explains only part
     // of what is wrong: better to say so than to extend with a confident, partly wrong model.
-    if (!result.selected.empty() && current.residual.mean_z > options_.max_final_residual) {
+    if (current.residual.mean_z > options_.max_final_residual) {
       say(format("the extended model still leaves a mean normalized residual of %.3g (noise alone gives 1): a clear "
                  "discrepancy remains; not extending", current.residual.mean_z));
       result.selected.clear();
       current = result.nominal;
+      return;
     }
     // Likewise when most of the nominal model's findings remain: the extension shaved the cost of a discrepancy
     // it does not explain (on the spindle, a Maxwell element in a bearing was "explained" by one soft mount in z,
     // which left 6 of 9 findings; the correct extensions of the test cases leave at most 1 of 3 to 9).
     const std::size_t before_findings = result.nominal.residual.discrepancies.size();
     std::vector<const Discrepancy*> kept;
-    if (!result.selected.empty())
-      for (const Discrepancy& d : result.nominal.residual.discrepancies)
-        if (still_shows(result.nominal.channels, current, d, options_.residual.threshold)) kept.push_back(&d);
-    if (!result.selected.empty() &&
-        static_cast<double>(kept.size()) > options_.max_remaining_findings * static_cast<double>(before_findings)) {
+    for (const Discrepancy& d : result.nominal.residual.discrepancies)
+      if (still_shows(result.nominal.channels, current, d, options_.residual.threshold)) kept.push_back(&d);
+    if (static_cast<double>(kept.size()) > options_.max_remaining_findings * static_cast<double>(before_findings)) {
       say(format("the extended model still shows %.0f of the nominal model's %.0f findings: it does not explain them; "
                  "not extending", static_cast<double>(kept.size()), static_cast<double>(before_findings)));
       for (const Discrepancy* d : kept)
@@ -327,19 +363,14 @@ class Diagnoser {
       result.selected.clear();
       current = result.nominal;
     }
-    if (!result.selected.empty()) current.text = with_estimates(current.text, current.values, added_parameters(result));
-    result.final = current;
-    if (!result.selected.empty())
-      result.verdict = "extended";
-    else if (!result.nominal.residual.discrepancies.empty())
-      result.verdict = "unexplained";
-    else
-      result.verdict = "no_extension_justified";
-    say("verdict: " + result.verdict);
-    return result;
   }
 
- private:
+  static std::string verdict_of(const DiagnosisResult& result) {
+    if (!result.selected.empty()) return "extended";
+    if (!result.nominal.residual.discrepancies.empty()) return "unexplained";
+    return "no_extension_justified";
+  }
+
   // The qualifying candidate with the lowest BIC. Candidates that tie (within 0.01 in BIC: e.g. a torsion spring
   // between the same two bodies at different points is one and the same extension) go to the first in
   // enumeration order, so the choice does not hang on rounding.
