@@ -12,7 +12,7 @@
 
 #include "diagnosis/engine/channel_residuals.hpp"
 #include "diagnosis/engine/data_split.hpp"
-#include "diagnosis/engine/ordered_parallel.hpp"
+#include <mbgen/parallel.hpp>
 #include "diagnosis/engine/same_response.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"

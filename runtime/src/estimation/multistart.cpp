@@ -1,8 +1,8 @@
 #include "multistart.hpp"
 
-#include <atomic>
-#include <exception>
-#include <thread>
+#include "mbgen/parallel.hpp"
+
+#include <algorithm>
 
 namespace mbgen::estimation {
 
@@ -14,25 +14,8 @@ double StartSampler::symmetric_unit() {
 }
 
 std::vector<LmResult> run_starts(int count, int threads, const std::function<LmResult(int)>& local) {
-  std::vector<LmResult> results(static_cast<std::size_t>(count));
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(count));
-  std::atomic<int> next{0};
-  auto worker = [&] {
-    for (int i = next++; i < count; i = next++) {
-      try {
-        results[static_cast<std::size_t>(i)] = local(i);
-      } catch (...) {
-        errors[static_cast<std::size_t>(i)] = std::current_exception();
-      }
-    }
-  };
-  const int n = std::max(1, std::min(threads, count));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < n; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  std::vector<LmResult> results(static_cast<std::size_t>(std::max(count, 0)));
+  parallel_for(results.size(), threads, [&](std::size_t i) { results[i] = local(static_cast<int>(i)); });
   return results;
 }
 

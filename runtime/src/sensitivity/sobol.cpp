@@ -3,12 +3,11 @@
 // Total, Jansen 1999: S_Ti = mean((f(A) - f(A_B^i))^2) / (2 V). V from the 2N points of A and B.
 #include "mbgen/sensitivity.hpp"
 
-#include <atomic>
+#include "mbgen/parallel.hpp"
+
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <random>
-#include <thread>
 
 namespace mbgen {
 
@@ -17,27 +16,6 @@ namespace {
 // Uniform [0, 1) from 53 random bits: the same numbers on every platform (std::uniform_real_distribution is
 // implementation-defined).
 double unit(std::mt19937_64& engine) { return static_cast<double>(engine() >> 11) * (1.0 / 9007199254740992.0); }
-
-// Runs `task(j)` for j = 0..count-1 on `threads` threads; the first exception is rethrown.
-void parallel_for(int count, int threads, const std::function<void(int)>& task) {
-  std::atomic<int> next{0};
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(count));
-  auto worker = [&] {
-    for (int j = next++; j < count; j = next++) {
-      try {
-        task(j);
-      } catch (...) {
-        errors[static_cast<std::size_t>(j)] = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(1, std::min(threads, count)); ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
-}
 
 double mean_and_std_error(const std::vector<double>& terms, double& std_error) {
   double sum = 0;
@@ -64,8 +42,8 @@ SobolIndices sobol_indices(const std::function<Eigen::VectorXd(const Eigen::Vect
   // Evaluation e = block * N + j: block 0 is A, 1 is B, 2 + i is A_B^(i).
   const int evaluations = n * (k + 2);
   Eigen::MatrixXd y(outputs, evaluations);
-  parallel_for(evaluations, options.threads, [&](int e) {
-    const int block = e / n, j = e % n;
+  parallel_for(static_cast<std::size_t>(evaluations), options.threads, [&](std::size_t index) {
+    const int e = static_cast<int>(index), block = e / n, j = e % n;
     Eigen::VectorXd x = block == 1 ? Eigen::VectorXd(b.row(j).transpose()) : Eigen::VectorXd(a.row(j).transpose());
     if (block >= 2) x[block - 2] = b(j, block - 2);
     const Eigen::VectorXd v = f(x);

@@ -1,4 +1,4 @@
-#include "diagnosis/engine/ordered_parallel.hpp"
+#include "mbgen/parallel.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-namespace mbgen::diagnosis {
+namespace mbgen {
 
 void ordered_parallel(std::size_t count, int threads, const std::function<void(std::size_t)>& task,
                       const std::function<void(std::size_t)>& done) {
@@ -55,4 +55,8 @@ void ordered_parallel(std::size_t count, int threads, const std::function<void(s
     if (e) std::rethrow_exception(e);
 }
 
-}  // namespace mbgen::diagnosis
+void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& task) {
+  ordered_parallel(count, threads, task, [](std::size_t) {});
+}
+
+}  // namespace mbgen

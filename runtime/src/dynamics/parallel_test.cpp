@@ -1,4 +1,4 @@
-#include "diagnosis/engine/ordered_parallel.hpp"
+#include "mbgen/parallel.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-namespace mbgen::diagnosis {
+namespace mbgen {
 namespace {
 
 TEST_CASE("ordered_parallel: every task once, reported in index order although they finish out of order") {
@@ -52,4 +52,4 @@ TEST_CASE("ordered_parallel: no tasks, one worker") {
 }
 
 }  // namespace
-}  // namespace mbgen::diagnosis
+}  // namespace mbgen
