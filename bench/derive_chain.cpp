@@ -31,15 +31,14 @@
 #include "emit/cpp_emitter.hpp"
 #include "frontend/parser.hpp"
 #include "natural_frequencies.hpp"
+#include "seconds_since.hpp"
 #include "symbolic/derive.hpp"
 #include "symbolic/test_chain_model.hpp"
 #include "symbolic/transfer_functions.hpp"
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using mbgen::bench::seconds_since;
 
 struct CommandRun {
   double seconds = 0;

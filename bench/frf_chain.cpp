@@ -20,15 +20,10 @@
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
 #include "mbgen/frf.hpp"
+#include "seconds_since.hpp"
 #include "symbolic/test_chain_model.hpp"
 
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
+using mbgen::bench::seconds_since;
 
 int main(int argc, char** argv) {
   std::vector<int> sizes;

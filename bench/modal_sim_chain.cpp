@@ -19,15 +19,10 @@
 #include "mbgen/modal.hpp"
 #include "mbgen/simulate.hpp"
 #include "mbgen/state_space.hpp"
+#include "seconds_since.hpp"
 #include "symbolic/test_chain_model.hpp"
 
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
+using mbgen::bench::seconds_since;
 
 int main(int argc, char** argv) {
   std::vector<int> sizes;

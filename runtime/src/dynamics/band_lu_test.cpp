@@ -7,11 +7,14 @@
 
 #include <catch2/catch.hpp>
 
+#include "mbgen_test/random_matrix.hpp"
+
 #include <random>
 
 using mbgen::detail::BandLu;
 using mbgen::detail::Bandwidth;
 using cd = std::complex<double>;
+using mbgen::test::random_complex_matrix;
 
 namespace {
 
@@ -22,14 +25,6 @@ Eigen::MatrixXcd random_band(Eigen::Index n, Bandwidth b, double diagonal, std::
   for (Eigen::Index c = 0; c < n; ++c)
     for (Eigen::Index r = std::max<Eigen::Index>(0, c - b.upper); r <= std::min(n - 1, c + b.lower); ++r)
       a(r, c) = r == c ? cd(diagonal * normal(rng), diagonal * normal(rng)) : cd(normal(rng), normal(rng));
-  return a;
-}
-
-Eigen::MatrixXcd random_matrix(Eigen::Index rows, Eigen::Index cols, std::mt19937& rng) {
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXcd a(rows, cols);
-  for (Eigen::Index c = 0; c < cols; ++c)
-    for (Eigen::Index r = 0; r < rows; ++r) a(r, c) = cd(normal(rng), normal(rng));
   return a;
 }
 
@@ -48,7 +43,7 @@ TEST_CASE("band LU solves A x = b and A^T y = c like a dense LU", "[dynamics][lu
   for (Eigen::Index n : {1, 2, 7, 30, 120}) {
     for (const Case& k : cases) {
       const Bandwidth b{std::min(k.band.lower, n - 1), std::min(k.band.upper, n - 1)};
-      const Eigen::MatrixXcd A = random_band(n, b, k.diagonal, rng), rhs = random_matrix(n, 3, rng);
+      const Eigen::MatrixXcd A = random_band(n, b, k.diagonal, rng), rhs = random_complex_matrix(n, 3, rng);
       BandLu lu;
       lu.resize(n, b);
       lu.set_zero();
@@ -87,7 +82,7 @@ TEST_CASE("band LU reports a singular matrix and factors again in its buffers", 
   };
   load(A);
   CHECK(lu.factor() == 0);
-  const Eigen::MatrixXcd good = random_band(n, b, 1.0, rng), rhs = random_matrix(n, 1, rng);
+  const Eigen::MatrixXcd good = random_band(n, b, 1.0, rng), rhs = random_complex_matrix(n, 1, rng);
   load(good);
   CHECK(lu.factor() > 0);
   Eigen::MatrixXcd x = rhs;

@@ -6,27 +6,18 @@
 
 #include <catch2/catch.hpp>
 
+#include "mbgen_test/random_matrix.hpp"
+
 #include <random>
 
 using mbgen::detail::SmallLu;
 using cd = std::complex<double>;
-
-namespace {
-
-Eigen::MatrixXcd random_matrix(Eigen::Index rows, Eigen::Index cols, std::mt19937& rng) {
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXcd a(rows, cols);
-  for (Eigen::Index c = 0; c < cols; ++c)
-    for (Eigen::Index r = 0; r < rows; ++r) a(r, c) = cd(normal(rng), normal(rng));
-  return a;
-}
-
-}  // namespace
+using mbgen::test::random_complex_matrix;
 
 TEST_CASE("small LU solves A x = b and A^T y = c like Eigen's partial-pivoting LU", "[dynamics][lu]") {
   std::mt19937 rng(11);
   for (Eigen::Index n : {1, 2, 5, 11}) {
-    const Eigen::MatrixXcd A = random_matrix(n, n, rng), b = random_matrix(n, 3, rng);
+    const Eigen::MatrixXcd A = random_complex_matrix(n, n, rng), b = random_complex_matrix(n, 3, rng);
     SmallLu lu;
     lu.resize(n);
     lu.matrix() = A;
