@@ -97,7 +97,7 @@ TEST_CASE("compliant_ground:base on the spindle: the base is a translating body 
   CHECK(same(sm.M(coordinate(sm, "base.z"), coordinate(sm, "base.z")), p("m_base")));
 }
 
-TEST_CASE("compliant_ground:base on feet: a six-coordinate base standing on a foot at each mount's base point",
+TEST_CASE("compliant_ground:base on feet: a six-coordinate block below the mounts, standing on a foot under each",
           "[diagnosis][physics]") {
   const test::Example sp = test::load("spindle");
   const std::vector<Extension> xs = enumerate_extensions(sp.model, sp.text, {});
@@ -113,25 +113,39 @@ TEST_CASE("compliant_ground:base on feet: a six-coordinate base standing on a fo
   int feet = 0;
   for (const ir::Element& e : x.model.elements) feet += e.name.rfind("base_foot", 0) == 0;
   CHECK(feet == 4);
-  // Hand-assembled: each mount's base point p lies at p - c = (+-0.048, 0, +-0.060) from the centroid c, and
-  // carries a foot (k_basex, k_basey, k_basez) in parallel with the mount (k_hbx, k_hby, k_hbz). A spring3 along
-  // global axes at offset d adds k_y d_x^2 + k_x d_y^2 to the rotation about z, k_z d_x^2 + k_x d_z^2 about y,
-  // and k_y d_z^2 + k_z d_y^2 about x.
+  // Hand-assembled, about the base's centre of mass, which lies d_base below the mounts' base points (down is -y:
+  // from the spindle's and housing's centre of mass at the origin to the mounts' centroid at y = -0.080). Each
+  // mount's base point lies at (+-0.048, +d, +-0.060) from it, each foot at (+-0.048, -d, +-0.060). A spring3
+  // along global axes at offset r adds k_y r_x^2 + k_x r_y^2 to the rotation about z, k_z r_x^2 + k_x r_z^2 about y,
+  // k_y r_z^2 + k_z r_y^2 about x, and -k_x r_y to the coupling of x with the rotation about z.
   auto p = [&](const char* n) { return symbolic::test::symbol_of(sm, n); };
-  const ex kx = p("k_basex") + p("k_hbx"), ky = p("k_basey") + p("k_hby"), kz = p("k_basez") + p("k_hbz");
+  const ex fx = p("k_basex"), fy = p("k_basey"), fz = p("k_basez");  // feet
+  const ex mx = p("k_hbx"), my = p("k_hby"), mz = p("k_hbz");        // mounts
+  const ex d = p("d_base");
   const ex dx2 = GiNaC::numeric(48, 1000) * GiNaC::numeric(48, 1000), dz2 = GiNaC::numeric(6, 100) * GiNaC::numeric(6, 100);
-  CHECK(same(sm.K(coordinate(sm, "base.rz"), coordinate(sm, "base.rz")), 4 * ky * dx2));
-  CHECK(same(sm.K(coordinate(sm, "base.ry"), coordinate(sm, "base.ry")), 4 * (kz * dx2 + kx * dz2)));
-  CHECK(same(sm.K(coordinate(sm, "base.rx"), coordinate(sm, "base.rx")), 4 * ky * dz2));
-  CHECK(same(sm.K(coordinate(sm, "base.x"), coordinate(sm, "base.x")), 4 * kx));
-  CHECK_FALSE(same(sm.K(coordinate(sm, "base.rz"), coordinate(sm, "base.rz")), 4 * kx * dx2));  // can fail
-  const ex m = p("m_base"), r = p("r_base");
-  for (const char* c : {"base.rx", "base.ry", "base.rz"}) CHECK(same(sm.M(coordinate(sm, c), coordinate(sm, c)), m * r * r));
+  const auto K = [&](const char* a, const char* b) { return sm.K(coordinate(sm, a), coordinate(sm, b)); };
+  CHECK(same(K("base.x", "base.x"), 4 * (fx + mx)));
+  CHECK(same(K("base.rz", "base.rz"), 4 * ((fy + my) * dx2 + (fx + mx) * d * d)));
+  CHECK(same(K("base.ry", "base.ry"), 4 * ((fz + mz) * dx2 + (fx + mx) * dz2)));
+  CHECK(same(K("base.rx", "base.rx"), 4 * ((fy + my) * dz2 + (fz + mz) * d * d)));
+  // The feet below the centre of mass and the mounts above it pull the translation and the rocking together in
+  // opposite senses: the coupling the block's depth brings.
+  CHECK(same(K("base.x", "base.rz"), 4 * d * (fx - mx)));
+  CHECK_FALSE(same(K("base.x", "base.rz"), 0));  // can fail
+  const ex m = p("m_base");
   CHECK(same(sm.M(coordinate(sm, "base.x"), coordinate(sm, "base.x")), m));
-  // The variant estimates the radius of gyration and the per-axis foot stiffnesses, with one damping.
+  CHECK(same(sm.M(coordinate(sm, "base.ry"), coordinate(sm, "base.ry")), m * p("r_basey") * p("r_basey")));
+  CHECK(same(sm.M(coordinate(sm, "base.rz"), coordinate(sm, "base.rz")), m * p("r_basez") * p("r_basez")));
+  CHECK(same(sm.M(coordinate(sm, "base.rx"), coordinate(sm, "base.rx")), m * p("r_basex") * p("r_basex")));
+  // It estimates the mass, the depth, the radii of gyration about the axes the force along x turns the base about
+  // (y and z; about x the inertia is known), and per-axis stiffnesses and dampings of the feet.
   std::vector<std::string> fresh;
   for (const NewParameter& np : x.new_parameters) fresh.push_back(np.name);
-  CHECK(fresh == std::vector<std::string>{"m_base", "r_base", "k_basex", "k_basey", "k_basez", "c_base"});
+  CHECK(fresh == std::vector<std::string>{"m_base", "d_base", "r_basey", "r_basez", "k_basex", "c_basex", "k_basey",
+                                          "c_basey", "k_basez", "c_basez"});
+  const ir::Parameter* rx = x.model.find_parameter("r_basex");
+  REQUIRE(rx);
+  CHECK(rx->role == ir::Role::Known);
 }
 
 TEST_CASE("added_mass changes the mass by exactly ma and the moments about the origin as a point mass does",

@@ -80,6 +80,38 @@ std::string with_estimates(const std::string& text, const std::map<std::string, 
   return out;
 }
 
+// `text` with parameter `name`'s declaration changed from `estimate` to `known`, saying why in its comment.
+std::string with_role_known(const std::string& text, const std::string& name) {
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::string head = "param " + name;
+    if (text.compare(pos, head.size(), head) == 0 && pos + head.size() < end &&
+        (text[pos + head.size()] == ' ' || text[pos + head.size()] == '=')) {
+      std::string line = text.substr(pos, end - pos);
+      const std::size_t role = line.find("  estimate");
+      if (role != std::string::npos) line.replace(role, 10, "  known");
+      line += line.find('#') == std::string::npos ? "  # " : "; ";
+      line += "held at this value: the data do not determine it";
+      return text.substr(0, pos) + line + text.substr(end);
+    }
+    pos = end + 1;
+  }
+  return text;
+}
+
+// The parameters a taken model's fit held (ModelState::held) become `known` in its model and text, so that later
+// fits keep them and the written model says so.
+void declare_held_known(ModelState& s) {
+  for (const std::string& name : s.held) {
+    for (ir::Parameter& p : s.model.parameters)
+      if (p.name == name) p.role = ir::Role::Known;
+    s.text = with_role_known(s.text, name);
+  }
+  s.held.clear();
+}
+
 // The mean normalized residual over finding d's band, on its channel and data set; minus one when the model has
 // no such lines.
 double band_mean_z(const std::vector<ChannelResidual>& channels, const Discrepancy& d) {
@@ -179,11 +211,17 @@ class Diagnoser {
 
   // The same with `model` already derived (`evaluator`), the fit on `threads` workers. Uses no GiNaC: safe on a
   // worker thread.
+  // `held`: parameters with role estimate that this fit keeps at their values (the others are estimated).
   ModelState assess(const mbgen::Model& evaluator, const ir::Model& model, const std::string& text,
                     const std::map<std::string, double>& start, int starts, int threads,
-                    const std::map<std::string, double>& also_start_at = {}) const {
+                    const std::map<std::string, double>& also_start_at = {},
+                    const std::vector<std::string>& held = {}) const {
     FitOptions fo = options_.fit;
     fo.also_start_at = also_start_at;
+    if (!held.empty())
+      for (const ParameterInfo& p : evaluator.info().parameters)
+        if (p.role == ParameterRole::Estimate && std::find(held.begin(), held.end(), p.name) == held.end())
+          fo.estimate.push_back(p.name);
     // Start values apply to what this model estimates; its known and fixed parameters keep their values (a
     // candidate's estimate of a parameter the current model holds fixed must not leak into it).
     const ModelInfo& info = evaluator.info();
@@ -203,6 +241,7 @@ class Diagnoser {
     s.model = model;
     s.text = text;
     s.info = info;
+    s.held = held;
     s.fit = fit(evaluator, split_.fit, fo);
     s.values = values_by_name(info, s.fit.values);
     s.validation_nrmse = validation_nrmse(evaluator, split_, s.fit.values, fo.frf_weighting);
@@ -291,6 +330,7 @@ class Diagnoser {
       say("  " + id + " fits exactly as well: the same extension in another place");
     promising.erase(outcomes[static_cast<std::size_t>(best)].id);
     say("selected " + result.selected.back());
+    declare_held_known(chosen);
     current = std::move(chosen);
     return !promising.empty();
   }
@@ -392,17 +432,21 @@ class Diagnoser {
     for (std::size_t first = 0; first < outcomes.size();) {
       std::size_t end = first + 1;
       while (end < outcomes.size() && outcomes[end].id == outcomes[first].id) ++end;
-      // Fully fitted variants before screened-out ones before failed ones; among fully fitted, the lowest BIC.
-      const auto tier = [&](std::size_t k) { return !outcomes[k].error.empty() ? 2 : !outcomes[k].fully_fitted ? 1 : 0; };
+      // Fully fitted variants before screened-out ones before failed ones, and among fully fitted the plausible
+      // ones first (a richer variant whose parameters the data cannot determine does not stand for the candidate
+      // when a plausible one exists); within a tier, the lowest BIC.
+      const auto tier = [&](std::size_t k) {
+        return !outcomes[k].error.empty() ? 3 : !outcomes[k].fully_fitted ? 2 : outcomes[k].plausible ? 0 : 1;
+      };
       std::size_t best = first;
       for (std::size_t k = first; k < end; ++k)
         if (tier(k) < tier(best) ||
-            (tier(k) == 0 && tier(best) == 0 && outcomes[k].delta_bic < outcomes[best].delta_bic - 0.01))
+            (tier(k) == tier(best) && tier(k) <= 1 && outcomes[k].delta_bic < outcomes[best].delta_bic - 0.01))
           best = k;
       CandidateOutcome o = outcomes[best];
       o.variants_tried = static_cast<int>(end - first);
       for (std::size_t k = first; k < end; ++k)
-        if (k != best && tier(k) == 0 && tier(best) == 0 && std::abs(outcomes[k].delta_bic - o.delta_bic) <= 0.01)
+        if (k != best && tier(k) == tier(best) && tier(k) <= 1 && std::abs(outcomes[k].delta_bic - o.delta_bic) <= 0.01)
           o.equivalent_variants.push_back(outcomes[k].variant);
       if (!o.equivalent_variants.empty()) {
         std::string names;
@@ -621,7 +665,7 @@ class Diagnoser {
             : !o.fully_fitted  ? format("screened out (screening delta BIC %.1f", o.screen_delta_bic) +
                                     (has_records_ ? format(", on the records %.1f)", o.screen_records_delta_bic) : ")")
                                : format("delta BIC %.1f, validation %.4g", o.delta_bic, o.validation_nrmse) +
-                                    (o.qualifies ? "  (qualifies)" : "");
+                                    (o.qualifies ? "  (qualifies)" : "") + doubts_text(o);
         say(format("[%.0f/%.0f] ", static_cast<double>(said + 1), static_cast<double>(n)) + label(ext) + ": " + result +
             as);
       }
@@ -768,6 +812,14 @@ class Diagnoser {
     }
   }
 
+  // Why a fully fitted candidate is not plausible, for its progress line.
+  static std::string doubts_text(const CandidateOutcome& o) {
+    if (o.plausible || o.doubts.empty()) return {};
+    std::string out = "  (implausible: ";
+    for (std::size_t i = 0; i < o.doubts.size(); ++i) out += (i ? "; " : "") + o.doubts[i];
+    return out + ")";
+  }
+
   static std::string label(const Extension& ext) {
     return ext.id + (ext.variant.empty() ? "" : " (" + ext.variant + ")");
   }
@@ -806,6 +858,7 @@ class Diagnoser {
       for (std::string& other : p.confounded_with) rename(other);
     }
     for (std::string& name : s.fit.estimated) rename(name);
+    for (std::string& name : s.held) rename(name);
     s.values = values_by_name(info, s.fit.values);
     return s;
   }
@@ -813,25 +866,56 @@ class Diagnoser {
   CandidateOutcome score(const Extension& ext, const mbgen::Model& evaluator, const ModelState& base, int round,
                          int threads, ModelState& state) const {
     try {
-      // Two searches: around the current estimate, and around the priors (where the current estimate has bent
-      // parameters to mimic the missing effect, the priors are the better start). The lower cost wins.
-      // With time records one search starts from both (also_start_at): each search ends in simulation-based
-      // refinements of its best start and of its centre, which cost most of a candidate's time, so the priors get
-      // a start of the search rather than a search of their own.
-      if (has_records_) {
-        std::map<std::string, double> priors;
-        for (const ParameterInfo& p : evaluator.info().parameters) priors[p.name] = p.value;
-        state = assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts + 1, threads, priors);
-        return judge(ext, state, base, round);
+      state = search(ext, evaluator, base, threads, {});
+      // New parameters the data cannot determine are held at their start values and the rest fitted again: on a
+      // base on feet whose rocking about one axis the x-direction data barely see, that rocking's inertia ran to a
+      // bound and took the base's depth and two foot constants with it ("not identifiable"), though the fit was
+      // at the noise level. Holding some may leave others undetermined (what they were determined through): at
+      // most three reductions; what is left undetermined then is judged as it is.
+      std::vector<std::string> held;
+      for (int reduction = 0; reduction < 3; ++reduction) {
+        const std::vector<std::string> more = undetermined_new_parameters(ext, state.fit);
+        if (more.empty() || held.size() + more.size() >= ext.new_parameters.size()) break;
+        held.insert(held.end(), more.begin(), more.end());
+        try {
+          state = search(ext, evaluator, base, threads, held);
+        } catch (const std::exception&) {
+          break;  // the reduced model could not be fitted or judged: the last fit stands
+        }
       }
-      ModelState s = assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, threads);
-      ModelState from_priors = assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, threads);
-      if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);
-      state = std::move(s);
       return judge(ext, state, base, round);
     } catch (const std::exception& e) {
       return failed(ext, round, e.what());
     }
+  }
+
+  // A candidate's fit: two searches, around the current estimate and around the priors (where the current
+  // estimate has bent parameters to mimic the missing effect, the priors are the better start); the lower cost
+  // wins. With time records one search starts from both (also_start_at): each search ends in simulation-based
+  // refinements of its best start and of its centre, which cost most of a candidate's time, so the priors get a
+  // start of the search rather than a search of their own. `held`: new parameters kept at their start values.
+  ModelState search(const Extension& ext, const mbgen::Model& evaluator, const ModelState& base, int threads,
+                    const std::vector<std::string>& held) const {
+    if (has_records_) {
+      std::map<std::string, double> priors;
+      for (const ParameterInfo& p : evaluator.info().parameters) priors[p.name] = p.value;
+      return assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts + 1, threads, priors,
+                    held);
+    }
+    ModelState s = assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, threads, {}, held);
+    ModelState from_priors = assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, threads, {}, held);
+    if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);
+    return s;
+  }
+
+  // The candidate's new parameters that its fit could not determine: not identifiable, and not held against a
+  // bound by the data (a parameter pressed against a bound is a doubt of its own, judge_plausibility).
+  static std::vector<std::string> undetermined_new_parameters(const Extension& ext, const FitResult& fit) {
+    std::vector<std::string> out;
+    for (const NewParameter& np : ext.new_parameters)
+      for (const ParameterEstimate& p : fit.parameters)
+        if (p.name == np.name && !p.identifiable && p.pull_chi2 <= 10) out.push_back(p.name);
+    return out;
   }
 
   // The outcome of a fitted candidate against the current model `base`.
@@ -839,6 +923,13 @@ class Diagnoser {
     CandidateOutcome o = outline(ext, round);
     o.fit = s.fit;
     o.validation_nrmse = s.validation_nrmse;
+    o.held_parameters = s.held;
+    if (!s.held.empty()) {
+      std::string names;
+      for (const std::string& n : s.held) names += (names.empty() ? "" : ", ") + n;
+      o.description += " (the data do not determine " + names + ": held at " + (s.held.size() > 1 ? "their" : "its") +
+                       " start value" + (s.held.size() > 1 ? "s" : "") + ")";
+    }
     judge_plausibility(ext, s.info, o);
     rank_against(base, o);
     return o;

@@ -61,6 +61,9 @@ struct CandidateOutcome {
   int round = 1;
   std::vector<NewParameter> new_parameters;
   std::vector<std::string> freed_parameters;
+  // New parameters the data could not determine, held at their start values (the operator's physical guess) in
+  // the fit that was judged: an engineer fixes what the data do not see and judges the rest.
+  std::vector<std::string> held_parameters;
   FitResult fit;
   double validation_nrmse = 0;
   double delta_bic = 0;
@@ -83,6 +86,9 @@ struct ModelState {
   double validation_nrmse = 0;
   std::vector<ChannelResidual> channels;  // measured vs this model, for plots
   ResidualSummary residual;
+  // Parameters the model declares `estimate` but its fit held at their values (CandidateOutcome::held_parameters);
+  // they become `known` in `model` and `text` when the model is taken.
+  std::vector<std::string> held;
 };
 
 struct DiagnosisResult {

@@ -89,6 +89,7 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
           if (p.name == name) freed[p.name] = parameter(p);
       entry["freed_parameters"] = freed;
     }
+    if (!c.held_parameters.empty()) entry["held_parameters"] = c.held_parameters;
     entry["screen_delta_bic"] = number(c.screen_delta_bic);
     if (c.screen_records_delta_bic != 0) entry["screen_records_delta_bic"] = number(c.screen_records_delta_bic);
     entry["fully_fitted"] = c.fully_fitted;
