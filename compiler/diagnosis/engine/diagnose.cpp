@@ -193,6 +193,9 @@ std::map<std::string, double> values_by_name(const ModelInfo& info, const Eigen:
   return out;
 }
 
+// A new parameter whose std exceeds this fraction of its value is not determined by the data.
+constexpr double kPoorlyDetermined = 0.5;
+
 class Diagnoser {
  public:
   Diagnoser(const std::vector<DataSet>& data, const DiagnoseOptions& options)
@@ -908,13 +911,15 @@ class Diagnoser {
     return s;
   }
 
-  // The candidate's new parameters that its fit could not determine: not identifiable, and not held against a
-  // bound by the data (a parameter pressed against a bound is a doubt of its own, judge_plausibility).
+  // The candidate's new parameters that its fit could not determine: not identifiable or known to no better than
+  // 50 % (judge_plausibility's measures), and not held against a bound by the data (a parameter pressed against a
+  // bound is a doubt of its own).
   static std::vector<std::string> undetermined_new_parameters(const Extension& ext, const FitResult& fit) {
     std::vector<std::string> out;
     for (const NewParameter& np : ext.new_parameters)
       for (const ParameterEstimate& p : fit.parameters)
-        if (p.name == np.name && !p.identifiable && p.pull_chi2 <= 10) out.push_back(p.name);
+        if (p.name == np.name && p.pull_chi2 <= 10 && (!p.identifiable || p.std > kPoorlyDetermined * std::abs(p.value)))
+          out.push_back(p.name);
     return out;
   }
 
@@ -956,7 +961,8 @@ class Diagnoser {
         o.doubts.push_back(name + " is not identifiable from the data");
         continue;
       }
-      if (p.std > 0.5 * std::abs(p.value)) o.doubts.push_back(name + " is poorly determined (std over 50 % of its value)");
+      if (p.std > kPoorlyDetermined * std::abs(p.value))
+        o.doubts.push_back(name + " is poorly determined (std over 50 % of its value)");
       const int index = info.parameter_index(name);
       if (index < 0) continue;
       const std::string side = pressed_bound(p, info.parameters[static_cast<std::size_t>(index)]);
