@@ -150,7 +150,7 @@ int run_fit(int argc, char** argv) {
     out.commit();
     if (json_path != "-") std::cout << summary(result);
     return 0;
-  });
+  }, &model_path);
 }
 
 }  // namespace mbgen::cli

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "frontend/diagnostics.hpp"
 
 namespace mbgen::symbolic {
@@ -96,23 +98,50 @@ long rational_bits(const GiNaC::numeric& n) {
   return std::max(GiNaC::numer(n).int_length(), GiNaC::denom(n).int_length());
 }
 
+// The value of an exponent for a message: "7.6256e+12", or "not a real number".
+std::string exponent_text(const GiNaC::ex& value) {
+  if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real()) return "not a real number";
+  return fmt::format("{:g}", GiNaC::ex_to<GiNaC::numeric>(value).to_double());
+}
+
 }  // namespace
 
 void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const {
-  if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
-  const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(exponent);
+  // A power of expressions in parameters is checked at the parameters' values: wherever they are substituted, it is
+  // computed exactly there (q^(q^(q^q)) with q = 3 is 3^7625597484987 and would fill the memory). Its operands'
+  // own values passed this check when they were converted, so substituting into them is cheap.
+  const bool at_values = !GiNaC::is_a<GiNaC::numeric>(base) || !GiNaC::is_a<GiNaC::numeric>(exponent);
+  GiNaC::ex b = base, n = exponent;
+  if (at_values) {
+    const GiNaC::exmap at = values();
+    b = base.subs(at);
+    n = exponent.subs(at);
+  }
+  const GiNaC::ex n_value = GiNaC::is_a<GiNaC::numeric>(n) ? n : GiNaC::evalf(n);
   // A large exponent is computed exactly when the base is a number (2^(2^64) would fill the memory), and gives
   // no useful double otherwise.
-  if (!n.is_rational() || GiNaC::abs(n) > kMaxExponent)
+  const bool exact_exponent = GiNaC::is_a<GiNaC::numeric>(exponent);
+  if (!GiNaC::is_a<GiNaC::numeric>(n_value) || !GiNaC::ex_to<GiNaC::numeric>(n_value).is_real() ||
+      (exact_exponent && !GiNaC::ex_to<GiNaC::numeric>(n_value).is_rational()) ||
+      GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(n_value)) > kMaxExponent) {
+    if (exact_exponent)
+      throw frontend::ModelError(model_.file, e.loc,
+                                 "`" + ir::to_string(e) + "`: the exponent must be a number within -" +
+                                     std::to_string(kMaxExponent) + " to " + std::to_string(kMaxExponent));
     throw frontend::ModelError(model_.file, e.loc,
-                               "`" + ir::to_string(e) + "`: the exponent must be a number within -" +
-                                   std::to_string(kMaxExponent) + " to " + std::to_string(kMaxExponent));
-  if (!GiNaC::is_a<GiNaC::numeric>(base)) return;
-  const GiNaC::numeric& b = GiNaC::ex_to<GiNaC::numeric>(base);
-  if (!b.is_rational()) return;
-  const long bits = rational_bits(b) * GiNaC::abs(GiNaC::numer(n)).to_long();
+                               "`" + ir::to_string(e) + "`: at the parameters' values the exponent is " +
+                                   exponent_text(n_value) +
+                                   "; it must lie within -" + std::to_string(kMaxExponent) + " to " +
+                                   std::to_string(kMaxExponent));
+  }
+  if (!GiNaC::is_a<GiNaC::numeric>(b) || !GiNaC::is_a<GiNaC::numeric>(n)) return;
+  const GiNaC::numeric& bn = GiNaC::ex_to<GiNaC::numeric>(b);
+  const GiNaC::numeric& nn = GiNaC::ex_to<GiNaC::numeric>(n);
+  if (!bn.is_rational() || !nn.is_rational()) return;
+  const long bits = rational_bits(bn) * GiNaC::abs(GiNaC::numer(nn)).to_long();
   if (bits > kMaxNumberBits)
-    throw frontend::ModelError(model_.file, e.loc, "`" + ir::to_string(e) + "` is too large an exact number: " +
+    throw frontend::ModelError(model_.file, e.loc, "`" + ir::to_string(e) + "` is too large an exact number" +
+                                                       (at_values ? " at the parameters' values" : "") + ": " +
                                                        too_large_text());
 }
 
@@ -186,23 +215,29 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
 void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& set_text,
                                   const GiNaC::exmap& at) const {
   const ir::Parameter& p = *fp.ir;
-  // Values and bounds become doubles in generated code and fits: beyond the double range they would be infinite.
-  const GiNaC::numeric largest(std::numeric_limits<double>::max());
+  // Values and bounds become doubles in generated code and fits: beyond the double range they would be infinite,
+  // and below its smallest normal number (about 2.2e-308) they would lose their digits or become zero (a mass of
+  // 1e-400 is positive exactly and zero in the fit).
+  const GiNaC::numeric largest(std::numeric_limits<double>::max()), smallest(std::numeric_limits<double>::min());
   auto beyond_doubles = [&](const GiNaC::ex& v) {
-    return GiNaC::is_a<GiNaC::numeric>(v) && GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v)) > largest;
+    if (!GiNaC::is_a<GiNaC::numeric>(v)) return false;
+    const GiNaC::numeric magnitude = GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v));
+    return magnitude > largest || (!magnitude.is_zero() && magnitude < smallest);
   };
   const GiNaC::ex value = GiNaC::evalf(fp.value);
   if (beyond_doubles(value))
     throw frontend::ModelError(model_.file, set_text.empty() ? p.value.loc : p.loc,
                                (set_text.empty() ? "" : "--set " + p.name + "=" + set_text + ": ") + "the value of `" +
-                                   p.name + "` is beyond the range of a double (about 1.8e308)");
+                                   p.name + "` is beyond the range of a double (magnitudes from about 2.2e-308 to "
+                                   "1.8e308, or 0)");
   if (!p.lower && !p.upper) return;
   auto value_of = [&](const ir::Expr& bound) {
     const GiNaC::ex v = GiNaC::evalf(convert(bound).subs(at));
     if (beyond_doubles(v))
       throw frontend::ModelError(model_.file, bound.loc,
                                  "the bound `" + ir::to_string(bound) + "` of `" + p.name +
-                                     "` is beyond the range of a double (about 1.8e308); write inf for an open end");
+                                     "` is beyond the range of a double (magnitudes from about 2.2e-308 to 1.8e308, or 0); write "
+                                     "inf for an open end");
     return v;
   };
   const GiNaC::ex lower = p.lower ? value_of(*p.lower) : GiNaC::ex();
