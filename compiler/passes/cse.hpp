@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace mbgen::emit {
+namespace mbgen::passes {
 
 struct CseResult {
   // temporaries[i] = {symbol, definition}; a definition may use earlier temporaries only.
@@ -24,4 +24,4 @@ struct CseResult {
 // Temporaries are named prefix + index ("t0", "t1", ...).
 CseResult eliminate_common_subexpressions(const std::vector<GiNaC::ex>& expressions, const std::string& prefix = "t");
 
-}  // namespace mbgen::emit
+}  // namespace mbgen::passes
