@@ -1,4 +1,5 @@
-// Common-subexpression elimination over GiNaC expression trees, for the C++ emitter.
+// Common-subexpression elimination over GiNaC expression trees: the pass the C++ emitter and the in-process
+// evaluator's tapes both run on the derived expressions.
 //
 // Nodes are identified by their sign-free key (sign_free_key.hpp), so that e and -e are one node; uses are
 // counted over the DAG, and every non-trivial node used more than once is hoisted into a temporary symbol that
