@@ -70,7 +70,7 @@ class FunctionContext {
  public:
   explicit FunctionContext(const SymbolicModel& sm) : sm_(sm) {
     for (std::size_t i = 0; i < sm.parameters.size(); ++i) {
-      names_.emplace(sm.parameters[i].sym, "p_" + ir::to_identifier(sm.parameters[i].name));
+      names_.emplace(sm.parameters[i].sym, ir::cxx_parameter_variable(sm.parameters[i].name));
       index_.emplace(sm.parameters[i].sym, i);
     }
   }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "frontend/diagnostics.hpp"
+#include "ir/identifier.hpp"
 
 namespace mbgen::frontend {
 
@@ -48,7 +49,7 @@ class Checker {
 
   void declare_all() {
     for (const ir::Parameter& p : m_.parameters) {
-      if (p.name == "pi" || p.name == "inf") fail(p.loc, "`" + p.name + "` is reserved and cannot name a parameter");
+      if (ir::is_reserved_name(p.name)) fail(p.loc, "`" + p.name + "` is reserved and cannot name a parameter");
       declare("a parameter", p.name, p.loc);
       params_.insert(p.name);
     }
