@@ -15,6 +15,8 @@
 
 #include <unistd.h>
 
+#include "frontend/message.hpp"
+
 namespace mbgen::cli {
 
 namespace fs = std::filesystem;
@@ -92,7 +94,7 @@ void remove_stale_temporaries(const fs::path& destination) {
 }
 
 [[noreturn]] void fail(const fs::path& path, const std::string& message) {
-  throw OutputError(path.string() + ": error: " + message);
+  throw OutputError(frontend::error_text(path.string(), ir::SourceLoc{}, message));
 }
 
 void require_writable_directory(const fs::path& destination) {
