@@ -103,6 +103,15 @@ std::string exponent_text(const GiNaC::ex& value) {
   return fmt::format("{:g}", GiNaC::ex_to<GiNaC::numeric>(value).to_double());
 }
 
+// The most bits of any exact rational in e (coefficients, exponents, numbers under functions).
+long largest_rational_bits(const GiNaC::ex& e) {
+  long bits = 0;
+  for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (GiNaC::is_a<GiNaC::numeric>(*it) && GiNaC::ex_to<GiNaC::numeric>(*it).is_rational())
+      bits = std::max(bits, rational_bits(GiNaC::ex_to<GiNaC::numeric>(*it)));
+  return bits;
+}
+
 }  // namespace
 
 void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const {
@@ -130,6 +139,13 @@ void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const
                                "`{}`: at the parameters' values the exponent is {}; it must lie within -{} to {}",
                                ir::to_string(e), exponent_text(n_value), kMaxExponent, kMaxExponent);
   }
+  // The power itself, before any value is substituted: GiNaC raises the numbers of a product to the power at once
+  // ((q*10^1000)^1000 holds 10^1000000 whatever q is, and with q = 0 its value would pass the check below).
+  if (exact_exponent && GiNaC::ex_to<GiNaC::numeric>(exponent).is_rational() &&
+      largest_rational_bits(base) * GiNaC::abs(GiNaC::numer(GiNaC::ex_to<GiNaC::numeric>(exponent))).to_long() >
+          kMaxNumberBits)
+    throw frontend::ModelError(model_.file, e.loc, "`{}` is too large an exact number: {}", ir::to_string(e),
+                               too_large_text());
   if (!GiNaC::is_a<GiNaC::numeric>(b) || !GiNaC::is_a<GiNaC::numeric>(n)) return;
   const GiNaC::numeric& bn = GiNaC::ex_to<GiNaC::numeric>(b);
   const GiNaC::numeric& nn = GiNaC::ex_to<GiNaC::numeric>(n);
