@@ -125,7 +125,7 @@ int run_diagnose(int argc, char** argv) {
     out.commit();
     if (json_path != "-") std::cout << summary(result);
     return 0;
-  });
+  }, &model_path);
 }
 
 }  // namespace mbgen::cli

@@ -20,6 +20,7 @@
 #include "cli/run_guarded.hpp"
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
+#include "frontend/message.hpp"
 #include "frontend/parser.hpp"
 #include "methods/analytical_solver.hpp"
 #include "symbolic/derive.hpp"
@@ -125,9 +126,11 @@ int run_fit(int argc, char** argv) {
     // A named method that cannot use the data is bad input (status 1), as docs/interfaces.md says.
     for (const DataSet& d : data) {
       if (method == "frf-output-error" && !d.is_frf())
-        throw FitError(d.file() + ": error: --method frf-output-error needs FRF data, but this is a time record");
+        throw FitError(
+            frontend::error_text(d.file(), "--method frf-output-error needs FRF data, but this is a time record"));
       if (method == "time-output-error" && d.is_frf())
-        throw FitError(d.file() + ": error: --method time-output-error needs time records, but this file holds FRFs");
+        throw FitError(
+            frontend::error_text(d.file(), "--method time-output-error needs time records, but this file holds FRFs"));
     }
     options.progress = [](const FitProgress& p) {
       progress_line("fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
@@ -150,7 +153,7 @@ int run_fit(int argc, char** argv) {
     out.commit();
     if (json_path != "-") std::cout << summary(result);
     return 0;
-  });
+  }, &model_path);
 }
 
 }  // namespace mbgen::cli

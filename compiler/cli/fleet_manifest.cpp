@@ -12,6 +12,9 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <utility>
+
+#include "frontend/message.hpp"
 
 namespace mbgen::cli {
 
@@ -19,8 +22,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& file, int line, int column, const std::string& what) {
-  throw FitError(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": error: " + what);
+template <typename... Args>
+[[noreturn]] void fail(const std::string& file, int line, int column, fmt::format_string<Args...> format,
+                       Args&&... args) {
+  throw FitError(frontend::error_text(file, ir::SourceLoc{line, column}, format, std::forward<Args>(args)...));
 }
 
 // Splits a CSV line on commas (no quoting: names, paths and globs in a manifest need none), keeping each field's
@@ -63,9 +68,9 @@ std::vector<std::string> expand(const std::string& pattern) {
 
 std::vector<FleetItem> read_fleet_manifest(const std::string& path) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw FitError(path + ": error: is a directory, not a manifest");
+  if (fs::is_directory(path, ec)) throw FitError(frontend::error_text(path, "is a directory, not a manifest"));
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw FitError(path + ": error: cannot read the manifest");
+  if (!in) throw FitError(frontend::error_text(path, "cannot read the manifest"));
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() || base.empty() ? p : (base / p).string(); };
 
@@ -86,15 +91,17 @@ std::vector<FleetItem> read_fleet_manifest(const std::string& path) {
       header = true;
       continue;
     }
-    if (f.size() != 3) fail(path, number, 1, "expected 3 fields (machine,model,data), found " + std::to_string(f.size()));
+    if (f.size() != 3) fail(path, number, 1, "expected 3 fields (machine,model,data), found {}", f.size());
     FleetItem item;
     item.line = number;
     item.machine = f[0].first;
     if (!valid_machine_name(item.machine))
       fail(path, number, f[0].second,
-           "machine `" + item.machine + "`: a name of letters, digits, `_`, `-` and `.` (not first) is needed: it names "
-           "the output directory");
-    if (!names.insert(item.machine).second) fail(path, number, f[0].second, "machine `" + item.machine + "` is listed twice");
+           "machine `{}`: a name of letters, digits, `_`, `-` and `.` (not first) is needed: it names the output "
+           "directory",
+           item.machine);
+    if (!names.insert(item.machine).second)
+      fail(path, number, f[0].second, "machine `{}` is listed twice", item.machine);
     if (f[1].first.empty()) fail(path, number, f[1].second, "no model");
     item.model = resolve(f[1].first);
     std::istringstream patterns(f[2].first);
@@ -102,15 +109,15 @@ std::vector<FleetItem> read_fleet_manifest(const std::string& path) {
     int column = f[2].second;
     while (std::getline(patterns, pattern, ';')) {
       const std::vector<std::string> files = expand(resolve(pattern));
-      if (files.empty()) fail(path, number, column, "`" + pattern + "` matches no file");
+      if (files.empty()) fail(path, number, column, "`{}` matches no file", pattern);
       item.data.insert(item.data.end(), files.begin(), files.end());
       column += static_cast<int>(pattern.size()) + 1;
     }
     if (item.data.empty()) fail(path, number, f[2].second, "no data");
     items.push_back(std::move(item));
   }
-  if (!header) throw FitError(path + ": error: empty manifest (expected the header `machine,model,data`)");
-  if (items.empty()) throw FitError(path + ": error: the manifest lists no machine");
+  if (!header) throw FitError(frontend::error_text(path, "empty manifest (expected the header `machine,model,data`)"));
+  if (items.empty()) throw FitError(frontend::error_text(path, "the manifest lists no machine"));
   return items;
 }
 
@@ -127,7 +134,7 @@ const FleetItem& select_fleet_item(const std::vector<FleetItem>& items, const st
 
 std::string file_digest(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw FitError(path + ": error: cannot read");
+  if (!in) throw FitError(frontend::error_text(path, "cannot read"));
   std::uint64_t h = 14695981039346656037ull;
   char buffer[65536];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {

@@ -35,7 +35,7 @@ int run_inspect(int argc, char** argv) {
     out.add(output, emit::emit_inspect(sym, emit::parse_inspect_format(format)));
     out.commit();
     return 0;
-  });
+  }, &model_path);
 }
 
 }  // namespace mbgen::cli

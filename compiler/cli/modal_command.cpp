@@ -137,7 +137,7 @@ int run_modal(int argc, char** argv) {
     out.commit();
     if (json_path != "-") std::cout << modal_summary(in);
     return 0;
-  });
+  }, &model_path);
 }
 
 }  // namespace mbgen::cli

@@ -24,6 +24,7 @@
 #include "diagnosis/engine/channel_residuals.hpp"
 #include "diagnosis/engine/diagnose.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
+#include "frontend/message.hpp"
 #include "frontend/parser.hpp"
 
 namespace mbgen::cli {
@@ -252,7 +253,8 @@ int run_monitor(int argc, char** argv) {
       const FleetItem* selected = item_selector.empty() ? nullptr : &select_fleet_item(items, item_selector);
       std::error_code ec;
       std::filesystem::create_directories(out_dir, ec);  // items of a job array may race here: that is harmless
-      if (!std::filesystem::is_directory(out_dir, ec)) throw OutputError(out_dir + ": error: cannot create the directory");
+      if (!std::filesystem::is_directory(out_dir, ec))
+        throw OutputError(frontend::error_text(out_dir, "cannot create the directory"));
       if (selected) {
         run_fleet_item(*selected, out_dir, settings);
         return 0;
@@ -288,7 +290,7 @@ int run_monitor(int argc, char** argv) {
     out.commit();
     if (json_path != "-") std::cout << summary(result);
     return 0;
-  });
+  }, &model_path);
 }
 
 }  // namespace mbgen::cli

@@ -15,6 +15,8 @@
 
 #include <unistd.h>
 
+#include "frontend/message.hpp"
+
 namespace mbgen::cli {
 
 namespace fs = std::filesystem;
@@ -92,7 +94,7 @@ void remove_stale_temporaries(const fs::path& destination) {
 }
 
 [[noreturn]] void fail(const fs::path& path, const std::string& message) {
-  throw OutputError(path.string() + ": error: " + message);
+  throw OutputError(frontend::error_text(path.string(), ir::SourceLoc{}, message));
 }
 
 void require_writable_directory(const fs::path& destination) {
@@ -255,25 +257,57 @@ void OutputFiles::commit() {
       targets.push_back(ReportTarget::New);
     }
   }
+  // The renames, one by one. What each one replaces is kept aside until all have succeeded (an old file as a hard
+  // link, an old report directory renamed), so that a rename failing halfway (a directory removed meanwhile) puts
+  // every destination back as it was: all the outputs or none.
+  struct Done {
+    std::size_t index;
+    fs::path aside;          // what the destination held, set aside ("" if nothing, or an empty directory)
+    bool empty_dir = false;  // the destination was an empty directory (rename(2) replaced it)
+  };
+  std::vector<Done> done;
+  const auto undo = [&] {
+    for (auto it = done.rbegin(); it != done.rend(); ++it) {
+      const Staged& s = staged_[it->index];
+      std::error_code ec;
+      fs::rename(s.path, s.temp, ec);  // the new output back to its temporary, which the destructor removes
+      if (!it->aside.empty()) fs::rename(it->aside, s.path, ec);
+      else if (it->empty_dir) fs::create_directory(s.path, ec);
+    }
+  };
   for (std::size_t i = 0; i < staged_.size(); ++i) {
     const Staged& s = staged_[i];
+    const fs::path destination = s.path;
     std::error_code ec;
+    Done d{i, {}, false};
     if (s.directory && targets[i] == ReportTarget::Mbgen) {
-      // Set the old report aside, move the new one in, then delete the old one (or put it back on failure).
-      const fs::path old = temp_for(s.path, "old");
-      fs::rename(s.path, old, ec);
-      if (ec) fail(s.path, "cannot replace the old report: " + ec.message());
-      fs::rename(s.temp, s.path, ec);
+      d.aside = temp_for(destination, "old");
+      fs::rename(destination, d.aside, ec);
       if (ec) {
-        std::error_code back;
-        fs::rename(old, s.path, back);
-        fail(s.path, "cannot move the report into place: " + ec.message());
+        undo();
+        fail(destination, "cannot replace the old report: " + ec.message());
       }
-      fs::remove_all(old, ec);
-      continue;
+    } else if (s.directory) {
+      d.empty_dir = targets[i] == ReportTarget::Empty;
+    } else if (fs::exists(fs::symlink_status(destination, ec))) {
+      d.aside = temp_for(destination, "old");
+      if (::link(destination.c_str(), d.aside.c_str()) != 0) d.aside.clear();  // no hard links here: not restorable
     }
-    fs::rename(s.temp, s.path, ec);  // over an empty directory too (rename(2) replaces it)
-    if (ec) fail(s.path, "cannot move the output into place: " + ec.message());
+    fs::rename(s.temp, destination, ec);  // over an empty directory too (rename(2) replaces it)
+    if (ec) {
+      std::error_code back;
+      if (s.directory && !d.aside.empty()) fs::rename(d.aside, destination, back);
+      else if (!d.aside.empty()) fs::remove(d.aside, back);
+      undo();
+      fail(destination, std::string(s.directory ? "cannot move the report into place: "
+                                                : "cannot move the output into place: ") +
+                            ec.message());
+    }
+    done.push_back(d);
+  }
+  for (const Done& d : done) {  // all in place: what they replaced goes
+    std::error_code ec;
+    if (!d.aside.empty()) fs::remove_all(d.aside, ec);
   }
   for (const std::string& chunk : stdout_chunks_) std::cout << chunk;
   std::cout.flush();

@@ -54,7 +54,7 @@ class OutputFiles {
   // the marker file).
   std::string stage_directory(const std::string& dir);
   // Renames every staged file into place (a report directory replaces the empty or mbgen-written directory there,
-  // checked again now); throws OutputError on failure.
+  // checked again now); throws OutputError on failure, having put back every destination it had already replaced.
   void commit();
 
  private:

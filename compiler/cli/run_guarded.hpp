@@ -54,8 +54,20 @@ inline int report_current_exception() {
   return kExitBadInput;
 }
 
+// An option or argument given an empty value (`--report ''`, `-o ''`) names nothing. Taking it for "not given" would
+// silently skip an output the user asked for (or, for -o, fail after writing the header): a usage error instead.
+inline void refuse_empty_values(const CLI::App& app) {
+  for (const CLI::Option* option : app.get_options())
+    if (option->get_type_size() > 0)
+      for (const std::string& value : option->results())
+        if (value.empty()) throw CLI::ValidationError(option->get_name(), "an empty value names nothing");
+}
+
+// `model_file` (when given and, after parsing, not empty) names the model the command analyses: the numeric
+// dynamics failing on it (a singular dynamic stiffness, a state matrix that overflows a double) is a problem of
+// that model's values, and the message names it.
 template <typename Body>
-int run_guarded(CLI::App& app, int argc, char** argv, Body body) {
+int run_guarded(CLI::App& app, int argc, char** argv, Body body, const std::string* model_file = nullptr) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -69,7 +81,12 @@ int run_guarded(CLI::App& app, int argc, char** argv, Body body) {
     return kExitUsage;
   }
   try {
+    refuse_empty_values(app);
     return body();
+  } catch (const DynamicsError& e) {
+    if (!model_file || model_file->empty()) return report_current_exception();
+    std::cerr << frontend::ModelError(*model_file, {}, e.what()).what() << "\n";
+    return kExitBadInput;
   } catch (...) {
     return report_current_exception();
   }

@@ -133,7 +133,7 @@ int run_sensitivity(int argc, char** argv) {
     out.commit();
     if (json_path != "-") std::cout << sensitivity_summary(in);
     return 0;
-  });
+  }, &model_path);
 }
 
 }  // namespace mbgen::cli

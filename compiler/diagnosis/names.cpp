@@ -1,10 +1,10 @@
 #include "diagnosis/names.hpp"
 
+#include "ir/identifier.hpp"
+
 namespace mbgen::diagnosis {
 
 NameSet::NameSet(const ir::Model& model) {
-  // Keywords of the language and the constants: a parameter called `x` or `fixed` would be legal but confusing.
-  used_ = {"pi", "inf", "sqrt", "sin", "cos", "x", "y", "z", "rx", "ry", "rz", "known", "estimate", "fixed", "in"};
   for (const ir::Parameter& p : model.parameters) used_.insert(p.name);
   for (const ir::Ground& g : model.grounds) used_.insert(g.name);
   for (const ir::Body& b : model.bodies) used_.insert(b.name);
@@ -14,8 +14,12 @@ NameSet::NameSet(const ir::Model& model) {
 }
 
 std::string NameSet::fresh(const std::string& base) {
+  // Nor the language's reserved names and words: a parameter called `x` or `fixed` would be legal but confusing.
+  const auto taken = [&](const std::string& n) {
+    return used_.count(n) > 0 || ir::is_reserved_name(n) || ir::is_language_word(n);
+  };
   std::string name = base;
-  for (int k = 2; used_.count(name); ++k) name = base + "_" + std::to_string(k);
+  for (int k = 2; taken(name); ++k) name = base + "_" + std::to_string(k);
   used_.insert(name);
   return name;
 }

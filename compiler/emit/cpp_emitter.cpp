@@ -70,7 +70,7 @@ class FunctionContext {
  public:
   explicit FunctionContext(const SymbolicModel& sm) : sm_(sm) {
     for (std::size_t i = 0; i < sm.parameters.size(); ++i) {
-      names_.emplace(sm.parameters[i].sym, "p_" + ir::to_identifier(sm.parameters[i].name));
+      names_.emplace(sm.parameters[i].sym, ir::cxx_parameter_variable(sm.parameters[i].name));
       index_.emplace(sm.parameters[i].sym, i);
     }
   }
@@ -387,7 +387,7 @@ CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
       {"output_acceleration_matrix", "Ca", "OutputMatrix", "Output map of accelerations Ca.", &sm.Ca, true, "num_outputs, num_coordinates"},
   };
   if (options.parts < 1) throw std::invalid_argument("emit_cpp: parts must be at least 1");
-  const bool dynamic_size = sm.coordinates.size() > kMaxFixedSizeCoordinates;
+  const bool dynamic_size = sm.coordinates.size() > kMaxFixedSizeCoordinates || sm.coordinates.size() < 2;
   BodyEmitter emitter{ctx, options.max_function_operations, options.parts > 1, {}, {}, {}};
   TemplateList matrices;
   for (const auto& spec : specs) matrices.push_back(matrix_dict(sm, ctx, spec, emitter, dynamic_size));
@@ -465,6 +465,8 @@ CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
       {"matrices", matrices},
       {"num_transfer_functions", std::to_string(sm.transfer_functions.size())},
       {"transfer_functions", transfer_functions},
+      // Without inputs or outputs there is no transfer function: the dispatchers then mark their arguments used.
+      {"no_transfer_functions", transfer_functions.empty() ? TemplateList{TemplateDict{}} : TemplateList{}},
       {"operations_before_cse", std::to_string(emitter.counts.before_cse)},
       {"operations_after_cse", std::to_string(emitter.counts.after_cse)},
       {"function_bound", options.max_function_operations == 0

@@ -40,7 +40,9 @@ struct CppEmitResult {
 };
 
 // Models with more coordinates get dynamic-size Eigen matrices: fixed-size ones beyond this compile slowly, and
-// Eigen refuses them on the stack beyond 128 KB (a 2n x 2n state matrix of long double at n = 46).
+// Eigen refuses them on the stack beyond 128 KB (a 2n x 2n state matrix of long double at n = 46). A model of one
+// coordinate gets them too: GCC 12 at -O2 warns (-Warray-bounds, a false positive) that copying its 1 x 1
+// fixed-size matrices into the runtime's dynamic ones reads 16 bytes, which fails builds with -Werror.
 inline constexpr std::size_t kMaxFixedSizeCoordinates = 32;
 
 // OUT.cpp -> OUT_partK.cpp (a name without extension gets _partK.cpp).

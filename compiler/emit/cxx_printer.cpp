@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "emit/cse.hpp"
+#include "passes/cse.hpp"
 #include "emit/ginac_text.hpp"
-#include "emit/sign_free_key.hpp"
+#include "passes/sign_free_key.hpp"
 
 namespace mbgen::emit {
 namespace {
@@ -89,7 +89,7 @@ class Printer {
 
  private:
   const SymbolNames& names_;
-  mutable SignFreeKeys keys_;
+  mutable passes::SignFreeKeys keys_;
 
   static std::string negated(const std::string& term) {
     return starts_negative(term) ? term.substr(1) : "-" + term;
@@ -127,7 +127,7 @@ class Printer {
   // written with the sign sign_free_key.hpp gives it (GiNaC's choice of (a - b) or -(b - a) follows hash values,
   // which differ from run to run, and the text must not).
   std::pair<Printed, bool> signed_factor(const GiNaC::ex& f) const {
-    const SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
+    const passes::SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
     if (GiNaC::is_a<GiNaC::add>(f)) return {print_add(f, fs.negate_sum), fs.negative};
     if (GiNaC::is_a<GiNaC::power>(f)) return {print_power(f, fs.negate_sum), fs.negative};
     return {print(f), false};
@@ -147,7 +147,7 @@ class Printer {
       if (GiNaC::is_a<GiNaC::numeric>(f)) {
         coeff *= GiNaC::ex_to<GiNaC::numeric>(f);
       } else if (is_negative_integer_power(f)) {
-        const SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
+        const passes::SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
         if (fs.negative) coeff = -coeff;
         den.push_back(as_factor(raised(base_of(f, fs.negate_sum), -GiNaC::ex_to<GiNaC::numeric>(f.op(1)))));
       } else {
@@ -237,7 +237,7 @@ std::string cxx_assignments(const std::vector<CxxAssignment>& assignments, const
     rhs.push_back(a.rhs);
     uses_pi = uses_pi || a.rhs.has(GiNaC::Pi);
   }
-  CseResult cse = eliminate_common_subexpressions(rhs, "t");
+  passes::CseResult cse = passes::eliminate_common_subexpressions(rhs, "t");
   SymbolNames all = names;
   for (const auto& [sym, def] : cse.temporaries) all.emplace(sym, sym.get_name());
   Printer printer(all);

@@ -36,24 +36,6 @@ std::size_t utf8_sequence(std::string_view s, std::size_t i) {
   return n;
 }
 
-// Keywords and alternative tokens of C++20, and names with a special meaning before the compiler sees them.
-constexpr std::string_view kKeywords[] = {
-    "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch", "char",
-    "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr", "constinit",
-    "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete", "do", "double",
-    "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for", "friend", "goto", "if",
-    "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq", "nullptr", "operator", "or",
-    "or_eq", "private", "protected", "public", "register", "reinterpret_cast", "requires", "return", "short",
-    "signed", "sizeof", "static", "static_assert", "static_cast", "struct", "switch", "template", "this",
-    "thread_local", "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using", "virtual",
-    "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
-    // Macros: predefined in GNU mode (the default of CMake and GCC), or from headers the generated code includes.
-    "linux", "unix", "NULL", "EOF", "errno", "assert"};
-
-// Namespaces the generated code names without a leading `::`: a namespace of the same name inside the model's
-// would hide them.
-constexpr std::string_view kUsedNamespaces[] = {"std", "Eigen", "mbgen", "mpfr"};
-
 }  // namespace
 
 std::string cxx_string_literal(std::string_view s) {
@@ -109,17 +91,8 @@ std::string namespace_problem(std::string_view ns) {
   while (true) {
     const std::size_t sep = ns.find("::", start);
     const std::size_t length = sep == std::string_view::npos ? std::string_view::npos : sep - start;
-    const std::string_view part = ns.substr(start, length);
-    const std::string quoted = "`" + std::string(part) + "`";
-    if (!ir::is_identifier(part))
-      return part.empty() ? "a part of it is empty" : quoted + " is not an identifier (letters, digits and _)";
-    for (std::string_view k : kKeywords)
-      if (part == k) return quoted + " is a C++ keyword or a predefined macro";
-    for (std::string_view u : kUsedNamespaces)
-      if (part == u) return quoted + " would hide the namespace " + quoted + " that the generated code uses";
-    const bool underscore_capital = part.size() > 1 && part[0] == '_' && part[1] >= 'A' && part[1] <= 'Z';
-    if (part.find("__") != std::string_view::npos || underscore_capital)
-      return quoted + " is reserved for the C++ implementation (`__`, or `_` and a capital letter)";
+    if (const std::string problem = ir::cxx_identifier_problem(ns.substr(start, length)); !problem.empty())
+      return problem;
     if (sep == std::string_view::npos) return "";
     start = sep + 2;
   }

@@ -19,9 +19,8 @@ std::string cxx_comment_text(std::string_view s);
 // Empty if `name` can stand between the quotes of `#include "..."` (where no escapes exist), else why not.
 std::string include_name_problem(std::string_view name);
 
-// Empty if `ns` (A or A::B::C) is a usable namespace for generated code, else why not: each part an identifier that
-// is not a keyword, not reserved (`__`, `_` and a capital), not a predefined macro (`linux`, `unix` in GNU mode)
-// and not a namespace the generated code refers to (std, Eigen, mbgen, mpfr).
+// Empty if `ns` (A or A::B::C) is a usable namespace for generated code, else why not: each part passes
+// ir::cxx_identifier_problem (an identifier, not a keyword, macro, reserved name or namespace the code uses).
 std::string namespace_problem(std::string_view ns);
 
 }  // namespace mbgen::emit

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "emit/ginac_text.hpp"
-#include "emit/sign_free_key.hpp"
+#include "passes/sign_free_key.hpp"
 
 namespace mbgen::emit {
 namespace {
@@ -102,7 +102,7 @@ class Printer {
   // written with the sign sign_free_key.hpp gives it (GiNaC's choice of (a - b) or -(b - a) follows hash values,
   // which differ from run to run, and the text must not).
   std::pair<Printed, bool> signed_factor(const GiNaC::ex& f) const {
-    const SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
+    const passes::SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
     if (GiNaC::is_a<GiNaC::add>(f)) return {add(f, fs.negate_sum), fs.negative};
     if (GiNaC::is_a<GiNaC::power>(f)) return {power(f, fs.negate_sum), fs.negative};
     return {print(f), false};
@@ -119,7 +119,7 @@ class Printer {
         coeff *= exact(GiNaC::ex_to<GiNaC::numeric>(f));
       } else if (GiNaC::is_a<GiNaC::power>(f) && f.op(1).info(GiNaC::info_flags::negative) &&
                  GiNaC::is_a<GiNaC::numeric>(f.op(1))) {
-        const SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
+        const passes::SignFreeKeys::FactorSign fs = keys_.factor_sign(f);
         if (fs.negative) coeff = -coeff;
         den.push_back(wrap(raised(base_of(f, fs.negate_sum), -f.op(1)), 2));
       } else {
@@ -159,7 +159,7 @@ class Printer {
     return {wrap(base, 3) + "^" + wrap(print(expo), 3), 2};
   }
 
-  mutable SignFreeKeys keys_;
+  mutable passes::SignFreeKeys keys_;
 };
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <regex>
 #include <set>
 
-#include "emit/test_symbol_orders.hpp"
+#include "passes/test_symbol_orders.hpp"
 
 using namespace mbgen::emit;
 
@@ -58,7 +58,7 @@ TEST_CASE("floating-point numbers are written as the exact ratio they hold") {
 }
 
 TEST_CASE("the text does not depend on the order the symbols were created in") {
-  using namespace mbgen::emit::test;
+  using namespace mbgen::passes::test;
   std::vector<std::string> reference;
   std::set<std::string> ginac_texts;
   for (const auto& order : creation_orders()) {

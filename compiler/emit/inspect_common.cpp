@@ -4,8 +4,10 @@
 #include <stdexcept>
 
 #include <Eigen/Core>
+#include <mbgen/dynamics_error.hpp>
 
 #include "emit/inspect.hpp"
+#include "frontend/diagnostics.hpp"
 
 namespace mbgen::emit {
 
@@ -51,7 +53,12 @@ std::vector<Mode> modes_at_current_values(const symbolic::SymbolicModel& sm) {
       for (unsigned c = 0; c < m.cols(); ++c) out(r, c) = value_as_double(m(r, c).subs(values));
     return out;
   };
-  return modal_analysis(numeric(sm.M), numeric(sm.C_total), numeric(sm.K));
+  try {
+    return modal_analysis(numeric(sm.M), numeric(sm.C_total), numeric(sm.K));
+  } catch (const DynamicsError& e) {  // the model's values, not a bug: name the model
+    throw frontend::ModelError(sm.model ? sm.model->file : "", {},
+                               std::string("cannot compute the modes at the current parameter values: ") + e.what());
+  }
 }
 
 bool has_spin(const symbolic::SymbolicModel& sm) {

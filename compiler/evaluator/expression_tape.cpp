@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "emit/cse.hpp"
+#include "passes/cse.hpp"
 #include "emit/ginac_text.hpp"
 
 namespace mbgen::evaluator {
@@ -17,12 +17,12 @@ ExpressionTape::ExpressionTape(const std::vector<GiNaC::symbol>& parameters, con
     const GiNaC::symbol& p = parameters[static_cast<std::size_t>(i)];
     registers_.emplace(p, i);
   }
-  const emit::CseResult cse = emit::eliminate_common_subexpressions(expressions, "tape_t");
+  const passes::CseResult cse = passes::eliminate_common_subexpressions(expressions, "tape_t");
   for (const auto& [sym, body] : cse.temporaries) registers_.emplace(sym, compile(body));
   for (const GiNaC::ex& e : cse.outputs) outputs_.push_back(compile(e));
   // Only needed while compiling; the tape itself holds no GiNaC object.
   registers_.clear();
-  keys_ = emit::SignFreeKeys();
+  keys_ = passes::SignFreeKeys();
 }
 
 std::vector<GiNaC::ex> ExpressionTape::canonical_operands(const GiNaC::ex& e) {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "emit/sign_free_key.hpp"
+#include "passes/sign_free_key.hpp"
 
 namespace mbgen::evaluator {
 
@@ -42,7 +42,7 @@ class ExpressionTape {
   };
 
   int compile(const GiNaC::ex& e);
-  // The operands of a sum or product in the order of their sign-free keys (emit/sign_free_key.hpp), not GiNaC's
+  // The operands of a sum or product in the order of their sign-free keys (passes/sign_free_key.hpp), not GiNaC's
   // internal order: that order follows hash values which depend on where the program is loaded (address-space
   // randomization), and the order of a floating-point sum changes its rounding, so that two runs of one fit would
   // differ in the last digits and then, through a long iteration, in more. An operand and its negative take the
@@ -56,7 +56,7 @@ class ExpressionTape {
   std::vector<int> outputs_;
   // While compiling: symbols and temporaries already in a register, and the operands' ordering keys.
   std::map<GiNaC::ex, int, GiNaC::ex_is_less> registers_;
-  emit::SignFreeKeys keys_;
+  passes::SignFreeKeys keys_;
 };
 
 }  // namespace mbgen::evaluator

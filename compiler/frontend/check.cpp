@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "frontend/diagnostics.hpp"
+#include "ir/identifier.hpp"
 
 namespace mbgen::frontend {
 
@@ -35,20 +37,23 @@ class Checker {
 
  private:
   [[noreturn]] void fail(ir::SourceLoc loc, const std::string& msg) const { throw ModelError(m_.file, loc, msg); }
+  template <typename... Args>
+  [[noreturn]] void fail(ir::SourceLoc loc, fmt::format_string<Args...> format, Args&&... args) const {
+    throw ModelError(m_.file, loc, format, std::forward<Args>(args)...);
+  }
 
   // Every name is declared once, whatever it names (docs/language.md): a parameter, a frame (ground or body), an
   // element and a signal (input or output) called alike would be confusing in messages, data and generated code.
   void declare(const std::string& what, const std::string& name, ir::SourceLoc loc) {
     const auto [it, fresh] = names_.emplace(name, Declared{what, loc});
     if (!fresh)
-      fail(loc, "`" + name + "` is already declared at line " + std::to_string(it->second.loc.line) + ", column " +
-                    std::to_string(it->second.loc.column) + " (as " + it->second.what +
-                    "); each name is declared once");
+      fail(loc, "`{}` is already declared at line {}, column {} (as {}); each name is declared once", name,
+           it->second.loc.line, it->second.loc.column, it->second.what);
   }
 
   void declare_all() {
     for (const ir::Parameter& p : m_.parameters) {
-      if (p.name == "pi" || p.name == "inf") fail(p.loc, "`" + p.name + "` is reserved and cannot name a parameter");
+      if (ir::is_reserved_name(p.name)) fail(p.loc, "`{}` is reserved and cannot name a parameter", p.name);
       declare("a parameter", p.name, p.loc);
       params_.insert(p.name);
     }
@@ -64,7 +69,7 @@ class Checker {
     if (e.kind == ir::Expr::Kind::Symbol) {
       if (e.text != "pi" && !params_.count(e.text)) {
         if (e.text == "inf") fail(e.loc, "`inf` is only allowed as a bound (`in [0, inf]`)");
-        fail(e.loc, "unknown parameter `" + e.text + "`: declare it with `param " + e.text + " = VALUE`");
+        fail(e.loc, "unknown parameter `{}`: declare it with `param {} = VALUE`", e.text, e.text);
       }
       return;
     }
@@ -91,7 +96,7 @@ class Checker {
   int expanded_depth(const ir::Parameter& p, int above) {
     if (const auto done = depth_.find(p.name); done != depth_.end()) return done->second;
     if (std::find(expanding_.begin(), expanding_.end(), &p) != expanding_.end())
-      fail(p.loc, "parameter `" + p.name + "` is defined in terms of itself");
+      fail(p.loc, "parameter `{}` is defined in terms of itself", p.name);
     expanding_.push_back(&p);
     const int depth = value_depth(p.value, above);
     expanding_.pop_back();
@@ -112,8 +117,9 @@ class Checker {
   }
 
   std::string too_deep(const ir::Parameter& p) const {
-    return "parameter `" + p.name + "` nests too deeply: with the derived parameters it uses written out, its value "
-           "has more than " + std::to_string(ir::kMaxExpressionDepth) + " levels of operators and parameters";
+    return fmt::format("parameter `{}` nests too deeply: with the derived parameters it uses written out, its value "
+                       "has more than {} levels of operators and parameters",
+                       p.name, ir::kMaxExpressionDepth);
   }
 
   void check_body(ir::Body& b) {
@@ -121,7 +127,7 @@ class Checker {
     for (const auto& j : b.inertia)
       if (j) check_expr(*j);
     check_vec(b.position);
-    if (b.dofs.empty()) fail(b.loc, "body `" + b.name + "` has no coordinates: give it a `dof` line (x y z rx ry rz)");
+    if (b.dofs.empty()) fail(b.loc, "body `{}` has no coordinates: give it a `dof` line (x y z rx ry rz)", b.name);
   }
 
   // Resolves the frame and fills an implicit point.
@@ -129,7 +135,7 @@ class Checker {
     if (const ir::Body* b = m_.find_body(a.frame)) {
       if (!a.has_point) a.point = b->position;
     } else if (!m_.is_ground(a.frame)) {
-      fail(a.loc, "unknown frame `" + a.frame + "`: expected the name of a body or a ground");
+      fail(a.loc, "unknown frame `{}`: expected the name of a body or a ground", a.frame);
     }
     check_vec(a.point);
   }
@@ -144,30 +150,30 @@ class Checker {
   void check_element(ir::Element& e) {
     resolve(e.a);
     resolve(e.b);
-    if (e.a.frame == e.b.frame) fail(e.b.loc, "element `" + e.name + "` joins `" + e.a.frame + "` to itself");
+    if (e.a.frame == e.b.frame) fail(e.b.loc, "element `{}` joins `{}` to itself", e.name, e.a.frame);
     if (m_.is_ground(e.a.frame) && m_.is_ground(e.b.frame))
-      fail(e.b.loc, "element `" + e.name + "` joins two grounds: it would do nothing");
+      fail(e.b.loc, "element `{}` joins two grounds: it would do nothing", e.name);
     if (e.kind != ir::ElementKind::Spring3) check_direction(e.direction);
     for (const ir::Expr& k : e.stiffness) check_expr(k);
     for (const ir::Expr& c : e.damping) check_expr(c);
   }
 
   void check_spin(ir::Spin& s) {
-    if (!m_.find_body(s.body)) fail(s.loc, "unknown body `" + s.body + "`: only a body can spin");
+    if (!m_.find_body(s.body)) fail(s.loc, "unknown body `{}`: only a body can spin", s.body);
     check_expr(s.speed);
-    if (!spinning_.insert(s.body).second) fail(s.loc, "body `" + s.body + "` is given a spin twice");
+    if (!spinning_.insert(s.body).second) fail(s.loc, "body `{}` is given a spin twice", s.body);
   }
 
   void check_signal_frame(ir::Attachment& a, const std::string& what, const std::string& name) {
     if (m_.is_ground(a.frame))
-      fail(a.loc, what + " `" + name + "` is on ground `" + a.frame + "`, which does not move: put it on a body");
+      fail(a.loc, "{} `{}` is on ground `{}`, which does not move: put it on a body", what, name, a.frame);
     resolve(a);
   }
 
   void check_filter(const ir::Filter& f) const {
     const bool is_output = std::any_of(m_.outputs.begin(), m_.outputs.end(),
                                        [&](const ir::Output& o) { return o.name == f.output; });
-    if (!is_output) fail(f.loc, "filter `" + f.name + "` is on `" + f.output + "`, which is not an output");
+    if (!is_output) fail(f.loc, "filter `{}` is on `{}`, which is not an output", f.name, f.output);
     for (const std::optional<ir::Expr>* e : {&f.cutoff, &f.damping, &f.time})
       if (*e) check_expr(**e);
   }
@@ -181,7 +187,7 @@ class Checker {
     }
     for (const ir::Body& b : m_.bodies)
       if (!connected.count(b.name))
-        fail(b.loc, "body `" + b.name + "` is not connected: no spring, spring3 or torsion element attaches to it");
+        fail(b.loc, "body `{}` is not connected: no spring, spring3 or torsion element attaches to it", b.name);
   }
 
   struct Declared {

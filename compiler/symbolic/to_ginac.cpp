@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "frontend/diagnostics.hpp"
 
 namespace mbgen::symbolic {
@@ -63,13 +65,12 @@ std::string decimal_limits_violation(const std::string& text) {
   long fraction_digits;
   if (!split_decimal(text, negative, digits, fraction_digits, exponent)) return "it is not a decimal number";
   if (digits.size() > static_cast<std::size_t>(kMaxLiteralDigits))
-    return "it has more than " + std::to_string(kMaxLiteralDigits) + " digits";
+    return fmt::format("it has more than {} digits", kMaxLiteralDigits);
   // Compared as text first: the exponent may have more digits than any integer type holds.
   std::string magnitude = exponent[0] == '+' || exponent[0] == '-' ? exponent.substr(1) : exponent;
   magnitude.erase(0, std::min(magnitude.find_first_not_of('0'), magnitude.size()));
   if (magnitude.size() > 6 || std::stol(magnitude.empty() ? "0" : magnitude) > kMaxDecimalExponent)
-    return "its exponent lies outside -" + std::to_string(kMaxDecimalExponent) + " to " +
-           std::to_string(kMaxDecimalExponent);
+    return fmt::format("its exponent lies outside -{} to {}", kMaxDecimalExponent, kMaxDecimalExponent);
   return "";
 }
 
@@ -96,36 +97,78 @@ long rational_bits(const GiNaC::numeric& n) {
   return std::max(GiNaC::numer(n).int_length(), GiNaC::denom(n).int_length());
 }
 
+// The value of an exponent for a message: "7.6256e+12", or "not a real number".
+std::string exponent_text(const GiNaC::ex& value) {
+  if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real()) return "not a real number";
+  return fmt::format("{:g}", GiNaC::ex_to<GiNaC::numeric>(value).to_double());
+}
+
+// The most bits of any exact rational in e (coefficients, exponents, numbers under functions).
+long largest_rational_bits(const GiNaC::ex& e) {
+  long bits = 0;
+  for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (GiNaC::is_a<GiNaC::numeric>(*it) && GiNaC::ex_to<GiNaC::numeric>(*it).is_rational())
+      bits = std::max(bits, rational_bits(GiNaC::ex_to<GiNaC::numeric>(*it)));
+  return bits;
+}
+
 }  // namespace
 
 void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const {
-  if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
-  const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(exponent);
+  // A power of expressions in parameters is checked at the parameters' values: wherever they are substituted, it is
+  // computed exactly there (q^(q^(q^q)) with q = 3 is 3^7625597484987 and would fill the memory). Its operands'
+  // own values passed this check when they were converted, so substituting into them is cheap.
+  const bool at_values = !GiNaC::is_a<GiNaC::numeric>(base) || !GiNaC::is_a<GiNaC::numeric>(exponent);
+  GiNaC::ex b = base, n = exponent;
+  if (at_values) {
+    const GiNaC::exmap at = values();
+    b = base.subs(at);
+    n = exponent.subs(at);
+  }
+  const GiNaC::ex n_value = GiNaC::is_a<GiNaC::numeric>(n) ? n : GiNaC::evalf(n);
   // A large exponent is computed exactly when the base is a number (2^(2^64) would fill the memory), and gives
   // no useful double otherwise.
-  if (!n.is_rational() || GiNaC::abs(n) > kMaxExponent)
+  const bool exact_exponent = GiNaC::is_a<GiNaC::numeric>(exponent);
+  if (!GiNaC::is_a<GiNaC::numeric>(n_value) || !GiNaC::ex_to<GiNaC::numeric>(n_value).is_real() ||
+      (exact_exponent && !GiNaC::ex_to<GiNaC::numeric>(n_value).is_rational()) ||
+      GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(n_value)) > kMaxExponent) {
+    if (exact_exponent)
+      throw frontend::ModelError(model_.file, e.loc, "`{}`: the exponent must be a number within -{} to {}",
+                                 ir::to_string(e), kMaxExponent, kMaxExponent);
     throw frontend::ModelError(model_.file, e.loc,
-                               "`" + ir::to_string(e) + "`: the exponent must be a number within -" +
-                                   std::to_string(kMaxExponent) + " to " + std::to_string(kMaxExponent));
-  if (!GiNaC::is_a<GiNaC::numeric>(base)) return;
-  const GiNaC::numeric& b = GiNaC::ex_to<GiNaC::numeric>(base);
-  if (!b.is_rational()) return;
-  const long bits = rational_bits(b) * GiNaC::abs(GiNaC::numer(n)).to_long();
+                               "`{}`: at the parameters' values the exponent is {}; it must lie within -{} to {}",
+                               ir::to_string(e), exponent_text(n_value), kMaxExponent, kMaxExponent);
+  }
+  // The power itself, before any value is substituted: GiNaC raises the numbers of a product to the power at once
+  // ((q*10^1000)^1000 holds 10^1000000 whatever q is, and with q = 0 its value would pass the check below).
+  if (exact_exponent && GiNaC::ex_to<GiNaC::numeric>(exponent).is_rational() &&
+      largest_rational_bits(base) * GiNaC::abs(GiNaC::numer(GiNaC::ex_to<GiNaC::numeric>(exponent))).to_long() >
+          kMaxNumberBits)
+    throw frontend::ModelError(model_.file, e.loc, "`{}` is too large an exact number: {}", ir::to_string(e),
+                               too_large_text());
+  if (!GiNaC::is_a<GiNaC::numeric>(b) || !GiNaC::is_a<GiNaC::numeric>(n)) return;
+  const GiNaC::numeric& bn = GiNaC::ex_to<GiNaC::numeric>(b);
+  const GiNaC::numeric& nn = GiNaC::ex_to<GiNaC::numeric>(n);
+  if (!bn.is_rational() || !nn.is_rational()) return;
+  const long bits = rational_bits(bn) * GiNaC::abs(GiNaC::numer(nn)).to_long();
   if (bits > kMaxNumberBits)
-    throw frontend::ModelError(model_.file, e.loc, "`" + ir::to_string(e) + "` is too large an exact number: " +
-                                                       too_large_text());
+    throw frontend::ModelError(model_.file, e.loc, "`{}` is too large an exact number{}: {}", ir::to_string(e),
+                               at_values ? " at the parameters' values" : "", too_large_text());
 }
 
 GiNaC::ex ParameterTable::bounded(const ir::Expr& e, const GiNaC::ex& value) const {
   if (GiNaC::is_a<GiNaC::numeric>(value) && GiNaC::ex_to<GiNaC::numeric>(value).is_rational() &&
       rational_bits(GiNaC::ex_to<GiNaC::numeric>(value)) > kMaxNumberBits)
-    throw frontend::ModelError(model_.file, e.loc, "`" + ir::to_string(e) + "` is too large an exact number: " +
-                                                       too_large_text());
+    throw frontend::ModelError(model_.file, e.loc, "`{}` is too large an exact number: {}", ir::to_string(e),
+                               too_large_text());
   return value;
 }
 
+// Why a value or bound cannot become a double.
+constexpr const char* kBeyondDoubles = "beyond the range of a double (magnitudes from about 2.2e-308 to 1.8e308, or 0)";
+
 std::string ParameterTable::too_large_text() {
-  return "its numerator or denominator would have more than " + std::to_string(kMaxNumberBits) + " bits";
+  return fmt::format("its numerator or denominator would have more than {} bits", kMaxNumberBits);
 }
 
 ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::string, std::string>& overrides)
@@ -134,19 +177,20 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
     const ir::Parameter* p = model.find_parameter(name);
     if (!p)
       throw frontend::ModelError(model.file, {},
-                                 "--set " + name + "=" + value + ": the model has no parameter named `" + name +
-                                     "`; only declared parameters can be set");
+                                 "--set {}={}: the model has no parameter named `{}`; only declared parameters can be "
+                                 "set",
+                                 name, value, name);
     if (p->derived)
       throw frontend::ModelError(model.file, p->loc,
-                                 "--set " + name + "=" + value + ": `" + name +
-                                     "` is derived (= " + ir::to_string(p->value) +
-                                     ") and cannot be set; set the free parameters it is built from instead");
+                                 "--set {}={}: `{}` is derived (= {}) and cannot be set; set the free parameters it is "
+                                 "built from instead",
+                                 name, value, name, ir::to_string(p->value));
     if (!is_decimal_literal(value))
       throw frontend::ModelError(model.file, {},
-                                 "--set " + name + "=" + value + ": the value must be a decimal number such as "
-                                 "1.5, -2 or 60e6");
+                                 "--set {}={}: the value must be a decimal number such as 1.5, -2 or 60e6", name,
+                                 value);
     if (const std::string violation = decimal_limits_violation(value); !violation.empty())
-      throw frontend::ModelError(model.file, {}, "--set " + name + "=" + value + ": out of range: " + violation);
+      throw frontend::ModelError(model.file, {}, "--set {}={}: out of range: {}", name, value, violation);
   }
   for (const ir::Parameter& p : model.parameters) {
     if (p.derived) continue;
@@ -167,8 +211,9 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
     const std::vector<std::string> uses = ir::symbols_of(fp.ir->value);
     if (!uses.empty())
       throw frontend::ModelError(model.file, fp.ir->value.loc,
-                                 "the value of free parameter `" + fp.name + "` uses parameter `" + uses.front() +
-                                     "`; a free parameter needs a constant value");
+                                 "the value of free parameter `{}` uses parameter `{}`; a free parameter needs a "
+                                 "constant value",
+                                 fp.name, uses.front());
     fp.value = convert(fp.ir->value);
   }
   // One map of the values for all checks (a map per parameter made a 300-parameter model's table quadratic).
@@ -178,31 +223,33 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
   for (const ir::Parameter& p : model.parameters) {
     const GiNaC::ex v = GiNaC::evalf(convert(ir::Expr::symbol(p.name, p.value.loc)).subs(at));
     if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
-      throw frontend::ModelError(model.file, p.value.loc,
-                                 "the value of parameter `" + p.name + "` is not a real number");
+      throw frontend::ModelError(model.file, p.value.loc, "the value of parameter `{}` is not a real number", p.name);
   }
 }
 
 void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& set_text,
                                   const GiNaC::exmap& at) const {
   const ir::Parameter& p = *fp.ir;
-  // Values and bounds become doubles in generated code and fits: beyond the double range they would be infinite.
-  const GiNaC::numeric largest(std::numeric_limits<double>::max());
+  // Values and bounds become doubles in generated code and fits: beyond the double range they would be infinite,
+  // and below its smallest normal number (about 2.2e-308) they would lose their digits or become zero (a mass of
+  // 1e-400 is positive exactly and zero in the fit).
+  const GiNaC::numeric largest(std::numeric_limits<double>::max()), smallest(std::numeric_limits<double>::min());
   auto beyond_doubles = [&](const GiNaC::ex& v) {
-    return GiNaC::is_a<GiNaC::numeric>(v) && GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v)) > largest;
+    if (!GiNaC::is_a<GiNaC::numeric>(v)) return false;
+    const GiNaC::numeric magnitude = GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v));
+    return magnitude > largest || (!magnitude.is_zero() && magnitude < smallest);
   };
   const GiNaC::ex value = GiNaC::evalf(fp.value);
   if (beyond_doubles(value))
-    throw frontend::ModelError(model_.file, set_text.empty() ? p.value.loc : p.loc,
-                               (set_text.empty() ? "" : "--set " + p.name + "=" + set_text + ": ") + "the value of `" +
-                                   p.name + "` is beyond the range of a double (about 1.8e308)");
+    throw frontend::ModelError(model_.file, set_text.empty() ? p.value.loc : p.loc, "{}the value of `{}` is {}",
+                               set_text.empty() ? "" : fmt::format("--set {}={}: ", p.name, set_text), p.name,
+                               kBeyondDoubles);
   if (!p.lower && !p.upper) return;
   auto value_of = [&](const ir::Expr& bound) {
     const GiNaC::ex v = GiNaC::evalf(convert(bound).subs(at));
     if (beyond_doubles(v))
-      throw frontend::ModelError(model_.file, bound.loc,
-                                 "the bound `" + ir::to_string(bound) + "` of `" + p.name +
-                                     "` is beyond the range of a double (about 1.8e308); write inf for an open end");
+      throw frontend::ModelError(model_.file, bound.loc, "the bound `{}` of `{}` is {}; write inf for an open end",
+                                 ir::to_string(bound), p.name, kBeyondDoubles);
     return v;
   };
   const GiNaC::ex lower = p.lower ? value_of(*p.lower) : GiNaC::ex();
@@ -211,18 +258,17 @@ void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& se
     return GiNaC::is_a<GiNaC::numeric>(a) && GiNaC::is_a<GiNaC::numeric>(b) &&
            GiNaC::ex_to<GiNaC::numeric>(a) < GiNaC::ex_to<GiNaC::numeric>(b);
   };
-  const std::string range = "[" + (p.lower ? ir::to_string(*p.lower) : std::string("-inf")) + ", " +
-                            (p.upper ? ir::to_string(*p.upper) : std::string("inf")) + "]";
+  const std::string range = fmt::format("[{}, {}]", p.lower ? ir::to_string(*p.lower) : std::string("-inf"),
+                                        p.upper ? ir::to_string(*p.upper) : std::string("inf"));
   if (p.lower && p.upper && below(upper, lower))
     throw frontend::ModelError(model_.file, p.upper->loc,
-                               "parameter `" + p.name + "`: the upper bound lies below the lower bound in " + range);
+                               "parameter `{}`: the upper bound lies below the lower bound in {}", p.name, range);
   if ((p.lower && below(value, lower)) || (p.upper && below(upper, value))) {
     if (!set_text.empty())
-      throw frontend::ModelError(model_.file, p.loc,
-                                 "--set " + p.name + "=" + set_text + ": outside the bounds " + range +
-                                     " declared for `" + p.name + "`");
-    throw frontend::ModelError(model_.file, p.value.loc,
-                               "the value of parameter `" + p.name + "` lies outside its bounds " + range);
+      throw frontend::ModelError(model_.file, p.loc, "--set {}={}: outside the bounds {} declared for `{}`", p.name,
+                                 set_text, range, p.name);
+    throw frontend::ModelError(model_.file, p.value.loc, "the value of parameter `{}` lies outside its bounds {}",
+                               p.name, range);
   }
 }
 
@@ -241,8 +287,9 @@ GiNaC::ex ParameterTable::derived_value(const ir::Parameter& p) const {
     for (auto it = cycle_start; it != expanding_.end(); ++it) chain += (*it)->name + " -> ";
     chain += p.name;
     throw frontend::ModelError(model_.file, p.loc,
-                               "parameter `" + p.name + "` is defined in terms of itself (" + chain +
-                                   "); give one of these parameters a numeric value");
+                               "parameter `{}` is defined in terms of itself ({}); give one of these parameters a "
+                               "numeric value",
+                               p.name, chain);
   }
   expanding_.push_back(&p);
   const GiNaC::ex value = convert(p.value);
@@ -259,10 +306,11 @@ GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
   switch (e.kind) {
     case K::Number: {
       if (!is_decimal_literal(e.text) || e.text[0] == '-' || e.text[0] == '+')
-        return fail("`" + e.text + "` is not a number; write digits with an optional point and exponent, e.g. 0.127 "
-                    "or 60e6");
+        return fail(fmt::format("`{}` is not a number; write digits with an optional point and exponent, e.g. "
+                                "0.127 or 60e6",
+                                e.text));
       const std::string violation = decimal_limits_violation(e.text);
-      if (!violation.empty()) return fail("number `" + e.text + "` is out of range: " + violation);
+      if (!violation.empty()) return fail(fmt::format("number `{}` is out of range: {}", e.text, violation));
       return parse_decimal(e.text);
     }
     case K::Symbol: {
@@ -270,7 +318,7 @@ GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
       if (free != symbol_of_.end()) return free->second;
       if (const ir::Parameter* p = model_.find_parameter(e.text)) return derived_value(*p);
       if (e.text == "pi") return GiNaC::Pi;
-      return fail("unknown parameter `" + e.text + "`: declare it with `param " + e.text + " = VALUE`");
+      return fail(fmt::format("unknown parameter `{}`: declare it with `param {} = VALUE`", e.text, e.text));
     }
     case K::Add:
     case K::Mul: {
@@ -295,27 +343,27 @@ GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
     case K::Sub: return convert(e.args.at(0)) - convert(e.args.at(1));
     case K::Div: {
       const GiNaC::ex denominator = convert(e.args.at(1));
-      if (denominator.is_zero()) return fail("division by zero in `" + ir::to_string(e) + "`");
+      if (denominator.is_zero()) return fail(fmt::format("division by zero in `{}`", ir::to_string(e)));
       return bounded(e, convert(e.args.at(0)) / denominator);
     }
     case K::Pow: {
       const GiNaC::ex base = convert(e.args.at(0)), exponent = convert(e.args.at(1));
       if (base.is_zero() && !exponent.is_zero() && GiNaC::is_a<GiNaC::numeric>(exponent) &&
           !GiNaC::ex_to<GiNaC::numeric>(exponent).is_positive())
-        return fail("`" + ir::to_string(e) + "`: zero to a power that is not positive");
-      if (base.is_zero() && exponent.is_zero()) return fail("`" + ir::to_string(e) + "`: 0^0 is undefined");
+        return fail(fmt::format("`{}`: zero to a power that is not positive", ir::to_string(e)));
+      if (base.is_zero() && exponent.is_zero()) return fail(fmt::format("`{}`: 0^0 is undefined", ir::to_string(e)));
       check_power(e, base, exponent);
       return bounded(e, GiNaC::pow(base, exponent));
     }
     case K::Neg: return -convert(e.args.at(0));
     case K::Call: {
       if (e.args.size() != 1)
-        return fail("function `" + e.text + "` takes one argument, got " + std::to_string(e.args.size()));
+        return fail(fmt::format("function `{}` takes one argument, got {}", e.text, e.args.size()));
       const GiNaC::ex x = convert(e.args[0]);
       if (e.text == "sqrt") return GiNaC::sqrt(x);
       if (e.text == "sin") return GiNaC::sin(x);
       if (e.text == "cos") return GiNaC::cos(x);
-      return fail("unknown function `" + e.text + "`; the functions are sqrt, sin and cos");
+      return fail(fmt::format("unknown function `{}`; the functions are sqrt, sin and cos", e.text));
     }
   }
   return fail("malformed expression");

@@ -6,6 +6,25 @@ write_model(big "param u = 1e99999999999999999999")
 expect_run(STATUS 1 STDERR "^big.mdl:9:11: error: number `1e99999999999999999999` is out of range" ARGS inspect big.mdl)
 write_model(power "param u = 2^(2^64)")
 expect_run(STATUS 1 STDERR "^power.mdl:9:12: error: `2\\^2\\^64`: the exponent must be a number within" ARGS inspect power.mdl)
+# An exponent that depends on parameters is bounded at their values: q^(q^(q^q)) with q = 3 hung computing
+# 3^7625597484987 exactly. So is the exact size of a power at those values, and a value too small for a double
+# (1e-400 is positive exactly and 0 in a fit).
+write_model(tower "param q = 3" "param t = q^(q^(q^q))")
+expect_run(STATUS 1 STDERR "^tower.mdl:10:12: error: `q\\^q\\^q\\^q`: at the parameters' values the exponent is 7.6256e\\+12"
+  ARGS inspect tower.mdl)
+write_model(wide "param q = 1e300" "param t = q^150")
+expect_run(STATUS 1 STDERR "^wide.mdl:10:12: error: `q\\^150` is too large an exact number at the parameters' values"
+  ARGS inspect wide.mdl)
+# The power itself is bounded too, whatever the values: GiNaC raises the product's 10^1000 to the power at once. With
+# q = 0 its value passed, and ((q*10^1000)^1000)^1000 hung (found by the fuzzer, tests/fuzz/corpus).
+write_model(zero_base "param q = 0" "param t = ((q*10^1000)^1000)^1000")
+expect_run(STATUS 1 STDERR "^zero_base.mdl:10:23: error: `\\(q\\*10\\^1000\\)\\^1000` is too large an exact number: "
+  ARGS inspect zero_base.mdl)
+write_model(tiny "param t = 1e-400")
+expect_run(STATUS 1 STDERR "^tiny.mdl:9:11: error: the value of `t` is beyond the range of a double" ARGS inspect tiny.mdl)
+write_model(fine "param q = 3" "param t = 2^(q^q)")
+expect_run(STATUS 0 ARGS inspect fine.mdl)
+
 write_model(m)
 expect_run(STATUS 2 STDERR "--set: m1=1e999999999999999999: out of range" ARGS inspect m.mdl --set m1=1e999999999999999999)
 

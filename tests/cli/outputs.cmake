@@ -63,3 +63,19 @@ expect_run(STATUS 2 STDERR "several translation units need a file name" ARGS m.m
 expect_run(STATUS 2 STDERR "x_part1.cpp is also the output of" ARGS m.mdl -o x.cpp --header x_part1.cpp --parts 2)
 expect_run(STATUS 2 ARGS m.mdl -o y.cpp --parts 0)
 expect_unchanged("${before}" "${WORK}" "refused --parts")
+
+# An empty name names nothing: a usage error, nothing written. `-o ''` wrote the header `.hpp` and then failed with
+# status 1; `--header ''`, `--report ''` and `--json ''` were taken for "not given" (the run exited 0 without them).
+# (execute_process directly: an empty element of expect_run's ARGS list would be dropped.)
+tree_state(before "${WORK}")
+foreach(case "--output|m.mdl;-o" "--header|m.mdl;-o;e.cpp;--header" "--report|${FAST_FIT};--report"
+             "--json|${FAST_FIT};--json" "model|inspect")
+  string(REPLACE "|" ";" case "${case}")
+  list(POP_FRONT case option)
+  execute_process(COMMAND "${MBGEN}" ${case} "" WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE status
+    ERROR_VARIABLE err OUTPUT_QUIET TIMEOUT 60)
+  if(NOT status EQUAL 2 OR NOT err MATCHES "^mbgen: ${option}: an empty value names nothing")
+    message(SEND_ERROR "`mbgen ${case} ''`: expected status 2 and `${option}: an empty value`, got ${status}: ${err}")
+  endif()
+endforeach()
+expect_unchanged("${before}" "${WORK}" "empty output names")

@@ -53,3 +53,14 @@ file(GLOB written "${WORK}/*.cpp" "${WORK}/*.hpp")
 if(written)
   message(SEND_ERROR "C++ written for a refused model or namespace: ${written}")
 endif()
+
+# Masses and stiffnesses 1e600 apart: no double holds M^-1 K. `inspect` said "the eigenvalue iteration did not
+# converge" without naming the model, `sensitivity` called it an internal error (status 3), and the fit's singular
+# dynamic stiffness named no file either.
+file(WRITE "${WORK}/apart.mdl" "model apart\nparam k = 1e300 estimate\nparam m1 = 1e-300\nground g\n"
+           "body b { mass m1; dof x }\nspring s { from g; to b; along x; stiffness k }\ninput F force on b along x\n"
+           "output y displacement of b along x\n")
+expect_run(STATUS 1 STDERR "^apart.mdl: error: cannot compute the modes at the current parameter values: .*overflows a double"
+  ARGS inspect apart.mdl)
+expect_run(STATUS 1 STDERR "^apart.mdl: error: .*overflows a double" ARGS sensitivity apart.mdl)
+expect_run(STATUS 1 STDERR "^apart.mdl: error: " ARGS fit apart.mdl --data one_frf.csv --starts 1)

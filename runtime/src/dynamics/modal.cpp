@@ -46,6 +46,9 @@ std::vector<Mode> modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd
   A.topRightCorner(n, n).setIdentity();
   A.bottomLeftCorner(n, n) = -lu.solve(K);
   A.bottomRightCorner(n, n) = -lu.solve(C);
+  if (!A.allFinite())  // 1e300 next to 1e-300: no double holds M^-1 K, and the iteration below cannot converge
+    throw DynamicsError("modal_analysis: M^-1 K or M^-1 C overflows a double at these parameter values (masses and "
+                        "stiffnesses or dampings too far apart)");
 
   // Balance first (Eigen's EigenSolver does not): stiff systems have -M^-1 K ~ 1e9 next to the identity block.
   const Eigen::VectorXd scale = detail::balancing_scale(A);

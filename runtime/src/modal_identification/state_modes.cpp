@@ -1,5 +1,7 @@
 #include "mbgen/state_modes.hpp"
 
+#include "mbgen/dynamics_error.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
@@ -23,6 +25,9 @@ double StateModes::zeta(Eigen::Index e) const {
 StateModes state_modes(const ModelMatrices& m) {
   StateModes out;
   out.ss = state_space(m);
+  if (!out.ss.A.allFinite())  // 1e300 next to 1e-300: no double holds M^-1 K, and the iteration cannot converge
+    throw DynamicsError("the model's state matrix (M^-1 K, M^-1 C) overflows a double at these parameter values "
+                        "(masses and stiffnesses or dampings too far apart)");
   // x = [q; q'/s] with s the square root of the stiffness-to-mass scale: the two blocks of A become comparable
   // (the eigenvalues do not change; the eigenvectors are scaled back below).
   const Eigen::Index n = m.M.rows();
@@ -31,7 +36,7 @@ StateModes state_modes(const ModelMatrices& m) {
   scale.tail(n).setConstant(s);
   const Eigen::MatrixXd A = scale.cwiseInverse().asDiagonal() * out.ss.A * scale.asDiagonal();
   const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, /*computeEigenvectors=*/true);
-  if (eig.info() != Eigen::Success) throw std::runtime_error("the model's eigenvalue iteration did not converge");
+  if (eig.info() != Eigen::Success) throw DynamicsError("the model's eigenvalue iteration did not converge");
   out.lambda = eig.eigenvalues();
   const Eigen::MatrixXcd V = eig.eigenvectors();
   out.right = scale.cast<std::complex<double>>().asDiagonal() * V;

@@ -1,4 +1,5 @@
-// Common-subexpression elimination over GiNaC expression trees, for the C++ emitter.
+// Common-subexpression elimination over GiNaC expression trees: the pass the C++ emitter and the in-process
+// evaluator's tapes both run on the derived expressions.
 //
 // Nodes are identified by their sign-free key (sign_free_key.hpp), so that e and -e are one node; uses are
 // counted over the DAG, and every non-trivial node used more than once is hoisted into a temporary symbol that
@@ -13,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace mbgen::emit {
+namespace mbgen::passes {
 
 struct CseResult {
   // temporaries[i] = {symbol, definition}; a definition may use earlier temporaries only.
@@ -24,4 +25,4 @@ struct CseResult {
 // Temporaries are named prefix + index ("t0", "t1", ...).
 CseResult eliminate_common_subexpressions(const std::vector<GiNaC::ex>& expressions, const std::string& prefix = "t");
 
-}  // namespace mbgen::emit
+}  // namespace mbgen::passes

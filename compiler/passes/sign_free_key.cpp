@@ -1,10 +1,10 @@
-#include "emit/sign_free_key.hpp"
+#include "passes/sign_free_key.hpp"
 
 #include <algorithm>
 #include <numeric>
 #include <sstream>
 
-namespace mbgen::emit {
+namespace mbgen::passes {
 namespace {
 
 std::string exact_text(const GiNaC::ex& e) {
@@ -101,4 +101,4 @@ SignFreeKeys::FactorSign SignFreeKeys::factor_sign(const GiNaC::ex& f) {
   return {};
 }
 
-}  // namespace mbgen::emit
+}  // namespace mbgen::passes

@@ -1,11 +1,11 @@
-#include "emit/cse.hpp"
+#include "passes/cse.hpp"
 
 #include <map>
 #include <numeric>
 
-#include "emit/sign_free_key.hpp"
+#include "passes/sign_free_key.hpp"
 
-namespace mbgen::emit {
+namespace mbgen::passes {
 namespace {
 
 using NodeCount = std::map<std::string, int>;
@@ -127,4 +127,4 @@ CseResult eliminate_common_subexpressions(const std::vector<GiNaC::ex>& expressi
   return result;
 }
 
-}  // namespace mbgen::emit
+}  // namespace mbgen::passes

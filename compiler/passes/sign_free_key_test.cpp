@@ -1,13 +1,13 @@
-#include "emit/sign_free_key.hpp"
+#include "passes/sign_free_key.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <set>
 
-#include "emit/test_symbol_orders.hpp"
+#include "passes/test_symbol_orders.hpp"
 
-using namespace mbgen::emit;
-using namespace mbgen::emit::test;
+using namespace mbgen::passes;
+using namespace mbgen::passes::test;
 
 
 TEST_CASE("an expression and its negative share a key and have opposite signs") {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace mbgen::emit::test {
+namespace mbgen::passes::test {
 
 // Four symbols created in the order `order` gives: GiNaC hashes a symbol by its serial number, so the creation
 // order decides GiNaC's operand order and the signs it gives sums in products, as the load address does between
@@ -50,4 +50,4 @@ inline std::string ginac_text(const std::vector<GiNaC::ex>& es) {
   return text.str();
 }
 
-}  // namespace mbgen::emit::test
+}  // namespace mbgen::passes::test

@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-namespace mbgen::emit {
+namespace mbgen::passes {
 
 class SignFreeKeys {
  public:
@@ -53,4 +53,4 @@ class SignFreeKeys {
 // a term x of one run as -(-x) = (-1)*y in another. Returns the factor and the sign (e itself and +1 otherwise).
 std::pair<GiNaC::ex, int> strip_unit_factor(const GiNaC::ex& e);
 
-}  // namespace mbgen::emit
+}  // namespace mbgen::passes
