@@ -11,7 +11,7 @@
 // is the residual power of the least-squares estimate h, which for Gaussian noise is independent of h's own error.
 // Weights from it do not favour the lines whose noise happened to shrink |h|, and the fit stays unbiased. A model's
 // |H| in place of |h| would bring that correlation back (through the 1/|h|^2 in (1 - g2)/g2): on simulated H1
-// estimates of mdof2 from 5 to 50 averages it made the reported std 1.5 to 2.5 times too large (bench/README.md).
+// estimates of mdof2 from 5 to 50 averages it made the reported std 1.7 to 3 times too large (bench/README.md).
 // A coherence that does not come from the same averages as h (e.g. computed from a noise-free response, as the test
 // data generator once did) breaks the identity, and this formula then biases the estimates.
 //
