@@ -240,8 +240,8 @@ def check_noise_and_files():
         rms = np.sqrt(np.mean(np.abs(H) ** 2))
         ratio = np.sqrt(np.mean(np.abs(a["noisy"][:, o, 0] - H) ** 2)) / (rms / 100)
         check(abs(ratio - 1) < 0.05, "FRF noise RMS / (RMS|H| / 100) = %.3f at 40 dB" % ratio)
-    check(np.allclose(a["coherence"], np.abs(a["clean"]) ** 2 / (np.abs(a["clean"]) ** 2 + a["sigma"] ** 2)),
-          "coherence = |H|^2/(|H|^2 + sigma^2)")
+    check(np.allclose(a["coherence"], np.abs(a["noisy"]) ** 2 / (np.abs(a["noisy"]) ** 2 + a["sigma"] ** 2)),
+          "coherence = |h|^2/(|h|^2 + sigma^2) of the noisy h")
 
     cli = os.path.join(os.path.dirname(os.path.abspath(__file__)), "truthgen.py")
     with tempfile.TemporaryDirectory() as tmp:
@@ -277,18 +277,19 @@ def check_noise_and_files():
 # (name, arguments, sha256 of CSV + truth JSON, first 16 hex digits) of files written with `-o NAME.csv` in an
 # empty directory by the code as it was before --draw, --averages, --no-coherence, the sensor, base_on_feet and
 # frame3 cases (commit 65ff79a): the command lines of tests/diagnosis, make_examples.sh (b01-b04: the committed
-# example CSVs) and a few options. A mismatch on another machine may be a numpy/LAPACK difference in the last
+# example CSVs) and a few options. The FRF files' digests were recorded again on 2026-11-26, when the coherence
+# column came to be computed from the noisy h instead of the noise-free H (their values columns are unchanged). A mismatch on another machine may be a numpy/LAPACK difference in the last
 # written digit; on this one it means existing data changed.
 EXISTING_OUTPUTS = [
-    ("b01", "--example mdof2 --case nominal --kind frf --snr-db 40 --seed 1", "993ab9232e32dfb8"),
+    ("b01", "--example mdof2 --case nominal --kind frf --snr-db 40 --seed 1", "6f5cdb9af216dadc"),
     ("b02", "--example mdof2 --case nominal --kind time --snr-db 40 --seed 2", "f53a904663018163"),
-    ("b03", "--example spindle --case nominal --kind frf --snr-db 40 --seed 3", "cb8b26aed212b405"),
-    ("b04", "--example spindle --case compliant_ground --kind frf --snr-db 40 --seed 4", "990cb2b7e4e951ea"),
-    ("d11", "--example mdof2 --case nominal --kind frf --snr-db 40 --seed 11", "6e3893bff9e78411"),
-    ("d12", "--example mdof2 --case compliant_ground --kind frf --snr-db 40 --seed 12", "8bc3eb00a57ef247"),
-    ("d13", "--example mdof2 --case free_parameter --kind frf --snr-db 40 --seed 13", "d35045e5248c89d5"),
-    ("d14", "--example mdof2 --case resonator --kind frf --snr-db 40 --seed 14", "5d6835e50fca1c06"),
-    ("d15", "--example mdof2 --case outside_maxwell --kind frf --snr-db 40 --seed 15", "083fb989aaf29847"),
+    ("b03", "--example spindle --case nominal --kind frf --snr-db 40 --seed 3", "30507ee068c3c6be"),
+    ("b04", "--example spindle --case compliant_ground --kind frf --snr-db 40 --seed 4", "434ddd9d8f7faf23"),
+    ("d11", "--example mdof2 --case nominal --kind frf --snr-db 40 --seed 11", "10acc8e92e237fdd"),
+    ("d12", "--example mdof2 --case compliant_ground --kind frf --snr-db 40 --seed 12", "dd39f01aa70fbdb8"),
+    ("d13", "--example mdof2 --case free_parameter --kind frf --snr-db 40 --seed 13", "bdee4bb4e49d02d0"),
+    ("d14", "--example mdof2 --case resonator --kind frf --snr-db 40 --seed 14", "c67a85a3f206d360"),
+    ("d15", "--example mdof2 --case outside_maxwell --kind frf --snr-db 40 --seed 15", "8d304920d05a4b96"),
     ("d21", "--example mdof2 --case nominal --kind time --snr-db 40 --seed 21", "0caf744d5084f71a"),
     ("d22", "--example mdof2 --case compliant_ground --kind time --snr-db 40 --seed 22", "008b6372e559473f"),
     ("d61", "--example mdof2 --case free_parameter --kind time --snr-db 40 --seed 61", "cbea37ed94960ff3"),
@@ -310,22 +311,22 @@ EXISTING_OUTPUTS = [
      "b60de3b9035948ac"),
     ("d64", "--example spindle --case gyroscopic --kind time --snr-db 40 --seed 64 --set n_sp=300 --duration 1",
      "0d51aaf8d2f385aa"),
-    ("d31", "--example spindle --case nominal --kind frf --snr-db 40 --seed 31", "b00a7e8eb5ed1acc"),
-    ("d32", "--example spindle --case compliant_ground --kind frf --snr-db 40 --seed 32", "133ded932f18bc2e"),
-    ("d33", "--example spindle --case untie_parameter --kind frf --snr-db 40 --seed 33", "7f9703f7f74d7dbd"),
-    ("d34", "--example spindle --case added_mass --kind frf --snr-db 40 --seed 34", "d67897f981b75e64"),
-    ("d35", "--example spindle --case resonator --kind frf --snr-db 40 --seed 35", "671682a9fb26bd89"),
-    ("d36", "--example spindle --case moment_stiffness --kind frf --snr-db 40 --seed 36", "0949bdf7dac2797e"),
-    ("d37", "--example spindle --case gyroscopic --kind frf --snr-db 40 --seed 37 --set n_sp=0", "6bea7f459848ad98"),
-    ("d38", "--example spindle --case gyroscopic --kind frf --snr-db 40 --seed 38 --set n_sp=300", "0312190e480ccceb"),
-    ("d39", "--example spindle --case connection --kind frf --snr-db 40 --seed 39", "2d160961a39560b4"),
-    ("d40", "--example spindle --case outside_maxwell --kind frf --snr-db 40 --seed 40", "83271f82881ea4a9"),
-    ("d41", "--example spindle --case sensor_dynamics --kind frf --snr-db 40 --seed 41", "58eb2fb533add413"),
-    ("x01", "--example mdof2 --case added_mass --kind frf --seed 5 --snr-db inf", "36b7616b0a97287c"),
+    ("d31", "--example spindle --case nominal --kind frf --snr-db 40 --seed 31", "997a1bec31838a9c"),
+    ("d32", "--example spindle --case compliant_ground --kind frf --snr-db 40 --seed 32", "ca54c81fba3e1548"),
+    ("d33", "--example spindle --case untie_parameter --kind frf --snr-db 40 --seed 33", "6e414856a43b49d6"),
+    ("d34", "--example spindle --case added_mass --kind frf --snr-db 40 --seed 34", "5ae3da20b33d51b1"),
+    ("d35", "--example spindle --case resonator --kind frf --snr-db 40 --seed 35", "2bbc86f7492c1f87"),
+    ("d36", "--example spindle --case moment_stiffness --kind frf --snr-db 40 --seed 36", "3627f2f47a4fc3cb"),
+    ("d37", "--example spindle --case gyroscopic --kind frf --snr-db 40 --seed 37 --set n_sp=0", "6428adbce04a9391"),
+    ("d38", "--example spindle --case gyroscopic --kind frf --snr-db 40 --seed 38 --set n_sp=300", "13e1f5415c50dd27"),
+    ("d39", "--example spindle --case connection --kind frf --snr-db 40 --seed 39", "9624fa0c487e069a"),
+    ("d40", "--example spindle --case outside_maxwell --kind frf --snr-db 40 --seed 40", "6035c59db73db2c9"),
+    ("d41", "--example spindle --case sensor_dynamics --kind frf --snr-db 40 --seed 41", "59e4a30a794ac9b5"),
+    ("x01", "--example mdof2 --case added_mass --kind frf --seed 5 --snr-db inf", "7f98bff06612a6b8"),
     ("x02", "--example spindle --case outside_maxwell --kind time --seed 6 --excitation gaussian --duration 0.5 "
             "--snr-db 30", "564092e3e6d7de3c"),
     ("x03", "--example mdof2 --case nominal --kind frf --seed 7 --f-min 20 --f-max 200 --df 0.5 --set m1=1.5",
-     "55bd1f96280c0eb7"),
+     "5e9829d9950ccba0"),
 ]
 
 
@@ -627,12 +628,12 @@ def check_averages_and_options():
     f = generate.frequency_grid(50, 1200, 0.25)
     one = generate.make_frf(mats, f, 40.0, np.random.default_rng(5))
     avg = generate.make_frf(mats, f, 40.0, np.random.default_rng(5), averages=8)
-    H, coh = avg["clean"], avg["coherence"]
-    predicted = (1 - coh) / (8 * coh) * np.abs(H) ** 2       # variance of H1 from N averages at coherence coh
-    ratio = np.mean(np.abs(avg["noisy"] - H) ** 2, axis=0) / np.mean(predicted, axis=0)
-    check(np.array_equal(one["coherence"], coh) and np.all(np.abs(ratio - 1) < 0.05)
-          and np.allclose(avg["noisy"] - H, (one["noisy"] - H) / np.sqrt(8)),
-          "--averages 8: coherence unchanged, noise power / ((1 - coh)/(8 coh) |H|^2) = %s"
+    H, h, coh = avg["clean"], avg["noisy"], avg["coherence"]
+    predicted = (1 - coh) / (8 * coh) * np.abs(h) ** 2       # variance of H1 from N averages at coherence coh
+    ratio = np.mean(np.abs(h - H) ** 2, axis=0) / np.mean(predicted, axis=0)
+    check(np.allclose(predicted, avg["sigma"][None] ** 2 / 8) and np.all(np.abs(ratio - 1) < 0.05)
+          and np.allclose(h - H, (one["noisy"] - H) / np.sqrt(8)),
+          "--averages 8: (1 - coh)/(8 coh) |h|^2 = sigma^2/8 on every line, noise power / it = %s"
           % np.round(ratio.ravel(), 3).tolist())
     with tempfile.TemporaryDirectory() as tmp:
         run_cli_here(["--example", "mdof2", "--case", "sensor_delay", "--kind", "frf", "--averages", "4",

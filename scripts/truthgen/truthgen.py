@@ -54,8 +54,8 @@ def parse_args(argv):
                     help="draw the truth (parameter offsets and the effect's sizes, within the case's ranges) from "
                          "seed N instead of the case's fixed truth; the noise still comes from --seed")
     ap.add_argument("--averages", type=int, default=1, metavar="N",
-                    help="FRF: the average of N measurements: noise variance sigma^2/N, coherence unchanged "
-                         "(default 1)")
+                    help="FRF: the average of N measurements: noise variance sigma^2/N, coherence as for one "
+                         "measurement (default 1)")
     ap.add_argument("--no-coherence", action="store_true", help="FRF: write no .coh columns")
     return ap.parse_args(argv)
 
@@ -106,7 +106,7 @@ def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs)
         "seed": args.seed,
         "noise": {"snr_db": snr_db if math.isfinite(snr_db) else "inf",
                   "definition": ("FRF: complex Gaussian, E|n|^2 = sigma^2, sigma = RMS_grid |H| / 10^(snr/20) per "
-                                 "channel; coherence |H|^2/(|H|^2 + sigma^2)" if args.kind == "frf" else
+                                 "channel; coherence |h|^2/(|h|^2 + sigma^2) of the noisy h" if args.kind == "frf" else
                                  "time: white Gaussian on each output, sigma = RMS(noise-free output) / "
                                  "10^(snr/20); inputs exact"),
                   "sigma": {}},

@@ -1,5 +1,7 @@
 #include "diagnosis/engine/data_split.hpp"
 
+#include <mbgen/frf_sigma.hpp>
+
 #include <cmath>
 
 namespace mbgen::diagnosis {
@@ -37,21 +39,6 @@ TimeRecord first_samples(const TimeRecord& in, Eigen::Index n) {
 
 }  // namespace
 
-Eigen::VectorXd frf_sigma(const FrfChannel& c, const FrfWeighting& w) {
-  const Eigen::Index n = c.values.size();
-  const double rms = std::sqrt(c.values.cwiseAbs2().mean());
-  Eigen::VectorXd sigma(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    double s = rms;
-    if (c.coherence) {
-      const double g2 = std::clamp((*c.coherence)[k], 1e-12, 1.0);
-      s = std::sqrt((1.0 - g2) / (g2 * w.averages)) * std::abs(c.values[k]);
-    }
-    sigma[k] = std::max(s, w.floor * rms);
-  }
-  return sigma;
-}
-
 SplitData split_for_validation(const std::vector<DataSet>& data, double fit_fraction) {
   SplitData split;
   for (const DataSet& d : data) {
@@ -81,9 +68,9 @@ double validation_nrmse(const Model& model, const SplitData& split, const Eigen:
       const Eigen::VectorXcd& model_values = pred.channels[s][c];
       if (const FrfData* frf = std::get_if<FrfData>(&d.content)) {
         const FrfChannel& ch = frf->channels[c];
-        const Eigen::VectorXd sigma = frf_sigma(ch, weighting);
-        err += (model_values - ch.values).cwiseAbs2().cwiseQuotient(sigma.cwiseAbs2()).sum();
-        ref += ch.values.cwiseAbs2().cwiseQuotient(sigma.cwiseAbs2()).sum();
+        const Eigen::VectorXd var = frf_variance(ch, weighting);
+        err += (model_values - ch.values).cwiseAbs2().cwiseQuotient(var).sum();
+        ref += ch.values.cwiseAbs2().cwiseQuotient(var).sum();
       } else {
         const TimeRecord& rec = std::get<TimeRecord>(d.content);
         const Eigen::VectorXd& measured = rec.at(names[c]).values;

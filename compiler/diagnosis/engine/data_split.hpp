@@ -20,13 +20,9 @@ struct SplitData {
 SplitData split_for_validation(const std::vector<DataSet>& data, double fit_fraction = 0.7);
 
 // sqrt(sum of squared weighted errors / sum of squared weighted measurements) over the validation data at
-// `values`: FRF lines weighted by the measurement's standard deviation (as the fit weights them), time samples
-// per output by the output's measured RMS.
+// `values`: FRF lines weighted by the measurement's standard deviation (as the fit weights them, frf_sigma.hpp),
+// time samples per output by the output's measured RMS.
 double validation_nrmse(const Model& model, const SplitData& split, const Eigen::VectorXd& values,
                         const FrfWeighting& weighting);
-
-// The standard deviation of each measured complex FRF value (total over real and imaginary part), as fit.hpp's
-// FrfWeighting defines it.
-Eigen::VectorXd frf_sigma(const FrfChannel& channel, const FrfWeighting& weighting);
 
 }  // namespace mbgen::diagnosis

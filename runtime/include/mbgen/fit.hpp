@@ -3,7 +3,7 @@
 //   FitResult r = mbgen::fit(model, data, options);
 //
 // Frequency domain: residuals are model minus measured FRF at the measured frequencies, real and imaginary
-// parts stacked, divided by the standard deviation of the measurement (from coherence, see FrfWeighting).
+// parts stacked, divided by the standard deviation of the measurement (from coherence, frf_sigma.hpp).
 // Time domain (the thesis's "one step" method, Sec. 3.6.3): the model is simulated from rest with the
 // record's inputs (zero-order hold, or first-order hold for `# hold=none`) and its outputs compared with the
 // measured ones, each output channel divided by its measured RMS. Both use analytic Jacobians.
@@ -16,6 +16,7 @@
 
 #include "mbgen/data_set.hpp"
 #include "mbgen/frf_data.hpp"
+#include "mbgen/frf_sigma.hpp"  // FrfWeighting: the FRF residuals' standard deviation
 #include "mbgen/modal.hpp"
 #include "mbgen/model.hpp"
 #include "mbgen/time_record.hpp"
@@ -35,16 +36,6 @@ namespace mbgen {
 class FitError : public std::runtime_error {
  public:
   explicit FitError(const std::string& what) : std::runtime_error(what) {}
-};
-
-// Standard deviation of a measured FRF value H (complex), per real and imaginary part:
-//   with coherence g2:  var|H| = (1 - g2) / (g2 n_avg) |H|^2   (Bendat & Piersol, variance of the H1 estimator),
-//   without coherence:  sigma = RMS of |H| over the channel (every point of a channel weighted alike),
-// and in both cases at least `floor` times the channel's RMS |H|, so that a coherence of exactly 1 does not
-// give infinite weight. Half of the complex variance goes to each of the real and imaginary parts.
-struct FrfWeighting {
-  int averages = 1;
-  double floor = 1e-3;
 };
 
 struct FitProgress {

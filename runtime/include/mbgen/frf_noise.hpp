@@ -1,8 +1,9 @@
 // The noise level of a measured FRF, estimated from the data themselves.
 //
 // Judging a model's residual needs the measurement's standard deviation per line, on an absolute scale. Coherence
-// gives its shape but not its scale (the variance of an H1 estimate is (1 - coh^2)/(n coh^2) |H|^2, and the number
-// of averages n is rarely known), and many real FRF files have no coherence at all. The data carry their own noise:
+// gives its shape but not its scale (the variance of an H1 estimate is (1 - coh^2)/(n coh^2) |h|^2, the fit's weight,
+// frf_sigma.hpp, which also says how the two relate; the number of averages n is rarely known), and many real FRF
+// files have no coherence at all. The data carry their own noise:
 // a measured FRF is a smooth response plus noise that changes from line to line. Fourth differences
 //
 //     d_k = h_{k-2} - 4 h_{k-1} + 6 h_k - 4 h_{k+1} + h_{k+2}
@@ -22,9 +23,8 @@
 // white), with a and g by maximum likelihood. A part proportional to the response (force noise) is not modelled:
 // a model's error at a resonance also grows with the response, and a fit that took it for noise would hide exactly
 // the findings that matter (a frequency shift at every peak); tried with second differences, such a part also
-// absorbed the curvature of lightly damped peaks. With coherence, the coherence-based level is used and only the
-// number of averages (which sets its scale and, where the coherence is low, its shape) is estimated
-// the same way.
+// absorbed the curvature of lightly damped peaks. With coherence, the fit's coherence-based variance is used
+// (frf_variance) and only the number of averages, its scale, is estimated the same way.
 #pragma once
 
 #include "mbgen/frf_data.hpp"
@@ -45,7 +45,7 @@ struct FrfNoise {
 
   Eigen::VectorXd sigma;  // standard deviation of each measured complex value (total over real and imaginary part)
   Source source = Source::Scatter;
-  // Coherence: the number of averages n whose variance (1 - coh^2)/(n coh^2) |H|^2 matches the data's scatter
+  // Coherence: the number of averages n whose variance (1 - coh^2)/(n coh^2) |h|^2 matches the data's scatter
   // (at least 1), and the factor then applied to it (1, or more where the scatter exceeds one average's).
   double averages = 1;
   double coherence_scale = 1;

@@ -1,5 +1,7 @@
 #include "mbgen/frf_noise.hpp"
 
+#include "mbgen/frf_sigma.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -130,35 +132,20 @@ FrfNoise from_scatter(const Eigen::VectorXd& f_hz, const Eigen::VectorXcd& h, do
   return out;
 }
 
-// The coherence-based level. For an H1 estimate from n averages the variance is (1 - coh^2)/(n coh^2) |H|^2 with the
-// true |H|, and the measured |h|^2 holds that variance too: E|h|^2 = |H|^2 (1 + (1 - coh^2)/(n coh^2)). So
-//
-//     v_k(n) = (1 - coh^2) |h|^2 / (n coh^2 + 1 - coh^2)
-//
-// estimates the variance from the measured |h|^2 without the bias (1 - coh^2)/(n coh^2) |h|^2 has where the data
-// are near the noise; |h|^2 is averaged over five lines, since a single line's is itself noisy. The number of
-// averages n is rarely known, and it changes the level's shape, not only its scale: with n = 1 the formula is
-// (1 - coh^2) |h|^2, which at 50 averages and a coherence of 0.13 (a receptance high above its modes) reads a
-// variance 6.5 times too small, and the correct spindle model showed "findings" of 4-6 times the noise there.
-// n is estimated from the data's scatter on the lines where the response stands out of the noise (coherence 0.8
-// and up), where the coherence itself is well determined: the n at which the scatter's maximum-likelihood scale is
-// one. Where the scatter exceeds even one average's level (a coherence too optimistic), n stays 1 and the level is
-// scaled up to the scatter.
-FrfNoise from_coherence(const Eigen::VectorXcd& h, const Eigen::VectorXd& coherence, double floor) {
-  const Eigen::Index n = h.size();
-  const double rms = std::sqrt(h.cwiseAbs2().mean());
-  Eigen::VectorXd g2(n), power(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    g2[k] = std::clamp(coherence[k], 1e-12, 1.0);
-    const Eigen::Index lo = std::max<Eigen::Index>(0, k - 2), hi = std::min<Eigen::Index>(n - 1, k + 2);
-    power[k] = h.segment(lo, hi - lo + 1).cwiseAbs2().mean();
-  }
-  const auto variance = [&](double averages) {
-    Eigen::VectorXd v(n);
-    for (Eigen::Index k = 0; k < n; ++k)
-      v[k] = std::max((1.0 - g2[k]) * power[k] / (averages * g2[k] + 1.0 - g2[k]), floor * floor * rms * rms);
-    return v;
-  };
+// The coherence-based level: the variance of the H1 estimate, (1 - coh^2)/(n coh^2) |h|^2 with the measured |h|, the
+// fit's own formula (frf_variance, frf_sigma.hpp, which says why the measured |h|), with the number of averages n
+// estimated from the data: it is rarely known, and it sets the level's scale. n is estimated from the data's scatter
+// on the lines where the response stands out of the noise (coherence 0.8 and up), where the coherence itself is well
+// determined: the n at which the scatter's maximum-likelihood scale is one. Where the scatter exceeds even one
+// average's level (a coherence too optimistic), n stays 1 and the level is scaled up to the scatter.
+// (Until 2026-11-26 the test data's coherence came from the noise-free response, not the noisy h; this level then
+// averaged |h|^2 over five lines and corrected its bias, (1 - coh^2)|h|^2/(n coh^2 + 1 - coh^2). With an
+// analyser's coherence, (1 - coh^2)/coh^2 |h|^2 is the residual power itself, and that correction made the level
+// too small by up to 2 where the coherence is low.)
+FrfNoise from_coherence(const FrfChannel& channel, double floor) {
+  const Eigen::VectorXcd& h = channel.values;
+  const Eigen::VectorXd& coherence = *channel.coherence;
+  const auto variance = [&](double averages) { return frf_variance(channel, averages, floor); };
   const Stencil s = differences(h);
   const Eigen::Index m = s.e.size();
   std::vector<char> usable(static_cast<std::size_t>(m), 0);
@@ -189,7 +176,7 @@ FrfNoise from_coherence(const Eigen::VectorXcd& h, const Eigen::VectorXd& cohere
     }
     return scale;
   };
-  // The scale falls as n rises (the level shrinks like 1/n); find where it is one, on a logarithmic bisection.
+  // The scale rises with n (the level shrinks like 1/n); find where it is one, on a logarithmic bisection.
   double averages = 1;
   if (ml_scale(variance(1)) < 1) {
     double lo = 1, hi = 2;
@@ -242,7 +229,7 @@ std::string FrfNoise::description() const {
 }
 
 FrfNoise frf_noise(const Eigen::VectorXd& f_hz, const FrfChannel& channel) {
-  constexpr double floor = 1e-3;  // no line weighs more than a thousandth of the channel's RMS allows
+  const double floor = FrfWeighting{}.floor;  // the fit's: no line weighs more than its floor allows
   const Eigen::VectorXcd& h = channel.values;
   const Eigen::Index n = h.size();
   if (n < FrfNoise::kMinLines) {
@@ -252,7 +239,7 @@ FrfNoise frf_noise(const Eigen::VectorXd& f_hz, const FrfChannel& channel) {
     out.sigma = Eigen::VectorXd::Constant(n, rms > 0 ? rms : 1.0);
     return out;
   }
-  if (channel.coherence) return from_coherence(h, *channel.coherence, floor);
+  if (channel.coherence) return from_coherence(channel, floor);
   return from_scatter(f_hz, h, floor);
 }
 

@@ -104,8 +104,9 @@ TEST_CASE("frf_noise: lightly damped peaks a few lines wide do not inflate the l
   }
 }
 
-// An FRF averaged n times with the coherence of one average (the ordinary coherence does not fall with averaging),
-// noise of relative level `additive_rel`.
+// An FRF h averaged n times, noise of relative level `additive_rel`, with the coherence an analyser writes:
+// |h|^2/(|h|^2 + s^2), s^2 the noise power of one average (the ordinary coherence does not fall with averaging; see
+// frf_sigma.hpp for why it is the noisy h).
 struct Averaged {
   Synthetic one;
   mbgen::FrfChannel channel;
@@ -116,8 +117,10 @@ Averaged averaged(unsigned seed, double additive_rel, double n, int lines = 1200
   Averaged a{make(seed, lines, 600.0 / lines, 0.02, additive_rel, 0.0, 0.0), {}, {}};
   a.channel = channel(a.one.clean + (a.one.noisy - a.one.clean) / std::sqrt(n));
   a.channel.coherence = Eigen::VectorXd(a.one.clean.size());
-  for (Eigen::Index k = 0; k < a.one.clean.size(); ++k)
-    (*a.channel.coherence)[k] = std::norm(a.one.clean[k]) / (std::norm(a.one.clean[k]) + std::norm(a.one.sigma[k]));
+  for (Eigen::Index k = 0; k < a.one.clean.size(); ++k) {
+    const double h2 = std::norm(a.channel.values[k]);
+    (*a.channel.coherence)[k] = h2 / (h2 + std::norm(a.one.sigma[k]));
+  }
   a.sigma = a.one.sigma / std::sqrt(n);
   return a;
 }
@@ -137,8 +140,8 @@ TEST_CASE("frf_noise: the number of averages behind a coherence-based level is f
 TEST_CASE("frf_noise: where the coherence is low, the level follows the averaged noise, not one average's shape",
           "[frf_noise]") {
   // Noise at 30 % of the RMS response: the coherence falls to ~0.1 between and above the modes. Read with one
-  // average's shape, (1 - coh^2) |h|^2 scaled to the lines of high coherence, the level there came out ~3 times too
-  // small at 50 averages.
+  // average's shape, (1 - coh^2) |h|^2 scaled to the lines of high coherence, the level there once came out ~3 times
+  // too small at 50 averages.
   for (unsigned seed = 51; seed <= 54; ++seed) {
     for (double n : {1.0, 10.0, 50.0}) {
       const Averaged a = averaged(seed, 0.3, n, 4800);
@@ -151,7 +154,7 @@ TEST_CASE("frf_noise: where the coherence is low, the level follows the averaged
       Eigen::VectorXd ratio = noise.sigma.cwiseQuotient(a.sigma);
       std::sort(ratio.data(), ratio.data() + ratio.size());
       CHECK(ratio[ratio.size() / 2] == Approx(1).epsilon(0.1));  // the median line
-      CHECK(ratio[ratio.size() / 20] > 0.6);                       // 5 % of lines lower (five-line power averages)
+      CHECK(ratio[ratio.size() / 20] > 0.6);                       // 5 % of lines lower
       CHECK(ratio[ratio.size() - 1 - ratio.size() / 20] < 1.5);    // 5 % higher
     }
   }

@@ -3,6 +3,7 @@
 #include "excited_block.hpp"
 
 #include "mbgen/frf.hpp"
+#include "mbgen/frf_sigma.hpp"
 #include "mbgen/simulate.hpp"
 
 #include <algorithm>
@@ -51,17 +52,7 @@ OutputErrorProblem::OutputErrorProblem(const Model& model, const std::vector<Dat
         p.names.push_back(c.output + "/" + c.input);
         p.measured.push_back(c.values);
         const Eigen::VectorXd mag = c.values.cwiseAbs();
-        const double level = rms(mag) > 0 ? rms(mag) : 1.0;
-        const double floor2 = std::pow(weighting.floor * level, 2);
-        Eigen::VectorXd sigma(c.values.size());
-        for (Eigen::Index k = 0; k < sigma.size(); ++k) {
-          double var = level * level;
-          if (c.coherence) {
-            const double g2 = std::min(std::max((*c.coherence)[k], 1e-12), 1.0);
-            var = (1 - g2) / (g2 * std::max(weighting.averages, 1)) * mag[k] * mag[k];
-          }
-          sigma[k] = std::sqrt(std::max(var, floor2) / 2);
-        }
+        const Eigen::VectorXd sigma = (frf_variance(c, weighting) / 2).cwiseSqrt();  // per real component
         p.sigma.push_back(sigma);
         Eigen::VectorXcd inverse(c.values.size());
         Eigen::VectorXd log_weight(c.values.size());

@@ -45,6 +45,7 @@ std::string monitor_result_json(const MonitorResult& r) {
       nlohmann::json p;
       p["value"] = number(e.value);
       p["std"] = e.identifiable ? number(e.std) : nlohmann::json(nullptr);
+      if (!e.at_bound.empty()) p["at_bound"] = e.at_bound;  // the value is the bound; no std (as in mbgen-fit/1)
       if (const auto z = s.shift.find(e.name); z != s.shift.end()) {
         p["shift"] = number(z->second);
         p["reference"] = number(s.reference.at(e.name));

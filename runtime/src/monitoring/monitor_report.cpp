@@ -130,6 +130,18 @@ void write_monitor_report(const std::string& dir, const MonitorResult& r) {
                          report::Inline() << s.fit.start_costs.size()});
   }
   doc.table(std::move(sets));
+  // A parameter the fit of a set pressed against a bound has no estimate there (its value is the bound, without a
+  // std): it is left out of that set's trend and of the change test, and said so here.
+  std::vector<report::Inline> at_bound;
+  for (std::size_t i = 0; i < r.series.size(); ++i)
+    for (const ParameterEstimate& e : r.series[i].fit.parameters)
+      if (!e.at_bound.empty())
+        at_bound.push_back(report::Inline("data set ") << i << ": " << report::code(e.name) << " at its " << e.at_bound
+                                                       << " bound (" << report_number(e.value) << ")");
+  if (!at_bound.empty()) {
+    doc.paragraph("Parameters at a bound (value the bound, no std; not in the trends or the change test there):");
+    doc.list(std::move(at_bound));
+  }
   doc.heading(2, "Trends");
   doc.paragraph("Each estimate with its 2-std bar; the reference level the test compares with (the baseline's "
                 "mean, re-learned after each change) with a band of 2 sigma of the scatter the baseline showed; dashed "

@@ -3,10 +3,14 @@
 Noise definitions (docs/truthgen.md):
 - FRF: per channel OUT/IN, sigma = RMS over the grid of |H| divided by 10^(SNR/20); the noise is complex
   Gaussian with E|n|^2 = sigma^2 (real and imaginary parts each of variance sigma^2/2), independent per
-  frequency and channel. Coherence column: |H|^2/(|H|^2 + sigma^2) with the noise-free H.
-  An FRF averaged over N measurements (--averages N) has noise of variance sigma^2/N, while the coherence
-  column stays |H|^2/(|H|^2 + sigma^2): averaging does not improve the coherence, it shrinks the estimate's
-  variance (1 - coh)/(N coh) |H|^2 = sigma^2/N.
+  frequency and channel. Coherence column: |h|^2/(|h|^2 + sigma^2) with the noisy h, as an analyser's: its
+  coherence of an H1 estimate h is |h|^2/(|h|^2 + s^2), s^2 the output power the input does not explain (per
+  unit input power) of the same averages, so (1 - coh)/coh |h|^2 = s^2, here sigma^2 exactly. (From the
+  noise-free H instead, as until 2026-11-26, the fit's weights (1 - coh)/coh |h|^2 = sigma^2 |h|^2/|H|^2
+  followed the noise and biased its estimates: bench/README.md.)
+  An FRF averaged over N measurements (--averages N) has noise of variance sigma^2/N, and the coherence column
+  is |h|^2/(|h|^2 + sigma^2) with that average h and the sigma of one measurement: averaging does not improve
+  the coherence, it shrinks the estimate's variance (1 - coh)/(N coh) |h|^2 = sigma^2/N.
 - Time: per output, sigma = RMS of the noise-free output record divided by 10^(SNR/20), white Gaussian,
   independent per sample and channel. Inputs are exact (a measured force taken as clean).
 """
@@ -44,7 +48,7 @@ def make_frf(mats, f_hz, snr_db, rng, averages=1):
                 n = rng.standard_normal(F) + 1j * rng.standard_normal(F)
                 scale = sigma[o, i] if averages == 1 else sigma[o, i] / np.sqrt(averages)
                 noisy[:, o, i] += scale / np.sqrt(2) * n
-                coh[:, o, i] = np.abs(H[:, o, i]) ** 2 / (np.abs(H[:, o, i]) ** 2 + sigma[o, i] ** 2)
+                coh[:, o, i] = np.abs(noisy[:, o, i]) ** 2 / (np.abs(noisy[:, o, i]) ** 2 + sigma[o, i] ** 2)
     return {"f_hz": np.asarray(f_hz, float), "clean": H, "noisy": noisy, "coherence": coh, "sigma": sigma,
             "averages": averages}
 
