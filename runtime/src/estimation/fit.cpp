@@ -11,6 +11,7 @@
 #include "levenberg_marquardt.hpp"
 #include "multistart.hpp"
 #include "output_error.hpp"
+#include "row_block_qr.hpp"
 #include "mbgen/spectral_companion.hpp"
 
 #include "mbgen/identifiability.hpp"
@@ -208,12 +209,17 @@ std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem
   search_lm.cost_tolerance = std::max(ctx.lm.cost_tolerance, ctx.options.search_cost_tolerance);
   const ResidualFunction weighted = search.estimator().function(free, ResidualKind::Weighted);
   const ResidualFunction log_ratio = search.estimator().function(free, ResidualKind::LogRatio);
-  return estimation::run_starts(starts, ctx.options.threads, [&](int s) {
-    Eigen::VectorXd theta = start_points[static_cast<std::size_t>(s)];
-    if (search.log_ratio_first())
-      theta = estimation::levenberg_marquardt(log_ratio, theta, search_lm, ctx.progress(s, starts, "search")).x;
-    return estimation::levenberg_marquardt(weighted, theta, ctx.lm, ctx.progress(s, starts, "refine"));
-  });
+  estimation::AgreementRule rule;
+  rule.agree = ctx.options.agree;
+  return estimation::run_starts_until_agreed(
+      starts, ctx.options.threads, rule, [&](int s, const std::function<bool()>& abandoned) {
+        LmOptions search_here = search_lm, refine_here = ctx.lm;
+        search_here.abandoned = refine_here.abandoned = abandoned;
+        Eigen::VectorXd theta = start_points[static_cast<std::size_t>(s)];
+        if (search.log_ratio_first())
+          theta = estimation::levenberg_marquardt(log_ratio, theta, search_here, ctx.progress(s, starts, "search")).x;
+        return estimation::levenberg_marquardt(weighted, theta, refine_here, ctx.progress(s, starts, "refine"));
+      });
 }
 
 // After a search on the spectral companion: its best start refined on the records, and the prior too, so that an H1
@@ -299,7 +305,14 @@ void goodness_of_fit(const OutputErrorProblem& problem, const Eigen::VectorXd& r
 // unscaled, by a pseudo-inverse that ignores singular values below 1e-14 of the largest.
 Eigen::MatrixXd parameter_covariance(const Eigen::MatrixXd& J, const Eigen::VectorXd& column_scale,
                                      double residual_variance) {
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
+  // A tall J has the singular values and right singular vectors of its triangular factor (row_block_qr.hpp):
+  // the SVD then works on k x k instead of tens of thousands of rows.
+  Eigen::MatrixXd R;
+  if (J.rows() > 2 * J.cols()) {
+    Eigen::VectorXd unused;
+    estimation::row_block_qr(J, Eigen::VectorXd::Zero(J.rows()), R, unused);
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(R.size() ? R : J, Eigen::ComputeThinV);
   const Eigen::VectorXd s = svd.singularValues();
   Eigen::VectorXd inv2 = Eigen::VectorXd::Zero(s.size());
   for (Eigen::Index i = 0; i < s.size(); ++i)

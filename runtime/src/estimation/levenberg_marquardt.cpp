@@ -1,5 +1,7 @@
 #include "levenberg_marquardt.hpp"
 
+#include "row_block_qr.hpp"
+
 #include <Eigen/QR>
 
 #include <cmath>
@@ -29,9 +31,17 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
   Eigen::VectorXd D = Eigen::VectorXd::Zero(k);
   Eigen::VectorXd r_new;
   Eigen::MatrixXd J_new;
+  Eigen::MatrixXd R;
+  Eigen::VectorXd qtr;
   for (int it = 0; it < options.max_iterations; ++it) {
-    const Eigen::VectorXd gradient = J.transpose() * r;
-    const Eigen::VectorXd col = J.colwise().norm().transpose();
+    if (options.abandoned && options.abandoned()) {
+      res.stop_reason = "abandoned";
+      return res;
+    }
+    // J = Q R: the gradient J^T r = R^T Q^T r and J's column norms are R's, without another pass over J.
+    row_block_qr(J, r, R, qtr);
+    const Eigen::VectorXd gradient = R.transpose() * qtr;
+    const Eigen::VectorXd col = R.colwise().norm().transpose();
     D = D.cwiseMax(col);
     const double dmax = D.maxCoeff();
     const Eigen::VectorXd Ds = D.cwiseMax(1e-12 * (dmax > 0 ? dmax : 1.0));
@@ -41,19 +51,13 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
       res.stop_reason = "gradient below tolerance";
       break;
     }
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(J);
-    const Eigen::Index m = J.rows();
-    const Eigen::Index kk = std::min(m, k);
-    Eigen::MatrixXd R = Eigen::MatrixXd::Zero(kk, k);
-    R = qr.matrixQR().topRows(kk).triangularView<Eigen::Upper>();
-    const Eigen::VectorXd qtr = (qr.householderQ().transpose() * r).head(kk);
     bool accepted = false;
     while (lambda < 1e16) {
-      Eigen::MatrixXd A(kk + k, k);
-      A.topRows(kk) = R;
+      Eigen::MatrixXd A(k + k, k);
+      A.topRows(k) = R;
       A.bottomRows(k) = (std::sqrt(lambda) * Ds).asDiagonal();
-      Eigen::VectorXd b = Eigen::VectorXd::Zero(kk + k);
-      b.head(kk) = -qtr;
+      Eigen::VectorXd b = Eigen::VectorXd::Zero(k + k);
+      b.head(k) = -qtr;
       const Eigen::VectorXd dx = A.householderQr().solve(b);
       const Eigen::VectorXd x_new = res.x + dx;
       // The trial needs only r; the Jacobian (for a time record, a simulation of every parameter's sensitivity)
