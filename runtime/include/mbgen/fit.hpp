@@ -72,8 +72,11 @@ struct FitOptions {
   double spread = 3.0;
   unsigned long long seed = 1;
   // The search ends early once `agree` of its starts, counted in index order, have ended within a relative 1e-6 of
-  // the lowest cost among them: the best optimum, found that often, is taken as the global one (a frame3 fit
-  // reached its optimum from 13 of 16 starts). Which starts run depends only on their results, not on timing.
+  // the lowest cost among them, and that cost is within 10 % of what the measurement noise alone would leave
+  // (estimated from the data, frf_noise.hpp; FRF data and records searched on their H1 only): the best optimum,
+  // found that often and leaving only noise, is taken as the global one (a frame3 fit reached its optimum from 13
+  // of 16 starts). A model that misses something never stops early: its local optima are many, and several
+  // starts may agree on one that is not the best. Which starts run depends only on their results, not on timing.
   // 0: every start runs.
   int agree = 3;
   int threads = 2;

@@ -26,7 +26,7 @@ bool starts_agree(const std::vector<LmResult>& results, std::size_t n, const Agr
   if (rule.agree <= 0 || n < static_cast<std::size_t>(rule.agree)) return false;
   double lowest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) lowest = std::min(lowest, results[i].cost);
-  if (!std::isfinite(lowest)) return false;
+  if (!std::isfinite(lowest) || !(lowest <= rule.ceiling)) return false;
   int agreeing = 0;
   for (std::size_t i = 0; i < n; ++i)
     if (results[i].cost <= lowest + rule.tolerance * std::abs(lowest)) ++agreeing;

@@ -39,6 +39,11 @@ class OutputErrorProblem {
   bool has_time() const;
   Prediction predict(const Eigen::VectorXd& values) const;
 
+  // What the cost would be if only the measurement noise remained: sum over the FRF lines of (the noise's standard
+  // deviation, frf_noise.hpp, estimated from `data`, the data sets this problem was made of) / (the residual's
+  // weighting sigma), squared. NaN with time records (output_error_noise.cpp).
+  double expected_noise_cost(const std::vector<DataSet>& data) const;
+
  private:
   struct Prepared {
     bool frf = false;
