@@ -12,8 +12,8 @@ void row_block_qr(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, Eigen::Mat
   Eigen::MatrixXd B(std::min(block, std::max<Eigen::Index>(m, 1)), K);
   for (Eigen::Index first = 0; first < m; first += block) {
     const Eigen::Index n = std::min(block, m - first);
-    B.topRows(n).leftCols(k) = J.middleRows(first, n);
-    B.col(k).head(n) = r.segment(first, n);
+    for (Eigen::Index c = 0; c < k; ++c) std::copy_n(J.col(c).data() + first, n, B.col(c).data());
+    std::copy_n(r.data() + first, n, B.col(k).data());
     // Column j: the reflection H = I - tau v v^T taking [T(j, j); B(:, j)] to [beta; 0], with v = [1; B(:, j) / v0],
     // applied to the columns after j (Eigen's makeHouseholder convention: beta has the opposite sign of T(j, j)).
     for (Eigen::Index j = 0; j < K; ++j) {
