@@ -62,6 +62,14 @@ struct FitOptions {
   std::map<std::string, double> also_start_at;
   double spread = 3.0;
   unsigned long long seed = 1;
+  // The search ends early once `agree` of its starts, counted in index order, have ended within a relative 1e-6 of
+  // the lowest cost among them, and that cost is within 10 % of what the measurement noise alone would leave
+  // (estimated from the data, frf_noise.hpp; FRF data and records searched on their H1 only): the best optimum,
+  // found that often and leaving only noise, is taken as the global one (a frame3 fit reached its optimum from 13
+  // of 16 starts). A model that misses something never stops early: its local optima are many, and several
+  // starts may agree on one that is not the best. Which starts run depends only on their results, not on timing.
+  // 0: every start runs.
+  int agree = 3;
   int threads = 2;
   // FRF data: the starts are first fitted on log-ratio residuals log(H_model / H_measured), whose cost stays
   // informative when a lightly damped model peak misses the measured one; the best is then refined on the
@@ -137,7 +145,8 @@ struct FitResult {
 
   int iterations = 0;                // LM iterations of the final refinement
   std::vector<double> cost_history;  // cost per accepted iteration: best start's search, then refinement
-  std::vector<double> start_costs;   // final cost of every start (search stage; for time records, on their H1)
+  std::vector<double> start_costs;   // final cost of every start run (FitOptions::agree may end the search early;
+                                     // search stage; for time records, on their H1)
   int best_start = 0;
   bool converged = false;
   std::string stop_reason;

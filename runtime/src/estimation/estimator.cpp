@@ -18,15 +18,16 @@ Eigen::VectorXd Estimator::internal(const std::vector<int>& free, const Eigen::V
 ResidualFunction Estimator::function(const std::vector<int>& free, ResidualKind kind) const {
   return [this, free, kind](const Eigen::VectorXd& theta, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
     const Eigen::VectorXd full = full_values(free, theta);
+    // The chain rule to theta, applied as the Jacobian is written.
+    Eigen::VectorXd derivative(static_cast<Eigen::Index>(free.size()));
+    for (std::size_t j = 0; j < free.size(); ++j)
+      derivative[static_cast<Eigen::Index>(j)] =
+          transforms_[static_cast<std::size_t>(free[j])].derivative(theta[static_cast<Eigen::Index>(j)]);
     try {
-      problem_.evaluate(full, free, kind, r, J);
+      problem_.evaluate(full, free, kind, r, J, &derivative);
     } catch (const std::exception&) {
       return false;  // e.g. a singular mass matrix far from the prior: a failed trial step
     }
-    if (J)
-      for (std::size_t j = 0; j < free.size(); ++j)
-        J->col(static_cast<Eigen::Index>(j)) *=
-            transforms_[static_cast<std::size_t>(free[j])].derivative(theta[static_cast<Eigen::Index>(j)]);
     return true;
   };
 }

@@ -1,6 +1,7 @@
 #include "mbgen/identifiability.hpp"
 
-#include <Eigen/QR>
+#include "row_block_qr.hpp"
+
 #include <Eigen/SVD>
 
 #include <algorithm>
@@ -34,7 +35,8 @@ IdentifiabilityAnalysis analyse_identifiability(const Eigen::MatrixXd& J, const 
   // A tall Jacobian (many residuals: an FRF fit has thousands of rows per parameter) is first reduced to the
   // triangular factor of its kept columns, J_kept = Q R: any subset of R's columns has the singular values and
   // right singular vectors of the same subset of J's, so every SVD below works on k x k instead of rows x k, and
-  // the one QR is blocked (the SVD's own column-pivoting QR is not). Columns index J's through `position`.
+  // the one QR works on blocks of rows in cache (row_block_qr.hpp; the SVD's own column-pivoting QR does not).
+  // Columns index J's through `position`.
   const Eigen::Index rows = J.rows();
   Eigen::MatrixXd reduced;
   std::vector<Eigen::Index> position(static_cast<std::size_t>(k), -1);
@@ -43,8 +45,8 @@ IdentifiabilityAnalysis analyse_identifiability(const Eigen::MatrixXd& J, const 
   if (reduce) {
     Eigen::MatrixXd Jk(rows, static_cast<Eigen::Index>(kept.size()));
     for (std::size_t c = 0; c < kept.size(); ++c) Jk.col(static_cast<Eigen::Index>(c)) = J.col(kept[c]);
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Jk);
-    reduced = qr.matrixQR().topRows(Jk.cols()).triangularView<Eigen::Upper>();
+    Eigen::VectorXd unused;
+    estimation::row_block_qr(Jk, Eigen::VectorXd::Zero(rows), reduced, unused);
   }
   auto unit_columns = [&](const std::vector<int>& cols) {
     Eigen::MatrixXd U(reduce ? reduced.rows() : rows, static_cast<Eigen::Index>(cols.size()));

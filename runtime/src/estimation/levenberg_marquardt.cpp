@@ -1,19 +1,37 @@
 #include "levenberg_marquardt.hpp"
 
+#include "row_block_qr.hpp"
+
 #include <Eigen/QR>
 
 #include <cmath>
+#include <limits>
 
 namespace mbgen::estimation {
+
+namespace {
+
+// J = Q R with Q^T r (row_block_qr.hpp), evaluated at x. False where the model cannot be evaluated there or r or J is
+// not finite (a non-finite entry of J makes R non-finite: checking R costs k^2 instead of a pass over J).
+bool evaluate_and_factor(const ResidualFunction& f, const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd& J,
+                         Eigen::MatrixXd& R, Eigen::VectorXd& qtr) {
+  if (!f(x, r, &J) || !r.allFinite()) return false;
+  row_block_qr(J, r, R, qtr);
+  return R.allFinite() && qtr.allFinite();
+}
+
+}  // namespace
 
 LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x0, const LmOptions& options,
                              const std::function<void(int, double)>& on_iteration) {
   LmResult res;
   res.x = x0;
   const Eigen::Index k = x0.size();
-  Eigen::VectorXd r;
-  Eigen::MatrixXd J;
-  if (!f(res.x, r, &J) || !r.allFinite() || !J.allFinite()) {
+  Eigen::VectorXd r, r_new;
+  Eigen::MatrixXd J;  // the Jacobian's buffer: only its factor R is kept
+  Eigen::MatrixXd R, R_new;
+  Eigen::VectorXd qtr, qtr_new;
+  if (!evaluate_and_factor(f, res.x, r, J, R, qtr)) {
     res.cost = std::numeric_limits<double>::infinity();
     res.stop_reason = "the model cannot be evaluated at the starting point";
     return res;
@@ -27,11 +45,14 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
   }
   double lambda = 1e-3;
   Eigen::VectorXd D = Eigen::VectorXd::Zero(k);
-  Eigen::VectorXd r_new;
-  Eigen::MatrixXd J_new;
   for (int it = 0; it < options.max_iterations; ++it) {
-    const Eigen::VectorXd gradient = J.transpose() * r;
-    const Eigen::VectorXd col = J.colwise().norm().transpose();
+    if (options.abandoned && options.abandoned()) {
+      res.stop_reason = "abandoned";
+      return res;
+    }
+    // J = Q R: the gradient J^T r = R^T Q^T r and J's column norms are R's.
+    const Eigen::VectorXd gradient = R.transpose() * qtr;
+    const Eigen::VectorXd col = R.colwise().norm().transpose();
     D = D.cwiseMax(col);
     const double dmax = D.maxCoeff();
     const Eigen::VectorXd Ds = D.cwiseMax(1e-12 * (dmax > 0 ? dmax : 1.0));
@@ -41,32 +62,27 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
       res.stop_reason = "gradient below tolerance";
       break;
     }
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(J);
-    const Eigen::Index m = J.rows();
-    const Eigen::Index kk = std::min(m, k);
-    Eigen::MatrixXd R = Eigen::MatrixXd::Zero(kk, k);
-    R = qr.matrixQR().topRows(kk).triangularView<Eigen::Upper>();
-    const Eigen::VectorXd qtr = (qr.householderQ().transpose() * r).head(kk);
     bool accepted = false;
     while (lambda < 1e16) {
-      Eigen::MatrixXd A(kk + k, k);
-      A.topRows(kk) = R;
+      Eigen::MatrixXd A(k + k, k);
+      A.topRows(k) = R;
       A.bottomRows(k) = (std::sqrt(lambda) * Ds).asDiagonal();
-      Eigen::VectorXd b = Eigen::VectorXd::Zero(kk + k);
-      b.head(kk) = -qtr;
+      Eigen::VectorXd b = Eigen::VectorXd::Zero(k + k);
+      b.head(k) = -qtr;
       const Eigen::VectorXd dx = A.householderQr().solve(b);
       const Eigen::VectorXd x_new = res.x + dx;
       // The trial needs only r; the Jacobian (for a time record, a simulation of every parameter's sensitivity)
       // is evaluated once the step is accepted, so a rejected trial costs one plain evaluation.
       const bool ok = dx.allFinite() && f(x_new, r_new, nullptr) && r_new.allFinite() && r_new.squaredNorm() < res.cost &&
-                      f(x_new, r_new, &J_new) && r_new.allFinite() && J_new.allFinite();
+                      evaluate_and_factor(f, x_new, r_new, J, R_new, qtr_new);
       const double cost_new = ok ? r_new.squaredNorm() : std::numeric_limits<double>::infinity();
       if (ok && cost_new < res.cost) {
         const double decrease = (res.cost - cost_new) / res.cost;
         const double step = (dx.array() * Ds.array()).matrix().norm() / Ds.norm();
         res.x = x_new;
         r.swap(r_new);
-        J.swap(J_new);
+        R.swap(R_new);
+        qtr.swap(qtr_new);
         res.cost = cost_new;
         res.history.push_back(cost_new);
         ++res.iterations;

@@ -1,6 +1,7 @@
 // Levenberg-Marquardt for small dense least-squares problems. Internal header.
 //
-// Minimises ||r(x)||^2. Each iteration factors J = Q R once; a trial step for damping lambda solves
+// Minimises ||r(x)||^2. Each iteration factors J = Q R once (row_block_qr.hpp: R and Q^T r, never Q; the gradient
+// and J's column norms follow from them); a trial step for damping lambda solves
 // [R; sqrt(lambda) D] dx = [-Q^T r; 0] (D = Marquardt's column scaling, the column norms of J, kept monotone),
 // and a trial step evaluates r alone: the Jacobian is evaluated only at an accepted point, so a rejected trial
 // costs one plain evaluation (for a time record, one simulation instead of one per parameter). lambda shrinks
@@ -25,6 +26,9 @@ struct LmOptions {
   double cost_tolerance = 1e-10;
   double step_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
+  // Checked before every iteration: true stops the fit where it stands ("abandoned"; a multi-start's later start
+  // whose result is no longer wanted, multistart.hpp).
+  std::function<bool()> abandoned;
 };
 
 struct LmResult {

@@ -3,6 +3,9 @@
 #include "mbgen/parallel.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
 
 namespace mbgen::estimation {
 
@@ -16,6 +19,41 @@ double StartSampler::symmetric_unit() {
 std::vector<LmResult> run_starts(int count, int threads, const std::function<LmResult(int)>& local) {
   std::vector<LmResult> results(static_cast<std::size_t>(std::max(count, 0)));
   parallel_for(results.size(), threads, [&](std::size_t i) { results[i] = local(static_cast<int>(i)); });
+  return results;
+}
+
+bool starts_agree(const std::vector<LmResult>& results, std::size_t n, const AgreementRule& rule) {
+  if (rule.agree <= 0 || n < static_cast<std::size_t>(rule.agree)) return false;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) lowest = std::min(lowest, results[i].cost);
+  if (!std::isfinite(lowest) || !(lowest <= rule.ceiling)) return false;
+  int agreeing = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (results[i].cost <= lowest + rule.tolerance * std::abs(lowest)) ++agreeing;
+  return agreeing >= rule.agree;
+}
+
+std::vector<LmResult> run_starts_until_agreed(int count, int threads, const AgreementRule& rule,
+                                              const AbandonableStart& local) {
+  const std::size_t n = static_cast<std::size_t>(std::max(count, 0));
+  std::vector<LmResult> results(n);
+  // The last start that counts; lowered (once, in index order) when the starts up to it agree.
+  std::atomic<std::size_t> last{n == 0 ? 0 : n - 1};
+  ordered_parallel(
+      n, threads,
+      [&](std::size_t i) {
+        if (i > last.load()) return;
+        try {
+          results[i] = local(static_cast<int>(i), [&last, i] { return i > last.load(); });
+        } catch (...) {
+          if (i > last.load()) return;  // abandoned anyway
+          throw;
+        }
+      },
+      [&](std::size_t i) {
+        if (i <= last.load() && i + 1 < n && starts_agree(results, i + 1, rule)) last.store(i);
+      });
+  results.resize(n == 0 ? 0 : last.load() + 1);
   return results;
 }
 

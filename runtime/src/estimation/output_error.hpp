@@ -1,7 +1,8 @@
 // The output-error least-squares problem over several data sets. Internal header.
 //
-// Residual layout: data sets in order; an FRF data set contributes, per channel in file order, the real parts
-// at all frequencies and then the imaginary parts, each divided by its standard deviation (FrfWeighting);
+// Residual layout: data sets in order; an FRF data set contributes, per frequency, per channel in file order, the
+// real and the imaginary part, each divided by its standard deviation (FrfWeighting; one line's rows adjacent, so
+// that the Jacobian is written and read a line at a time);
 // a time record contributes, per model output present in the record (model output order), all samples
 // divided by that output's measured RMS.
 #pragma once
@@ -30,14 +31,21 @@ class OutputErrorProblem {
   // Residuals at the full parameter vector `values` (per-data-set `# set` values are applied on top), and
   // the Jacobian with respect to the model parameters `free_params` (physical units) when J is non-null.
   // Throws FitError (or DynamicsError) when the model cannot be evaluated.
+  // `column_scale` (one per free parameter), when given, multiplies the Jacobian's columns (an optimiser's chain
+  // rule to its internal coordinates, applied while the Jacobian is written instead of in another pass over it).
   void evaluate(const Eigen::VectorXd& values, const std::vector<int>& free_params, ResidualKind kind,
-                Eigen::VectorXd& r, Eigen::MatrixXd* J) const;
+                Eigen::VectorXd& r, Eigen::MatrixXd* J, const Eigen::VectorXd* column_scale = nullptr) const;
 
   Eigen::Index residual_count() const { return count_; }
   double measured_sum_squares() const { return measured_ss_; }
   bool has_frf() const;
   bool has_time() const;
   Prediction predict(const Eigen::VectorXd& values) const;
+
+  // What the cost would be if only the measurement noise remained: sum over the FRF lines of (the noise's standard
+  // deviation, frf_noise.hpp, estimated from `data`, the data sets this problem was made of) / (the residual's
+  // weighting sigma), squared. NaN with time records (output_error_noise.cpp).
+  double expected_noise_cost(const std::vector<DataSet>& data) const;
 
  private:
   struct Prepared {
