@@ -446,7 +446,8 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
     suspect += val.suspect_poles;
   }
   nlohmann::json details;
-  details["summary"] = "step two by the " + route + " route: " + route_reason;
+  details["summary"] = "step two by the " + route + " route: " + route_reason +
+                       (whitened ? "; residuals whitened by step one's coefficient covariance" : "");
   details["step_one"] = one.details;
   details["step_two"] = step_two;
   details["zero_pole"] = zero_pole;

@@ -188,7 +188,7 @@ TEST_CASE("two-step on noisy FRFs: the normalised weighting's error and the cova
                     Catch::Contains("covariance weighting needs step one's coefficient covariance"));
 }
 
-TEST_CASE("two-step from noisy records by ARMAX: the std covers the error; the covariance weighting",
+TEST_CASE("two-step from noisy records by ARMAX: the std covers the error, and the covariance weighting",
           "[two-step][time][noise][armax]") {
   // 40 dB output noise on an exact zero-order-hold record (2 s at 4096 Hz). ARMAX's coefficient covariance, propagated
   // through step two, covers the error; whitening by it (the Markov estimate) reaches output error's accuracy where
