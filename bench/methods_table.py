@@ -5,8 +5,10 @@ usage: bench/methods_table.py [MBGEN] [--draw N] [--work DIR]
 
 Data: scripts/truthgen (the independent numpy generator), 40 dB, the truth drawn with --draw (default 1): mdof2 FRFs
 (10-400 Hz), an mdof2 record (2 s at 4096 Hz), spindle FRFs (50-1200 Hz) and a spindle record (1 s at 8192 Hz).
-Each method runs on each data set it accepts; a refusal (exit 1) is shown with its reason. arx-two-stage needs the
-masses known: it runs on tests/ekf_arx/mdof2_known_mass.mdl with the masses set to the truth's, as weighed.
+Each method runs on each data set it accepts; a refusal (exit 1) is shown with its reason. Two-step from records
+runs with step one by ARMAX (the default) and by ARX, and with the covariance weighting on both kinds of data.
+arx-two-stage needs the masses known: it runs on tests/ekf_arx/mdof2_known_mass.mdl with the masses set to the
+truth's, as weighed.
 Errors are over the parameters each run reports identifiable (relative, per cent): the largest and the RMS. Time is
 wall time of the whole command on this machine, so ratios between rows mean more than the seconds.
 Prints a Markdown table (bench/README.md keeps the last one).
@@ -21,7 +23,20 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TRUTHGEN = os.path.join(ROOT, "scripts", "truthgen", "truthgen.py")
-METHODS = ["auto", "direct", "two-step", "hybrid", "ekf", "arx-two-stage", "modal"]
+# (label, --method, further arguments, data kinds it runs on: None = all). Two-step from records twice, step one by
+# ARMAX (the default) and by ARX; and once with the covariance weighting (the Markov estimate) on both kinds.
+METHODS = [
+    ("auto", "auto", [], None),
+    ("direct", "direct", [], None),
+    ("two-step", "two-step", [], ("frf",)),
+    ("two-step (ARMAX)", "two-step", [], ("time",)),
+    ("two-step (ARX)", "two-step", ["--two-step-model", "arx"], ("time",)),
+    ("two-step, covariance weighting", "two-step", ["--two-step-weighting", "covariance"], None),
+    ("hybrid", "hybrid", [], None),
+    ("ekf", "ekf", [], None),
+    ("arx-two-stage", "arx-two-stage", [], None),
+    ("modal", "modal", [], None),
+]
 DATA = [  # name, example, kind, extra truthgen arguments
     ("mdof2 FRF", "mdof2", "frf", []),
     ("mdof2 record", "mdof2", "time", ["--duration", "2"]),
@@ -38,18 +53,18 @@ def make_data(work, draw):
                         "--seed", str(700 + i), "--draw", str(draw), "-o", out] + extra, check=True,
                        stdout=subprocess.DEVNULL)
         truth = json.load(open(out[:-4] + ".truth.json"))["parameters"]
-        sets.append((name, example, out, truth))
+        sets.append((name, example, kind, out, truth))
     return sets
 
 
-def run_method(mbgen, method, example, data, truth, work):
+def run_method(mbgen, method, arguments, example, data, truth, work):
     model = os.path.join(ROOT, "examples", example, example + ".mdl")
     extra = []
     if method == "arx-two-stage" and example == "mdof2":
         model = os.path.join(ROOT, "tests", "ekf_arx", "mdof2_known_mass.mdl")
         extra = ["--set", "m1=%r" % truth["m1"], "--set", "m2=%r" % truth["m2"]]
-    out = os.path.join(work, "%s_%s_%s.json" % (os.path.basename(data)[:-4], method, example))
-    cmd = [mbgen, "fit", model, "--data", data, "--json", out] + extra
+    out = os.path.join(work, "%s_%s_%s.json" % (os.path.basename(data)[:-4], method, "_".join(arguments[1::2])))
+    cmd = [mbgen, "fit", model, "--data", data, "--json", out] + extra + arguments
     if method != "auto":
         cmd += ["--method", method]
     t0 = time.time()
@@ -77,16 +92,18 @@ def main():
     sets = make_data(a.work, a.draw)
     print("| data | method | max error | RMS error | parameters (with std) | nrmse | time |")
     print("|---|---|---|---|---|---|---|")
-    for name, example, data, truth in sets:
-        for method in METHODS:
-            r = run_method(a.mbgen, method, example, data, truth, a.work)
+    for name, example, kind, data, truth in sets:
+        for label, method, arguments, kinds in METHODS:
+            if kinds and kind not in kinds:
+                continue
+            r = run_method(a.mbgen, method, arguments, example, data, truth, a.work)
             if "refused" in r:
-                print("| %s | %s | refused: %s | | | | %.1f s |" % (name, method, r["refused"].replace("|", "/"), r["seconds"]))
+                print("| %s | %s | refused: %s | | | | %.1f s |" % (name, label, r["refused"].replace("|", "/"), r["seconds"]))
                 continue
             e = list(r["errors"].values())
             worst = max(e) if e else float("nan")
             rms = math.sqrt(sum(x * x for x in e) / len(e)) if e else float("nan")
-            label = method if method != "auto" else r["method"]
+            label = label if method != "auto" else r["method"]
             print("| %s | %s | %.2f %% | %.2f %% | %d (%d) | %.4g | %.1f s |"
                   % (name, label, 100 * worst, 100 * rms, len(e), r["with_std"], r["nrmse"], r["seconds"]))
             sys.stdout.flush()

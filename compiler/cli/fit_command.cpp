@@ -104,8 +104,13 @@ int run_fit(int argc, char** argv) {
                  "coefficient equations have a closed form, else numerical where square, else minimisation), "
                  "analytical, numerical or minimisation")
       ->check(CLI::IsMember({"auto", "analytical", "numerical", "minimisation"}));
+  app.add_option("--two-step-model", two_step.model, "two-step from records: step one's model, armax (default: the "
+                 "prediction-error method) or arx (least squares)")->check(CLI::IsMember({"armax", "arx"}));
   app.add_option("--two-step-criterion", two_step.criterion, "two-step from records: the order criterion, aic (default), "
                  "bic or fpe")->check(CLI::IsMember({"aic", "bic", "fpe"}));
+  app.add_option("--two-step-weighting", two_step.weighting, "two-step: step two's residuals, normalised (default: the "
+                 "thesis's) or covariance (whitened by step one's coefficient covariance)")
+      ->check(CLI::IsMember({"normalised", "covariance"}));
   EkfOptions ekf;
   app.add_option("--ekf-drift", ekf.drift, "ekf: each parameter's random walk, its relative std over the whole data "
                  "(default 0.05; 0: constant parameters)")->check(CLI::NonNegativeNumber);

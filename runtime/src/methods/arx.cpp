@@ -45,6 +45,82 @@ Eigen::VectorXcd pole_response(Complex lambda, const Eigen::VectorXd& u, double 
   return x;
 }
 
+// Each pole's response to the record's input: the regressors 2 Re x and -2 Im x of Re r and Im r.
+Eigen::MatrixXd pole_regressors(const std::vector<Complex>& poles, const Eigen::VectorXd& u, double dt, bool foh) {
+  Eigen::MatrixXd Psi(u.size(), 2 * static_cast<Eigen::Index>(poles.size()));
+  for (std::size_t k = 0; k < poles.size(); ++k) {
+    const Eigen::VectorXcd x = pole_response(poles[k], u, dt, foh);
+    Psi.col(2 * static_cast<Eigen::Index>(k)) = 2 * x.real();
+    Psi.col(2 * static_cast<Eigen::Index>(k) + 1) = -2 * x.imag();
+  }
+  return Psi;
+}
+
+// The continuous-time transfer function of the given poles (one per pair) with each output's residues fitted to
+// the record by least squares, constrained to the model's relative degree; with each numerator's covariance given
+// the poles, s^2 (Psi_Z^T Psi_Z)^-1 mapped to the coefficients.
+struct NumeratorFit {
+  Eigen::VectorXd denominator;
+  std::vector<Eigen::VectorXd> numerators;
+  std::vector<Eigen::MatrixXd> covariance;  // per output
+  double rss_w = 0, yy_w = 0;               // weighted by each output's RMS
+};
+
+NumeratorFit fit_numerators(const std::vector<Complex>& poles, const Eigen::VectorXd& u,
+                            const std::vector<Eigen::VectorXd>& y, const std::vector<double>& sy, double dt, bool foh,
+                            int q, const std::vector<int>& numerator_degree) {
+  const int order = 2 * static_cast<int>(poles.size());
+  const ModalPolynomials mp = modal_polynomials(poles);
+  const Eigen::MatrixXd& T = mp.residue_map;
+  const Eigen::MatrixXd Psi = pole_regressors(poles, u, dt, foh);
+  NumeratorFit out;
+  out.denominator = mp.denominator;
+  for (std::size_t o = 0; o < y.size(); ++o) {
+    // The model's relative degree q - d kept at the identified order.
+    const int d = std::max(order - (q - numerator_degree[o]), 0);
+    // Residues constrained so that the coefficients above degree d vanish: rho = Z xi, Z spanning the null space.
+    Eigen::MatrixXd Z;
+    if (d + 1 < order) {
+      const Eigen::MatrixXd high = T.bottomRows(order - d - 1);
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(high, Eigen::ComputeFullV);
+      const Eigen::VectorXd sv = svd.singularValues();
+      Eigen::Index rank = 0;
+      for (Eigen::Index i = 0; i < sv.size(); ++i)
+        if (sv[i] > sv[0] * 1e-12) ++rank;
+      Z = svd.matrixV().rightCols(T.cols() - rank);
+    } else {
+      Z = Eigen::MatrixXd::Identity(T.cols(), T.cols());
+    }
+    const Eigen::VectorXd& yo = y[o];
+    const Eigen::MatrixXd PZ = Psi * Z;
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(PZ);
+    const Eigen::VectorXd xi = qr.solve(yo);
+    const Eigen::MatrixXd map = (T * Z).topRows(d + 1);
+    out.numerators.push_back(map * xi);
+    const double rss = (yo - PZ * xi).squaredNorm();
+    const double s2 = rss / double(std::max<Eigen::Index>(yo.size() - xi.size(), 1));
+    const Eigen::MatrixXd info_inv = (PZ.transpose() * PZ).completeOrthogonalDecomposition().pseudoInverse();
+    out.covariance.push_back(s2 * map * info_inv * map.transpose());
+    const double w = 1 / (sy[o] * sy[o]);
+    out.rss_w += rss * w;
+    out.yy_w += yo.squaredNorm() * w;
+  }
+  return out;
+}
+
+Eigen::VectorXd stacked_coefficients(const NumeratorFit& f) {
+  Eigen::Index size = f.denominator.size() - 1;
+  for (const auto& n : f.numerators) size += n.size();
+  Eigen::VectorXd v(size);
+  v.head(f.denominator.size() - 1) = f.denominator.head(f.denominator.size() - 1);
+  Eigen::Index k = f.denominator.size() - 1;
+  for (const auto& n : f.numerators) {
+    v.segment(k, n.size()) = n;
+    k += n.size();
+  }
+  return v;
+}
+
 }  // namespace
 
 ArxIdentification identify_arx(const Eigen::VectorXd& u, const std::vector<Eigen::VectorXd>& y,
@@ -136,6 +212,23 @@ ArxIdentification identify_arx(const Eigen::VectorXd& u, const std::vector<Eigen
   for (int o = 0; o < O; ++o)
     for (int l = layout.first_lag; l <= n; ++l)
       B[static_cast<std::size_t>(o)][n - l] = theta[layout.b_column(o, l)] * sy[static_cast<std::size_t>(o)] / su;
+  prune_and_fit_residues(A, B, u, y, outputs, input, dt, first_order_hold, q, numerator_degree, options, out);
+  out.tf.covariance_note =
+      "not available: ARX is biased under output noise, and the pruning and the residue fit have no joint "
+      "linearisation; a covariance from the least squares would understate the error";
+  return out;
+}
+
+void prune_and_fit_residues(const Eigen::VectorXd& A, const std::vector<Eigen::VectorXd>& B, const Eigen::VectorXd& u,
+                            const std::vector<Eigen::VectorXd>& y, const std::vector<std::string>& outputs,
+                            const std::string& input, double dt, bool first_order_hold, int q,
+                            const std::vector<int>& numerator_degree, const ArxOptions& options,
+                            ArxIdentification& out, const PoleCovariance& pole_covariance) {
+  const int O = static_cast<int>(y.size());
+  const Eigen::Index N = u.size();
+  const int n = static_cast<int>(A.size()) - 1;
+  std::vector<double> sy(static_cast<std::size_t>(O));
+  for (int o = 0; o < O; ++o) sy[static_cast<std::size_t>(o)] = rms(y[static_cast<std::size_t>(o)]) > 0 ? rms(y[static_cast<std::size_t>(o)]) : 1.0;
   Eigen::VectorXd dA = Eigen::VectorXd::Zero(n);
   for (int k = 1; k <= n; ++k) dA[k - 1] = k * A[k];
   std::vector<std::vector<Complex>> zeros(static_cast<std::size_t>(O));
@@ -220,8 +313,8 @@ ArxIdentification identify_arx(const Eigen::VectorXd& u, const std::vector<Eigen
   };
   for (;;) {
     if (chosen.empty())
-      throw std::invalid_argument("the record shows no vibration mode significantly (ARX order " + std::to_string(n) +
-                                  ", after pruning)");
+      throw std::invalid_argument("the record shows no vibration mode significantly (" + out.model + " order " +
+                                  std::to_string(n) + ", after pruning)");
     const Eigen::MatrixXd Psi = regressors(chosen);
     const Eigen::MatrixXd info = Psi.transpose() * Psi;
     const Eigen::MatrixXd info_inv = info.completeOrthogonalDecomposition().pseudoInverse();
@@ -252,49 +345,41 @@ ArxIdentification identify_arx(const Eigen::VectorXd& u, const std::vector<Eigen
     poles[i].kept = true;
     kept.push_back(poles[i].lambda);
   }
-  const std::size_t modes = kept.size();
-  const int order = 2 * static_cast<int>(modes);
-  const ModalPolynomials mp = modal_polynomials(kept);
-  const Eigen::VectorXd& D = mp.denominator;
-  const Eigen::MatrixXd& T = mp.residue_map;
-  const Eigen::MatrixXd Psi = regressors(chosen);
+  const NumeratorFit fit = fit_numerators(kept, u, y, sy, dt, first_order_hold, q, numerator_degree);
   IdentifiedTf& tf = out.tf;
   tf.input = input;
   tf.outputs = outputs;
-  tf.denominator = D;
-  double rss_w = 0, yy_w = 0;
-  for (int o = 0; o < O; ++o) {
-    // The model's relative degree q - d kept at the identified order.
-    const int d = std::max(order - (q - numerator_degree[static_cast<std::size_t>(o)]), 0);
-    // Residues constrained so that the coefficients above degree d vanish: rho = Z xi, Z spanning the null space.
-    Eigen::MatrixXd Z;
-    if (d + 1 < order) {
-      const Eigen::MatrixXd high = T.bottomRows(order - d - 1);
-      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(high, Eigen::ComputeFullV);
-      const Eigen::VectorXd sv = svd.singularValues();
-      Eigen::Index rank = 0;
-      for (Eigen::Index i = 0; i < sv.size(); ++i)
-        if (sv[i] > sv[0] * 1e-12) ++rank;
-      Z = svd.matrixV().rightCols(T.cols() - rank);
-    } else {
-      Z = Eigen::MatrixXd::Identity(T.cols(), T.cols());
+  tf.denominator = fit.denominator;
+  tf.numerators = fit.numerators;
+  const double rss_w = fit.rss_w, yy_w = fit.yy_w;
+  if (pole_covariance) {
+    // The coefficients' covariance: the poles' through the whole fit (the denominator and the refitted residues, by
+    // central differences), plus each numerator's given the poles. The two add: the residues refitted at fixed poles
+    // are the joint estimate's conditional part, whose error is uncorrelated with the poles' to first order.
+    const Eigen::Index m = static_cast<Eigen::Index>(kept.size());
+    const Eigen::MatrixXd cov_poles = pole_covariance(kept);
+    const Eigen::VectorXd base = stacked_coefficients(fit);
+    Eigen::MatrixXd J(base.size(), 2 * m);
+    for (Eigen::Index k = 0; k < 2 * m; ++k) {
+      const double h = 1e-6 * std::abs(kept[static_cast<std::size_t>(k / 2)]);
+      const Complex step = k % 2 ? Complex(0, h) : Complex(h, 0);
+      std::vector<Complex> plus = kept, minus = kept;
+      plus[static_cast<std::size_t>(k / 2)] += step;
+      minus[static_cast<std::size_t>(k / 2)] -= step;
+      J.col(k) = (stacked_coefficients(fit_numerators(plus, u, y, sy, dt, first_order_hold, q, numerator_degree)) -
+                  stacked_coefficients(fit_numerators(minus, u, y, sy, dt, first_order_hold, q, numerator_degree))) /
+                 (2 * h);
     }
-    const Eigen::VectorXd& yo = y[static_cast<std::size_t>(o)];
-    const Eigen::MatrixXd PZ = Psi * Z;
-    const Eigen::VectorXd xi = PZ.colPivHouseholderQr().solve(yo);
-    const Eigen::VectorXd rho = Z * xi;
-    tf.numerators.push_back((T * rho).head(d + 1));
-    const double w = 1 / (sy[static_cast<std::size_t>(o)] * sy[static_cast<std::size_t>(o)]);
-    rss_w += (yo - PZ * xi).squaredNorm() * w;
-    yy_w += yo.squaredNorm() * w;
+    tf.covariance = J * cov_poles * J.transpose();
+    Eigen::Index k = fit.denominator.size() - 1;
+    for (const Eigen::MatrixXd& c : fit.covariance) {
+      tf.covariance.block(k, k, c.rows(), c.cols()) += c;
+      k += c.rows();
+    }
   }
   out.residue_nrmse = yy_w > 0 ? std::sqrt(rss_w / yy_w) : 0;
   out.poles = poles;
   std::sort(out.poles.begin(), out.poles.end(), [](const ArxPole& a, const ArxPole& b) { return a.f_hz < b.f_hz; });
-  tf.covariance_note =
-      "not available: ARX is biased under output noise, and the pruning and the residue fit have no joint "
-      "linearisation; a covariance from the least squares would understate the error";
-  return out;
 }
 
 }  // namespace mbgen::methods

@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 
 #include <complex>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,7 @@ struct ArxPole {
 };
 
 struct ArxIdentification {
+  std::string model = "ARX";  // or "ARMAX" (armax.hpp), in messages
   IdentifiedTf tf;
   std::vector<ArxOrder> orders;
   int selected_order = 0;
@@ -68,5 +70,18 @@ ArxIdentification identify_arx(const Eigen::VectorXd& u, const std::vector<Eigen
                                const std::vector<std::string>& outputs, const std::string& input, double dt,
                                bool first_order_hold, int q, const std::vector<int>& numerator_degree,
                                const ArxOptions& options = {});
+
+// The part after the regression, shared with ARMAX (armax.hpp): the poles of A(z) (ascending in z, monic, degree n)
+// mapped to continuous time and pruned, using the zeros of each B_o(z) (ascending, degree at most n, physical
+// units) for rule 2; the kept poles' residues fitted to the record; fills out.tf, out.poles, out.residue_nrmse.
+// With `pole_covariance` (the covariance of the kept poles' Re and Im, pole by pole, given their continuous-time
+// values), also out.tf.covariance: the poles' covariance through the fit plus the residues' given the poles. Throws
+// std::invalid_argument when no pole is kept.
+using PoleCovariance = std::function<Eigen::MatrixXd(const std::vector<std::complex<double>>& lambda)>;
+void prune_and_fit_residues(const Eigen::VectorXd& A, const std::vector<Eigen::VectorXd>& B, const Eigen::VectorXd& u,
+                            const std::vector<Eigen::VectorXd>& y, const std::vector<std::string>& outputs,
+                            const std::string& input, double dt, bool first_order_hold, int q,
+                            const std::vector<int>& numerator_degree, const ArxOptions& options,
+                            ArxIdentification& out, const PoleCovariance& pole_covariance = {});
 
 }  // namespace mbgen::methods

@@ -1,10 +1,12 @@
 // fit_modal: the parameters fitted to modes identified from FRFs, after Ellinger & Zaeh 2022 (docs/methods.md#modal).
-// Reference modes and the per-mode objectives are in modal_objectives.cpp; here the refusals, the Sobol partition,
-// the repeated local optimisation of each subproblem, the damping least squares, and the result.
+// The pairing and the per-mode objectives are in modal_objectives.cpp, the configurations (`# set` values) and their
+// reference modes in modal_configurations.cpp; here the refusals, the Sobol partition, the repeated local
+// optimisation of each subproblem, the damping least squares, and the result.
 #include "mbgen/methods/modal.hpp"
 
 #include "../estimation/levenberg_marquardt.hpp"
 #include "method_result.hpp"
+#include "modal_configurations.hpp"
 #include "modal_objectives.hpp"
 
 #include "mbgen/modal_pairing.hpp"
@@ -15,7 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -35,11 +36,13 @@ constexpr int kDampingIterations = 4;
 // identified modes do not depend on it (the paper's sensitivity threshold).
 constexpr double kInfluence = 0.01;     // the paper's linear solve, then relinearisations at the estimate
 
-struct Problem {
-  const Model& model;
-  const ModalData& data;
-  const std::vector<IdentifiedMode>& reference;
-};
+using methods::ModalConfiguration;
+using methods::ModeRef;
+using Problem = methods::ModalProblem;
+using methods::compare_all;
+using methods::hz_list;
+using methods::in_configuration;
+using methods::set_label;
 
 bool within_bounds(const ModelInfo& info, const Eigen::VectorXd& p, const std::vector<int>& which) {
   for (int i : which) {
@@ -56,10 +59,7 @@ bool residuals_at(const Problem& pr, const Eigen::VectorXd& base, const std::vec
   Eigen::VectorXd p = base;
   for (std::size_t j = 0; j < which.size(); ++j) p[which[j]] = std::exp(x[static_cast<Eigen::Index>(j)]);
   if (!within_bounds(pr.model.info(), p, which)) return false;
-  const ModalComparison c = methods::compare_modes(pr.model, p, pr.data, pr.reference);
-  if (!c.ok) return false;
-  methods::structural_residuals(c, pr.reference, modes, r);
-  return r.allFinite();
+  return methods::objectives_at(pr, p, modes, r);
 }
 
 struct LocalOptimum {
@@ -148,16 +148,6 @@ void classify(const Model& model, const Eigen::VectorXd& prior, const std::vecto
   }
 }
 
-std::string hz_list(const std::vector<IdentifiedMode>& modes) {
-  std::string s;
-  for (const IdentifiedMode& m : modes) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%s%.4g Hz", s.empty() ? "" : ", ", m.f_hz);
-    s += b;
-  }
-  return s.empty() ? "none" : s;
-}
-
 struct Subproblem {
   int mode = 0;                 // the mode whose parameters these are
   std::vector<int> parameters;  // model indices
@@ -207,69 +197,89 @@ nlohmann::json spread(const ModelInfo& info, const Subproblem& s, const std::vec
 
 FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const FitOptions& options) {
   const ModelInfo& info = model.info();
-  std::vector<FrfData> frfs;
-  for (const DataSet& d : data) {
-    if (!d.is_frf())
-      throw FitError(d.file() +
-                     ": error: --method modal needs FRFs (it identifies modes from them), but this is a "
-                     "time record");
-    if (!d.set().empty())
-      throw FitError(d.file() +
-                     ": error: --method modal fits one configuration: data sets with `# set` values are "
-                     "not supported");
-    frfs.push_back(std::get<FrfData>(d.content));
-  }
+  // The configurations: the data sets grouped by their `# set` values.
+  std::vector<ModalConfiguration> configurations = methods::group_configurations(info, data);
   const Eigen::VectorXd prior = methods::checked_prior(model, data, options);
   const std::vector<int> candidates = methods::candidate_parameters(info, options);
   if (candidates.empty()) throw FitError("fit: --method modal: the model has no parameter to estimate");
+  // A parameter that every configuration sets by `# set` acts in none of the data: not estimated (kept at its
+  // prior, identifiable false), as the Sobol threshold would find.
+  std::vector<int> set_everywhere, active;
+  for (int i : candidates) {
+    const std::string& name = info.parameters[static_cast<std::size_t>(i)].name;
+    bool everywhere = true;
+    for (const ModalConfiguration& c : configurations) everywhere = everywhere && c.set.count(name);
+    (everywhere ? set_everywhere : active).push_back(i);
+  }
+  if (active.empty())
+    throw FitError("fit: error: --method modal: every parameter to estimate is set by `# set` in every data set");
   std::vector<int> structural, damping, uninfluential;
-  classify(model, prior, candidates, structural, damping);
+  classify(model, prior, active, structural, damping);
 
-  // 1. Reference modes: the experimental modal analysis of the FRFs (automatic pole selection), in the quantity the
-  //    model's outputs are.
-  ModalData md;
-  try {
-    md = modal_data(frfs, FrequencyBand{}, FrfQuantity::Unknown);
-    md.quantity = model_modes(model, prior, md).quantity;
-  } catch (const std::exception& e) {
-    throw FitError(std::string("fit: error: --method modal: ") + e.what());
-  }
-  ModalIdentification id;
-  try {
-    id = identify_modes(md, ModalOptions{});
-  } catch (const std::exception& e) {
-    throw FitError(std::string("fit: error: --method modal: the modal analysis of the FRFs failed: ") + e.what());
-  }
-  const std::vector<IdentifiedMode>& ref = id.modes;
-  const int channels = static_cast<int>(md.channels.size());
-  const int nr = static_cast<int>(ref.size());
-  const int information = nr * methods::information_per_mode(channels);
-  if (information < static_cast<int>(structural.size()))
-    throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" + hz_list(ref) +
-                   ") on " + std::to_string(channels) + " channel(s), which give " + std::to_string(information) +
-                   " numbers (per mode: frequency, " + std::to_string(channels - 1) +
+  // 1. Reference modes per configuration: the experimental modal analysis of its FRFs (automatic pole selection), in
+  //    the quantity the model's outputs are.
+  const bool several = configurations.size() > 1;
+  const std::vector<ModeRef> modes = methods::identify_reference_modes(model, prior, configurations);
+  int information = 0;
+  for (const ModalConfiguration& cf : configurations)
+    information += static_cast<int>(cf.reference.size()) *
+                   methods::information_per_mode(static_cast<int>(cf.data.channels.size()));
+  const int nr = static_cast<int>(modes.size());
+  auto channels_of = [&](int m) {
+    return static_cast<int>(
+        configurations[static_cast<std::size_t>(modes[static_cast<std::size_t>(m)].configuration)].data.channels.size());
+  };
+  auto reference_of = [&](int m) -> const IdentifiedMode& {
+    const ModeRef& mr = modes[static_cast<std::size_t>(m)];
+    return configurations[static_cast<std::size_t>(mr.configuration)].reference[static_cast<std::size_t>(mr.mode)];
+  };
+  std::string channel_text;
+  for (const ModalConfiguration& cf : configurations)
+    channel_text += (channel_text.empty() ? "" : ", ") + std::to_string(cf.data.channels.size());
+  if (information < static_cast<int>(structural.size())) {
+    if (several)
+      throw FitError("fit: error: --method modal: the FRFs of the " + std::to_string(configurations.size()) +
+                     " configurations show " + std::to_string(nr) + " mode(s) (" + hz_list(configurations) +
+                     ") on " + channel_text + " channel(s), which give " + std::to_string(information) +
+                     " numbers (per mode: frequency, channels - 1 shape ratios, scale), fewer than the " +
+                     std::to_string(structural.size()) + " mass/stiffness parameters to estimate");
+    const int channels = static_cast<int>(configurations.front().data.channels.size());
+    throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" +
+                   hz_list(configurations) + ") on " + std::to_string(channels) + " channel(s), which give " +
+                   std::to_string(information) + " numbers (per mode: frequency, " + std::to_string(channels - 1) +
                    " shape ratio(s), scale), fewer "
                    "than the " +
                    std::to_string(structural.size()) + " mass/stiffness parameters to estimate");
+  }
   if (nr < static_cast<int>(damping.size()))
-    throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" + hz_list(ref) +
-                   "), fewer than the " + std::to_string(damping.size()) +
+    throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" +
+                   hz_list(configurations) + "), fewer than the " + std::to_string(damping.size()) +
                    " damping parameters to estimate (one "
                    "modal damping ratio per mode)");
-  const Problem pr{model, md, ref};
-  if (!methods::compare_modes(model, prior, md, ref).ok)
-    throw FitError("fit: error: --method modal: the model at its prior has fewer oscillating modes than the " +
-                   std::to_string(nr) + " identified (" + hz_list(ref) + ")");
+  const Problem pr{model, configurations, modes};
+  for (const ModalConfiguration& cf : configurations)
+    if (!methods::compare_modes(model, in_configuration(cf, prior), cf.data, cf.reference).ok)
+      throw FitError("fit: error: --method modal: the model at its prior" +
+                     (several ? " in configuration " + set_label(cf.set) : std::string()) +
+                     " has fewer oscillating modes than the " + std::to_string(cf.reference.size()) + " identified (" +
+                     hz_list(cf.reference) + ")");
 
   Eigen::VectorXd p = prior;
   nlohmann::json details;
+  nlohmann::json jconf = nlohmann::json::array();
+  for (const ModalConfiguration& cf : configurations)
+    jconf.push_back({{"set", cf.set}, {"files", cf.files}, {"modes", cf.reference.size()}});
+  details["configurations"] = jconf;
   nlohmann::json jref = nlohmann::json::array();
-  for (const IdentifiedMode& m : ref)
-    jref.push_back({{"f_hz", m.f_hz},
-                    {"zeta", m.zeta},
-                    {"f_std_hz", std::isfinite(m.f_std_hz) ? m.f_std_hz : 0.0},
-                    {"mpc", m.mpc},
-                    {"support", m.support}});
+  for (int m = 0; m < nr; ++m) {
+    const IdentifiedMode& r = reference_of(m);
+    jref.push_back({{"configuration", modes[static_cast<std::size_t>(m)].configuration},
+                    {"f_hz", r.f_hz},
+                    {"zeta", r.zeta},
+                    {"f_std_hz", std::isfinite(r.f_std_hz) ? r.f_std_hz : 0.0},
+                    {"mpc", r.mpc},
+                    {"support", r.support}});
+  }
   details["reference_modes"] = jref;
   details["shape_criterion"] = "MAC of the residue vectors (light damping: nearly real shapes, where MACXP is MAC)";
   int total_iterations = 0;
@@ -277,11 +287,13 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   const double spread_factor = std::max(options.spread, 1.0 + 1e-6);
   const int starts = std::max(options.starts, 1);
   if (!structural.empty()) {
-    // 3. Sobol total indices of each mode's objective (NFD^2 + 1 - MAC + log-scale^2) over the start range.
+    // 3. Sobol total indices of each mode's objective (NFD^2 + 1 - MAC + log-scale^2), every mode of every
+    //    configuration, over the start range.
     std::vector<std::pair<double, double>> range;
     for (int i : structural)
       range.push_back(log_range(info.parameters[static_cast<std::size_t>(i)], prior[i], spread_factor));
     const auto ks = static_cast<Eigen::Index>(structural.size());
+    const std::vector<bool> every(configurations.size(), true);
     const auto objective = [&](const Eigen::VectorXd& u) {
       Eigen::VectorXd q = prior;
       for (Eigen::Index j = 0; j < ks; ++j) {
@@ -289,13 +301,16 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
         q[structural[static_cast<std::size_t>(j)]] = std::exp(lo + u[j] * (hi - lo));
       }
       Eigen::VectorXd out = Eigen::VectorXd::Constant(nr, std::numeric_limits<double>::quiet_NaN());
-      const ModalComparison c = methods::compare_modes(model, q, md, ref);
-      if (!c.ok) return out;
-      for (int r = 0; r < nr; ++r) {
-        const auto rr = static_cast<std::size_t>(r);
-        const double nfd = c.f_hz[rr] / ref[rr].f_hz - 1,
-                     scale = std::log(c.residues[rr].norm() / ref[rr].residues.norm());
-        out[r] = nfd * nfd + (1 - c.mac[rr]) + scale * scale;
+      const std::vector<ModalComparison> cmp = compare_all(pr, q, every);
+      for (const ModalComparison& c : cmp)
+        if (!c.ok) return out;
+      for (int m = 0; m < nr; ++m) {
+        const ModeRef& mr = modes[static_cast<std::size_t>(m)];
+        const ModalComparison& c = cmp[static_cast<std::size_t>(mr.configuration)];
+        const auto rr = static_cast<std::size_t>(mr.mode);
+        const IdentifiedMode& ref = reference_of(m);
+        const double nfd = c.f_hz[rr] / ref.f_hz - 1, scale = std::log(c.residues[rr].norm() / ref.residues.norm());
+        out[m] = nfd * nfd + (1 - c.mac[rr]) + scale * scale;
       }
       return out;
     };
@@ -309,8 +324,8 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
       for (Eigen::Index j = 0; j < total.cols(); ++j)
         if (!std::isfinite(total(r, j))) total(r, j) = 0;
 
-    // Each parameter to the mode whose objective it moves most; each mode's objectives, plus those of the modes its
-    // parameters move next most until there are as many numbers as parameters.
+    // Each parameter to the mode (of any configuration) whose objective it moves most; each mode's objectives,
+    // plus those of the modes its parameters move next most until there are as many numbers as parameters.
     for (Eigen::Index j = 0; j < ks; ++j)
       if (!(total.col(j).maxCoeff() >= kInfluence)) uninfluential.push_back(structural[static_cast<std::size_t>(j)]);
     std::vector<Subproblem> subs;
@@ -334,11 +349,11 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
       }
       std::sort(others.begin(), others.end());
       s.modes.push_back(r);
+      int numbers = methods::information_per_mode(channels_of(r));
       for (const auto& o : others) {
-        if (static_cast<int>(s.modes.size()) * methods::information_per_mode(channels) >=
-            static_cast<int>(s.parameters.size()))
-          break;
+        if (numbers >= static_cast<int>(s.parameters.size())) break;
         s.modes.push_back(o.second);
+        numbers += methods::information_per_mode(channels_of(o.second));
       }
       std::sort(s.modes.begin(), s.modes.end());
       subs.push_back(s);
@@ -356,7 +371,13 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
     for (const Subproblem& s : subs) {
       std::vector<std::string> names;
       for (int i : s.parameters) names.push_back(info.parameters[static_cast<std::size_t>(i)].name);
-      jsubs.push_back({{"mode", s.mode}, {"parameters", names}, {"objective_modes", s.modes}});
+      std::vector<int> objective_configurations;
+      for (int m : s.modes) objective_configurations.push_back(modes[static_cast<std::size_t>(m)].configuration);
+      jsubs.push_back({{"mode", s.mode},
+                       {"configuration", modes[static_cast<std::size_t>(s.mode)].configuration},
+                       {"parameters", names},
+                       {"objective_modes", s.modes},
+                       {"objective_configurations", objective_configurations}});
     }
     jpart["subproblems"] = jsubs;
     std::vector<std::string> kept;
@@ -366,6 +387,9 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
     }
     jpart["not_influential"] = kept;
     jpart["influence_threshold"] = kInfluence;
+    std::vector<std::string> set_names;
+    for (int i : set_everywhere) set_names.push_back(info.parameters[static_cast<std::size_t>(i)].name);
+    jpart["set_in_every_configuration"] = set_names;
     details["partition"] = jpart;
 
     // 4. The subproblems in turn, each from `starts` seeded starts (the current values, then log-uniform within the
@@ -412,13 +436,27 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   std::vector<int> all_modes(static_cast<std::size_t>(nr));
   for (int r = 0; r < nr; ++r) all_modes[static_cast<std::size_t>(r)] = r;
   nlohmann::json jdamp;
+  const std::vector<bool> every(configurations.size(), true);
+  // Every mode's damping ratio at q (global order); false when a configuration's modes cannot be paired.
+  auto damping_ratios = [&](const Eigen::VectorXd& q, Eigen::VectorXd& zeta) {
+    const std::vector<ModalComparison> cmp = compare_all(pr, q, every);
+    for (const ModalComparison& c : cmp)
+      if (!c.ok) return false;
+    zeta.resize(nr);
+    for (int m = 0; m < nr; ++m) {
+      const ModeRef& mr = modes[static_cast<std::size_t>(m)];
+      zeta[m] = cmp[static_cast<std::size_t>(mr.configuration)].zeta[static_cast<std::size_t>(mr.mode)];
+    }
+    return true;
+  };
   auto solve_damping = [&]() {
     if (damping.empty()) return;
     const auto kd = static_cast<Eigen::Index>(damping.size());
     nlohmann::json iterations = nlohmann::json::array();
     for (int it = 0; it < kDampingIterations; ++it) {
-      const ModalComparison c0 = methods::compare_modes(model, p, md, ref);
-      if (!c0.ok) throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
+      Eigen::VectorXd z0, z1;
+      if (!damping_ratios(p, z0))
+        throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
       Eigen::MatrixXd Q(nr, kd);
       Eigen::VectorXd rhs(nr), c(kd);
       for (Eigen::Index j = 0; j < kd; ++j) {
@@ -427,22 +465,23 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
         const double h = 1e-3 * std::max({std::abs(p[i]), std::abs(prior[i]), 1e-6});
         Eigen::VectorXd q = p;
         q[i] += h;
-        const ModalComparison c1 = methods::compare_modes(model, q, md, ref);
-        if (!c1.ok) throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
-        for (int r = 0; r < nr; ++r)
-          Q(r, j) = (c1.zeta[static_cast<std::size_t>(r)] - c0.zeta[static_cast<std::size_t>(r)]) / h;
+        if (!damping_ratios(q, z1))
+          throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
+        Q.col(j) = (z1 - z0) / h;
       }
       Eigen::VectorXd residual_share(nr);
       for (int r = 0; r < nr; ++r) {
-        residual_share[r] = c0.zeta[static_cast<std::size_t>(r)] - Q.row(r).dot(c);
-        rhs[r] = (ref[static_cast<std::size_t>(r)].zeta - residual_share[r]) / ref[static_cast<std::size_t>(r)].zeta;
-        Q.row(r) /= ref[static_cast<std::size_t>(r)].zeta;
+        const double zeta_ref = reference_of(r).zeta;
+        residual_share[r] = z0[r] - Q.row(r).dot(c);
+        rhs[r] = (zeta_ref - residual_share[r]) / zeta_ref;
+        Q.row(r) /= zeta_ref;
       }
       const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Q);
       if (qr.rank() < kd)
         throw FitError("fit: error: --method modal: the modal damping ratios of the " + std::to_string(nr) +
-                       " identified modes (" + hz_list(ref) + ") cannot separate the damping parameters (rank " +
-                       std::to_string(qr.rank()) + " of " + std::to_string(kd) + ")");
+                       " identified modes (" + hz_list(configurations) +
+                       ") cannot separate the damping parameters (rank " + std::to_string(qr.rank()) + " of " +
+                       std::to_string(kd) + ")");
       const Eigen::VectorXd sol = qr.solve(rhs);
       double step = 0;
       for (Eigen::Index j = 0; j < kd; ++j) {
@@ -476,19 +515,24 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   if (!damping.empty()) details["damping"] = jdamp;
 
   // Agreement per mode at the estimate.
-  const ModalComparison fin = methods::compare_modes(model, p, md, ref);
-  if (!fin.ok) throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
+  const std::vector<ModalComparison> fin = compare_all(pr, p, every);
+  for (const ModalComparison& c : fin)
+    if (!c.ok) throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
   nlohmann::json agreement = nlohmann::json::array();
-  for (int r = 0; r < nr; ++r) {
-    const auto rr = static_cast<std::size_t>(r);
-    agreement.push_back({{"reference_f_hz", ref[rr].f_hz},
-                         {"model_f_hz", fin.f_hz[rr]},
-                         {"nfd", fin.f_hz[rr] / ref[rr].f_hz - 1},
-                         {"mac", fin.mac[rr]},
-                         {"scale_log_ratio", std::log(fin.residues[rr].norm() / ref[rr].residues.norm())},
-                         {"reference_zeta", ref[rr].zeta},
-                         {"model_zeta", fin.zeta[rr]},
-                         {"ndd", (fin.zeta[rr] - ref[rr].zeta) / ref[rr].zeta}});
+  for (int m = 0; m < nr; ++m) {
+    const ModeRef& mr = modes[static_cast<std::size_t>(m)];
+    const ModalComparison& c = fin[static_cast<std::size_t>(mr.configuration)];
+    const auto rr = static_cast<std::size_t>(mr.mode);
+    const IdentifiedMode& ref = reference_of(m);
+    agreement.push_back({{"configuration", mr.configuration},
+                         {"reference_f_hz", ref.f_hz},
+                         {"model_f_hz", c.f_hz[rr]},
+                         {"nfd", c.f_hz[rr] / ref.f_hz - 1},
+                         {"mac", c.mac[rr]},
+                         {"scale_log_ratio", std::log(c.residues[rr].norm() / ref.residues.norm())},
+                         {"reference_zeta", ref.zeta},
+                         {"model_zeta", c.zeta[rr]},
+                         {"ndd", (c.zeta[rr] - ref.zeta) / ref.zeta}});
   }
   details["agreement"] = agreement;
 
@@ -505,7 +549,8 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
     e.unit = q.unit;
     e.prior = prior[i];
     e.value = p[i];
-    e.estimated = std::find(uninfluential.begin(), uninfluential.end(), i) == uninfluential.end();
+    e.estimated = std::find(uninfluential.begin(), uninfluential.end(), i) == uninfluential.end() &&
+                  std::find(set_everywhere.begin(), set_everywhere.end(), i) == set_everywhere.end();
     const double tol = 1e-9 * std::max(std::abs(p[i]), 1.0);
     if (std::abs(p[i] - q.lower) <= tol) e.at_bound = "lower";
     if (std::abs(p[i] - q.upper) <= tol) e.at_bound = "upper";
@@ -513,7 +558,8 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
     result.parameters.push_back(e);
   }
   methods::score_by_output_error(model, data, options, candidates,
-                                 static_cast<int>(candidates.size() - uninfluential.size()), result);
+                                 static_cast<int>(candidates.size() - uninfluential.size() - set_everywhere.size()),
+                                 result);
   result.estimated.clear();  // no covariance: the modal objectives carry no noise model
   result.iterations = total_iterations;
   const bool settled =

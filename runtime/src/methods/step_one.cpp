@@ -1,5 +1,6 @@
 #include "step_one.hpp"
 
+#include "armax.hpp"
 #include "arx.hpp"
 #include "model_coefficients.hpp"
 #include "rational_fit.hpp"
@@ -76,6 +77,37 @@ void truncate_if_short(StepOneTf& s, const std::vector<int>& model_degree) {
     if (r.imag() > 0) s.truncated_to.push_back(r);
 }
 
+// One ARMAX order's search and coefficients (docs/methods.md#two-step): which start won, the iterations, C's root
+// nearest the unit circle, and the coefficients of A(q), B_o(q), C(q) (ascending lags) with their std.
+nlohmann::json armax_order_json(const ArmaxEstimate& e, const std::vector<std::string>& outputs) {
+  nlohmann::json starts = nlohmann::json::object();
+  for (const auto& [name, cost] : e.start_costs) starts[name] = number(cost);
+  const Eigen::VectorXd sd = e.covariance.diagonal().cwiseMax(0).cwiseSqrt();
+  Eigen::Index k = 0;
+  auto with_std = [&](const Eigen::VectorXd& v) {
+    nlohmann::json values = nlohmann::json::array(), stds = nlohmann::json::array();
+    for (Eigen::Index i = 0; i < v.size(); ++i, ++k) {
+      values.push_back(number(v[i]));
+      stds.push_back(number(sd[k]));
+    }
+    return nlohmann::json{{"values", values}, {"std", stds}};
+  };
+  nlohmann::json coefficients;
+  coefficients["a"] = with_std(e.a);
+  nlohmann::json b = nlohmann::json::object();
+  for (std::size_t o = 0; o < e.b.size(); ++o) b[outputs[o]] = with_std(e.b[o]);
+  coefficients["b"] = b;
+  coefficients["b_first_lag"] = e.first_lag;
+  coefficients["c"] = with_std(e.c);
+  return {{"start", e.start},
+          {"start_costs", starts},
+          {"iterations", e.iterations},
+          {"converged", e.converged},
+          {"largest_c_root", number(e.largest_c_root)},
+          {"c_reflections", e.reflections},
+          {"coefficients", coefficients}};
+}
+
 nlohmann::json tf_json(const StepOneTf& s) {
   nlohmann::json j;
   j["denominator"] = array(s.tf.denominator);
@@ -90,7 +122,7 @@ nlohmann::json tf_json(const StepOneTf& s) {
 }  // namespace
 
 StepOne run_step_one(const Model& model, const std::vector<DataSet>& data, const Eigen::VectorXd& prior,
-                     const std::vector<int>& candidates, const TwoStepOptions& options) {
+                     const std::vector<int>& candidates, const TwoStepOptions& options, int threads) {
   const ModelInfo& info = model.info();
   StepOne out;
   out.details = nlohmann::json::array();
@@ -217,11 +249,22 @@ StepOne run_step_one(const Model& model, const std::vector<DataSet>& data, const
     arx.max_order = options.max_arx_order;
     s.band_lo_hz = 0;
     s.band_hi_hz = arx.band_fraction / t.dt();
+    const bool armax = options.model == "armax";
+    const Eigen::VectorXd& u = t.at(info.inputs[static_cast<std::size_t>(driven[0])]).values;
+    const std::string& input_name = info.inputs[static_cast<std::size_t>(driven[0])];
     ArxIdentification id;
+    ArmaxIdentification armax_id;
     try {
-      id = identify_arx(t.at(info.inputs[static_cast<std::size_t>(driven[0])]).values, y, names,
-                        info.inputs[static_cast<std::size_t>(driven[0])], t.dt(), t.hold == HoldMode::None, q,
-                        degrees(s), arx);
+      if (armax) {
+        ArmaxOptions ao;
+        ao.criterion = options.criterion;
+        ao.extra_orders = options.armax_extra_orders;
+        ao.threads = threads;
+        armax_id = identify_armax(u, y, names, input_name, t.dt(), t.hold == HoldMode::None, q, degrees(s), ao, arx);
+        id = armax_id.id;
+      } else {
+        id = identify_arx(u, y, names, input_name, t.dt(), t.hold == HoldMode::None, q, degrees(s), arx);
+      }
     } catch (const std::invalid_argument& e) {
       throw FitError(t.file + ": error: two-step: " + e.what());
     }
@@ -230,18 +273,22 @@ StepOne run_step_one(const Model& model, const std::vector<DataSet>& data, const
     nlohmann::json j = tf_json(s);
     j["data"] = t.file;
     j["input"] = s.tf.input;
-    j["source"] = "arx";
+    j["source"] = armax ? "armax" : "arx";
     j["order"] = s.tf.order();
     j["model_order"] = q;
     nlohmann::json orders = nlohmann::json::array();
-    for (const ArxOrder& o : id.orders)
-      orders.push_back({{"order", o.order}, {"parameters", o.parameters}, {"rss", number(o.rss)},
-                        {"aic", number(o.aic)}, {"bic", number(o.bic)}, {"fpe", number(o.fpe)}});
+    for (std::size_t k = 0; k < id.orders.size(); ++k) {
+      const ArxOrder& o = id.orders[k];
+      nlohmann::json row = {{"order", o.order}, {"parameters", o.parameters}, {"rss", number(o.rss)},
+                            {"aic", number(o.aic)}, {"bic", number(o.bic)}, {"fpe", number(o.fpe)}};
+      if (armax) row.update(armax_order_json(armax_id.estimates[k], names));
+      orders.push_back(row);
+    }
     nlohmann::json poles = nlohmann::json::array();
     for (const ArxPole& p : id.poles)
       poles.push_back({{"f_hz", number(p.f_hz)}, {"zeta", number(p.zeta)}, {"dominance", number(p.dominance)},
                        {"nearest_zero_bandwidths", number(p.nearest_zero)}, {"kept", p.kept}, {"findings", p.findings}});
-    j["arx"] = {{"criterion", arx.criterion},   {"selected_order", id.selected_order},
+    j[armax ? "armax" : "arx"] = {{"criterion", arx.criterion},   {"selected_order", id.selected_order},
                 {"hold", t.hold == HoldMode::None ? "none (first-order hold)" : "zero-order"},
                 {"orders", orders},             {"poles", poles},
                 {"residue_fit_nrmse", number(id.residue_nrmse)}, {"samples", id.samples}};

@@ -20,7 +20,8 @@ struct StepOne {
 
 // `prior`: all parameter values; `candidates`: the parameters step two may move (for the structural pattern).
 // Throws FitError naming the file for data the method cannot use.
+// `threads`: for the ARMAX searches' starts.
 StepOne run_step_one(const Model& model, const std::vector<DataSet>& data, const Eigen::VectorXd& prior,
-                     const std::vector<int>& candidates, const TwoStepOptions& options);
+                     const std::vector<int>& candidates, const TwoStepOptions& options, int threads = 1);
 
 }  // namespace mbgen::methods

@@ -132,6 +132,8 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
     throw FitError("two-step: unknown weighting " + two_step.weighting + " (normalised or covariance)");
   if (two_step.criterion != "aic" && two_step.criterion != "bic" && two_step.criterion != "fpe")
     throw FitError("two-step: unknown order criterion " + two_step.criterion + " (aic, bic or fpe)");
+  if (two_step.model != "armax" && two_step.model != "arx")
+    throw FitError("two-step: unknown model " + two_step.model + " for records (armax or arx)");
   if (data.empty()) throw FitError("two-step: no data");
   const ModelInfo& info = model.info();
   const estimation::FitSetup setup = estimation::prepare_fit(model, data, options);
@@ -140,12 +142,12 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
   const std::vector<ParameterTransform>& transforms = setup.transforms;
 
   // ---- step one ----
-  const methods::StepOne one = methods::run_step_one(model, data, prior, candidates, two_step);
+  const methods::StepOne one = methods::run_step_one(model, data, prior, candidates, two_step, options.threads);
   CoefficientProblem problem(model, one.tfs);
   const bool whitened = two_step.weighting == "covariance" && problem.use_covariance_weighting();
   if (two_step.weighting == "covariance" && !whitened)
-    throw FitError("two-step: covariance weighting needs step one's coefficient covariance, which time records (ARX) "
-                   "do not give");
+    throw FitError("two-step: covariance weighting needs step one's coefficient covariance, which time records "
+                   "(ARX, ARMAX) do not give");
   const Search search(problem, prior, transforms);
   const auto n_eq = static_cast<Eigen::Index>(problem.targets().size());
 
@@ -444,7 +446,8 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
     suspect += val.suspect_poles;
   }
   nlohmann::json details;
-  details["summary"] = "step two by the " + route + " route: " + route_reason;
+  details["summary"] = "step two by the " + route + " route: " + route_reason +
+                       (whitened ? "; residuals whitened by step one's coefficient covariance" : "");
   details["step_one"] = one.details;
   details["step_two"] = step_two;
   details["zero_pole"] = zero_pole;

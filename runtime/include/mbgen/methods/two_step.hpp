@@ -35,9 +35,13 @@ struct TwoStepOptions {
   // Step two's residuals: "normalised" (the thesis's (L(p) - L^) / |L^|, Eq. 3.98) or "covariance" (those whitened by
   // step one's coefficient covariance: the Markov estimate; FRF data only, ARX gives no covariance).
   std::string weighting = "normalised";
-  // Time records: the ARX order criterion ("aic", "bic", "fpe") and the highest order tried.
+  // Time records: step one's black-box model, "armax" (the prediction-error method; unbiased under output noise)
+  // or "arx" (least squares; biased under output noise, a high order whitens it); the order criterion ("aic", "bic",
+  // "fpe"); the highest ARX order tried; ARMAX orders tried above the model's.
+  std::string model = "armax";
   std::string criterion = "aic";
   int max_arx_order = 40;
+  int armax_extra_orders = 2;
 };
 
 // Throws FitError for data the method cannot use (a record driving several inputs, too short a record, fewer modes
