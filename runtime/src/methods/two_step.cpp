@@ -261,8 +261,17 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
   }
 
   // ---- step two (a): the analytical solution, where a solver is given ----
+  // The covariance weighting is a weighted least-squares solution of all the equations; the analytical route solves
+  // a square subsystem exactly, where no weight acts, so `auto` leaves it out when the weighting is asked for (it
+  // used to take it and say "whitened" while the weights changed nothing).
   methods::AnalyticalOutcome analytical;
-  if (two_step.solver == "auto" || two_step.solver == "analytical") {
+  if (whitened && two_step.solver == "analytical")
+    throw FitError("two-step: the analytical route solves a square subsystem exactly, where the covariance weighting "
+                   "has nothing to weight; use the minimisation route (or auto) with it");
+  if (whitened && two_step.solver == "auto") {
+    analytical.reason = "not tried: the covariance weighting asks for the weighted least-squares solution";
+    analytical.details = {{"available", nullptr}, {"reason", analytical.reason}};
+  } else if (two_step.solver == "auto" || two_step.solver == "analytical") {
     analytical = methods::analytical_route(model, one.tfs, free, prior, minimum, two_step.analytical);
     if (!analytical.solved && two_step.solver == "analytical")
       throw FitError("two-step: the analytical route cannot be taken: " + analytical.reason);
