@@ -11,7 +11,9 @@ arx-two-stage needs the masses known: it runs on tests/ekf_arx/mdof2_known_mass.
 truth's, as weighed.
 Errors are over the parameters each run reports identifiable (relative, per cent): the largest and the RMS. Time is
 wall time of the whole command on this machine, so ratios between rows mean more than the seconds.
-Prints a Markdown table (bench/README.md keeps the last one).
+Prints a Markdown table (bench/README.md keeps the last one). Before it, the thesis's Table 5.3 (the changes of
+mdof2's natural frequencies and damping ratios for a +-10 % change of each parameter) beside the same changes in
+mbgen's mdof2 model (`mbgen inspect --set`, its modes), which say which parameters the two modes can determine.
 """
 import argparse
 import json
@@ -45,6 +47,49 @@ DATA = [  # name, example, kind, extra truthgen arguments
 ]
 
 
+# Thesis Table 5.3 as printed: per parameter and change (+10 %, -10 %) the changes in per cent of f1, f2, xi1, xi2
+# (mode 1 the mass-1 mode, the higher one; "~ 0" printed as 0). Its k12 row is wrong as printed (the design notes:
+# columns swapped, the -10 % case's sign).
+THESIS_TABLE_5_3 = {
+    "m1": ((-4.7, 0, -4.7, 0), (5.4, 0, 5.4, 0)),
+    "m2": ((0, -4.7, 0, -4.7), (0, 5.4, 0, 5.4)),
+    "k11": ((4.8, 0, -4.6, 0), (-5.0, 0, 5.3, 0)),
+    "k22": ((0, 4.1, 0, -3.9), (0, -4.3, 0, 4.4)),
+    "k12": ((0.8, 0.1, -0.6, -0.1), (0.8, 0.1, -0.6, -0.1)),
+    "c11": ((0, 0, 10.0, 0), (0, 0, -10.0, 0)),
+    "c22": ((0, 0, 0, 9.9), (0, 0, 0, -9.9)),
+}
+
+
+def modes(mbgen, model, values):
+    """(f1, f2, zeta1, zeta2) of mdof2 at `values`: mode 1 the higher (mass 1's), as the thesis numbers them."""
+    cmd = [mbgen, "inspect", model, "--format", "json"]
+    for name, value in values.items():
+        cmd += ["--set", "%s=%r" % (name, value)]
+    m = sorted(json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)["modes"],
+               key=lambda x: -x["f_hz"])
+    return (m[0]["f_hz"], m[1]["f_hz"], m[0]["zeta"], m[1]["zeta"])
+
+
+def sensitivity_table(mbgen):
+    model = os.path.join(ROOT, "examples", "mdof2", "mdof2.mdl")
+    nominal = {p["name"]: p["value"] for p in json.loads(subprocess.run(
+        [mbgen, "inspect", model, "--format", "json"], check=True, capture_output=True, text=True).stdout)["parameters"]}
+    base = modes(mbgen, model, {})
+    print("Thesis Table 5.3 (printed) beside mbgen's mdof2 at its values (f1 %.2f Hz, f2 %.2f Hz, xi1 %.4g, xi2 %.4g):"
+          % base)
+    print()
+    print("| parameter | change | f1 thesis / mbgen | f2 thesis / mbgen | xi1 thesis / mbgen | xi2 thesis / mbgen |")
+    print("|---|---|---|---|---|---|")
+    for name, rows in THESIS_TABLE_5_3.items():
+        for factor, printed in zip((1.1, 0.9), rows):
+            changed = modes(mbgen, model, {name: nominal[name] * factor})
+            ours = [100 * (c / b - 1) for c, b in zip(changed, base)]
+            print("| %s | %+d %% | %s |" % (name, round(100 * (factor - 1)), " | ".join(
+                "%+.1f / %+.2f" % (t, o) for t, o in zip(printed, ours))))
+    print()
+
+
 def make_data(work, draw):
     sets = []
     for i, (name, example, kind, extra) in enumerate(DATA):
@@ -72,7 +117,7 @@ def run_method(mbgen, method, arguments, example, data, truth, work):
     seconds = time.time() - t0
     if p.returncode != 0:
         reason = p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "status %d" % p.returncode
-        return {"refused": reason[:90], "seconds": seconds}
+        return {"refused": reason.replace(work + os.sep, "")[:110], "seconds": seconds}
     r = json.load(open(out))
     errors = {}
     for name, e in r["parameters"].items():
@@ -89,6 +134,7 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench_methods"))
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
+    sensitivity_table(a.mbgen)
     sets = make_data(a.work, a.draw)
     print("| data | method | max error | RMS error | parameters (with std) | nrmse | time |")
     print("|---|---|---|---|---|---|---|")

@@ -41,18 +41,25 @@ void check_truth(const FitResult& r, const std::map<std::string, double>& truth,
 
 // The paper's test for the global optimum, per subproblem of the last sweep: every repetition from the seeded starts
 // (a factor up to 3 off the current values) agrees with the best (every parameter within 1e-3) and they spread by
-// less than `relative_std`. (mdof2 has no local optimum within that range; the spindle has, tests/cli/methods_modal.)
-void check_spread(const FitResult& r, double relative_std) {
+// less than `relative_std`. (mdof2 has no local optimum within that range from the model's values; the spindle has,
+// tests/cli/methods_modal.) With `local_optima_allowed`, the paper's weaker form: at least half the repetitions agree
+// with the best, and those that stop elsewhere cost over 100 times more (local optima, reported as such).
+void check_spread(const FitResult& r, double relative_std, bool local_optima_allowed = false) {
   const nlohmann::json d = nlohmann::json::parse(r.method_details.at("modal"));
   const nlohmann::json& last = d.at("repetitions").at("last_sweep");
   REQUIRE(last.size() == 2);  // mdof2: two modes, a subproblem each
   int parameters = 0;
   for (const auto& sub : last) {
     INFO(sub.dump());
-    CHECK(sub.at("agreeing").get<int>() == sub.at("repetitions").get<int>());
-    CHECK(sub.at("local_optimum_costs").empty());
+    if (local_optima_allowed) {
+      CHECK(2 * sub.at("agreeing").get<int>() >= sub.at("repetitions").get<int>());
+      for (const auto& c : sub.at("local_optimum_costs")) CHECK(c.get<double>() > 100 * sub.at("best_cost").get<double>());
+    } else {
+      CHECK(sub.at("agreeing").get<int>() == sub.at("repetitions").get<int>());
+      CHECK(sub.at("local_optimum_costs").empty());
+    }
     for (const auto& [name, s] : sub.at("parameters").items()) {
-      CHECK(s.at("relative_std").get<double>() < relative_std);
+      CHECK(s.at(local_optima_allowed ? "agreeing_relative_std" : "relative_std").get<double>() < relative_std);
       ++parameters;
     }
   }
@@ -82,38 +89,44 @@ TEST_CASE("truthgen mdof2 FRF draws 1 and 4: modal reaches the truth", "[modal]"
   }
 }
 
-// Poor starts: the priors a factor 2-3 off the model's values, in different directions; the repetitions of every
-// subproblem agree, and both reach the same optimum as from the model's values (and the truth).
-TEST_CASE("truthgen mdof2 FRF draw 2: modal from poor starts reaches one optimum", "[modal]") {
-  const test::TruthgenData g = generate(2, 5);
+// Poor starts: the priors a factor 2-3 off the model's values, in different directions; both reach the same optimum as
+// from the model's values (and the truth). Two drawn truths. On draw 2 every repetition of every subproblem agrees;
+// on draw 3 from the first poor prior, 3 of the 8 repetitions of the mass-1 subproblem stop at a local optimum
+// (k22 driven off by orders of magnitude, cost ~1700 times the best), which the spread reports and the best
+// repetition avoids: the paper's test doing its work, so there the weaker form of check_spread.
+TEST_CASE("truthgen mdof2 FRF draws 2 and 3: modal from poor starts reaches one optimum", "[modal]") {
   const test::LinearModel model = test::mdof2_model({}, true);
-  FitOptions o;
-  o.starts = 8;
-  const FitResult reference = fit_modal(model, {g.data}, o);
-  check_truth(reference, g.truth, 0.005);
-  const std::vector<std::map<std::string, double>> poor = {{{"m1", 2 * 1.39},
-                                                            {"m2", 1.09 / 2},
-                                                            {"k11", 1.38e6 / 3},
-                                                            {"k22", 0.24e6 * 2},
-                                                            {"k12", 0.12e6 * 3},
-                                                            {"c11", 13.42 * 3},
-                                                            {"c22", 0.47 / 3}},
-                                                           {{"m1", 1.39 / 2},
-                                                            {"m2", 1.09 * 2},
-                                                            {"k11", 1.38e6 * 2},
-                                                            {"k22", 0.24e6 / 3},
-                                                            {"k12", 0.12e6 / 2},
-                                                            {"c11", 13.42 / 3},
-                                                            {"c22", 0.47 * 3}}};
-  for (std::size_t k = 0; k < poor.size(); ++k) {
-    INFO("poor start " << k);
-    o.values = poor[k];
-    o.seed = 11 + k;
-    const FitResult r = fit_modal(model, {g.data}, o);
-    check_spread(r, 1e-6);
-    for (std::size_t i = 0; i < r.parameters.size(); ++i) {
-      INFO(r.parameters[i].name << ": " << r.parameters[i].value << " vs " << reference.parameters[i].value);
-      CHECK(std::abs(r.parameters[i].value / reference.parameters[i].value - 1) < 1e-6);
+  for (auto [draw, seed] : {std::pair{2, 5}, std::pair{3, 7}}) {
+    INFO("draw " << draw);
+    const test::TruthgenData g = generate(draw, seed);
+    FitOptions o;
+    o.starts = 8;
+    const FitResult reference = fit_modal(model, {g.data}, o);
+    check_truth(reference, g.truth, 0.005);
+    const std::vector<std::map<std::string, double>> poor = {{{"m1", 2 * 1.39},
+                                                              {"m2", 1.09 / 2},
+                                                              {"k11", 1.38e6 / 3},
+                                                              {"k22", 0.24e6 * 2},
+                                                              {"k12", 0.12e6 * 3},
+                                                              {"c11", 13.42 * 3},
+                                                              {"c22", 0.47 / 3}},
+                                                             {{"m1", 1.39 / 2},
+                                                              {"m2", 1.09 * 2},
+                                                              {"k11", 1.38e6 * 2},
+                                                              {"k22", 0.24e6 / 3},
+                                                              {"k12", 0.12e6 / 2},
+                                                              {"c11", 13.42 / 3},
+                                                              {"c22", 0.47 * 3}}};
+    for (std::size_t k = 0; k < poor.size(); ++k) {
+      INFO("poor start " << k);
+      o.values = poor[k];
+      o.seed = 11 + k;
+      const FitResult r = fit_modal(model, {g.data}, o);
+      check_spread(r, 1e-6, draw == 3);
+      for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+        INFO(r.parameters[i].name << ": " << r.parameters[i].value << " vs " << reference.parameters[i].value);
+        CHECK(std::abs(r.parameters[i].value / reference.parameters[i].value - 1) < 1e-6);
+      }
     }
   }
 }
