@@ -48,6 +48,7 @@ std::string summary(const FitResult& r) {
   std::snprintf(line, sizeof line, "\nnrmse %.4g   BIC %.6g   (%ld residuals, %s)\n", r.nrmse, r.bic, r.residual_count,
                 r.method.c_str());
   out += line;
+  if (!r.converged) out += "warning: the fit did not converge (" + r.stop_reason + ")\n";
   out += "modes at the estimate:";
   for (const Mode& m : r.modes) {
     std::snprintf(line, sizeof line, " %.1f Hz (%.3g)", m.f_hz, m.zeta);
