@@ -33,6 +33,36 @@ expect_run(STATUS 1 STDERR "^set0.csv:1: error: the values of its `# set` lines 
 expect_run(STATUS 1 STDERR "^zero.csv: error: FRF d1/F1 is zero at every frequency" ARGS fit ${MDOF2} --data zero.csv --starts 1)
 expect_run(STATUS 1 STDERR "^huge.csv:2:2: error: '1e300' is too large" ARGS fit ${MDOF2} --data huge.csv --starts 1)
 
+# Signals too small to square: every value's square below the smallest normal double. The FRF and the record's
+# output gave nrmse NaN with status 0 (and an estimate with a std); an input that small gave nrmse 1 with status 0.
+file(STRINGS "${WORK}/one_frf.csv" one_lines)
+set(tiny_frf "")
+foreach(line IN LISTS one_lines)
+  if(line MATCHES "^[0-9]")
+    string(REGEX MATCH "^[^,]+" f "${line}")
+    string(APPEND tiny_frf "${f},1e-200,-3e-201\n")
+  elseif(NOT line MATCHES "^#")
+    string(APPEND tiny_frf "${line}\n")
+  endif()
+endforeach()
+file(WRITE "${WORK}/tiny_frf.csv" "${tiny_frf}")
+expect_run(STATUS 1
+  STDERR "^tiny_frf.csv: error: FRF y/F is too small to fit: its largest magnitude, 1.04403e-200, is below 1e-150"
+  ARGS fit one.mdl --data tiny_frf.csv --starts 1)
+set(tiny_out "t,F,y\n")
+set(tiny_in "t,F,y\n")
+foreach(i RANGE 0 199)
+  math(EXPR sign "1 - 2 * (${i} % 2)")
+  string(APPEND tiny_out "${i}e-3,${sign},${sign}e-200\n")
+  string(APPEND tiny_in "${i}e-3,${sign}e-200,${sign}e-3\n")
+endforeach()
+file(WRITE "${WORK}/tiny_out.csv" "${tiny_out}")
+file(WRITE "${WORK}/tiny_in.csv" "${tiny_in}")
+expect_run(STATUS 1 STDERR "^tiny_out.csv: error: output y is too small to fit: its largest magnitude, 1e-200, is below"
+  ARGS fit one.mdl --data tiny_out.csv --starts 1)
+expect_run(STATUS 1 STDERR "^tiny_in.csv: error: every input is too small: its largest magnitude, 1e-200, is below"
+  ARGS fit one.mdl --data tiny_in.csv --starts 1)
+
 # One name for a parameter, a spring and an input.
 file(WRITE "${WORK}/twice.mdl" "model twice\nparam F = 1000\nground g\nbody b { mass 1; dof x }\n"
            "spring F { from g; to b; along x; stiffness F }\ninput F force on b along x\n")
