@@ -31,6 +31,8 @@ file(WRITE "${WORK}/set0.csv" "${set0}")
 expect_run(STATUS 1 STDERR "^set0.csv:1: error: the values of its `# set` lines are not admissible: the mass matrix"
   ARGS fit ${MDOF2} --data set0.csv --starts 1)
 expect_run(STATUS 1 STDERR "^zero.csv: error: FRF d1/F1 is zero at every frequency" ARGS fit ${MDOF2} --data zero.csv --starts 1)
+# The modal analysis too: it reported no modes and a channel error of 0 (a perfect fit) with status 0.
+expect_run(STATUS 1 STDERR "^zero.csv: error: channel d1/F1 is zero at every line in the band" ARGS modal --data zero.csv)
 expect_run(STATUS 1 STDERR "^huge.csv:2:2: error: '1e300' is too large" ARGS fit ${MDOF2} --data huge.csv --starts 1)
 
 # Signals too small to square: every value's square below the smallest normal double. The FRF and the record's
@@ -49,6 +51,7 @@ file(WRITE "${WORK}/tiny_frf.csv" "${tiny_frf}")
 expect_run(STATUS 1
   STDERR "^tiny_frf.csv: error: FRF y/F is too small to fit: its largest magnitude, 1.04403e-200, is below 1e-150"
   ARGS fit one.mdl --data tiny_frf.csv --starts 1)
+expect_run(STATUS 1 STDERR "^tiny_frf.csv: error: channel y/F is too small to analyse" ARGS modal --data tiny_frf.csv)
 set(tiny_out "t,F,y\n")
 set(tiny_in "t,F,y\n")
 foreach(i RANGE 0 199)

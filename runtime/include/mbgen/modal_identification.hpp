@@ -64,8 +64,9 @@ struct FrequencyBand {
 
 // Collects the channels of `files` (in file and column order) on the lines with lo <= f <= hi and f > 0 (the
 // lower residual term is singular at 0 Hz). Throws DataError naming the file for: no files or channels, a
-// channel that appears twice, files whose frequencies differ within the band, non-finite values, and a band
-// holding fewer than kMinModalLines lines.
+// channel that appears twice, files whose frequencies differ within the band, non-finite values, a channel zero
+// or below kMinSignalMagnitude (mbgen/data_set.hpp) throughout the band, and a band holding fewer than
+// kMinModalLines lines.
 constexpr int kMinModalLines = 8;
 ModalData modal_data(const std::vector<FrfData>& files, const FrequencyBand& band,
                      FrfQuantity quantity = FrfQuantity::Unknown);

@@ -19,12 +19,8 @@ void check_parameter_values(const Model& model, const Eigen::VectorXd& values, c
 // Each data set's `# set` values, applied over `prior`: DataError at the `# set` line.
 void check_data_set_values(const Model& model, const Eigen::VectorXd& prior, const std::vector<DataSet>& data);
 
-// Nonzero measured values smaller than this in magnitude throughout a signal are refused: their squares underflow.
-// The counterpart of the readers' kMaxDataMagnitude (1e150); no measurement in any unit comes near either.
-constexpr double kMinSignalMagnitude = 1e-150;
-
 // Throws DataError for a measured FRF channel or a time record's output zero throughout or below
-// kMinSignalMagnitude throughout, or a record whose inputs all are.
+// kMinSignalMagnitude (mbgen/data_set.hpp) throughout, or a record whose inputs all are.
 void check_measured_signals(const Model& model, const std::vector<DataSet>& data);
 
 }  // namespace mbgen::estimation
