@@ -12,6 +12,18 @@ expect_run(STATUS 1 STDERR "^m.mdl:2:7: error: --set m1=20: outside the bounds \
 write_model(outside "param v = 3 in [0, 1]")
 expect_run(STATUS 1 STDERR "^outside.mdl:9:11: error: the value of parameter `v` lies outside its bounds" ARGS inspect outside.mdl)
 
+# `sensitivity --sweep` is held to what --set is: within the declared bounds, and a positive definite mass matrix at
+# every point. Sweeps beyond the bounds and through negative masses were computed with status 0.
+expect_run(STATUS 1 STDERR "^m.mdl:2:7: error: --sweep m1=5:20:3: outside the bounds \\[0.5, 10\\] declared for `m1`"
+  ARGS sensitivity m.mdl --sweep m1=5:20:3)
+expect_run(STATUS 0 STDOUT "feature map: m1 from 0.5 to 10, 3 points" ARGS sensitivity m.mdl --sweep m1=0.5:10:3)
+file(WRITE "${WORK}/free.mdl" "model free\nparam m1 = 2\nground g\nbody b { mass m1; dof x }\n"
+           "spring s { from g; to b; along x; stiffness 1000 }\n")
+expect_run(STATUS 1 STDERR "^free.mdl:2:7: error: --sweep m1=-2:1:4: at m1 = -2 the mass matrix is not positive definite"
+  ARGS sensitivity free.mdl --sweep m1=-2:1:4)
+expect_run(STATUS 1 STDERR "^free.mdl:2:7: error: --sweep m1=0:1:3: at m1 = 0 the mass matrix"
+  ARGS sensitivity free.mdl --sweep m1=0:1:3)
+
 # Data: `# set m1=0.000` (the mass matrix singular, as --set m1=0 is refused), all-zero and 1e300 values.
 file(STRINGS "${MDOF2_FRF}" lines)
 list(GET lines 1 header)
