@@ -207,6 +207,9 @@ void OutputPlan::check() const {
     require_writable_directory(path);
   }
   if (report_dir.empty()) return;
+  // Elsewhere `-` means standard output, which cannot hold a directory; it made a directory named `-`.
+  if (report_dir == "-")
+    throw CLI::ValidationError("--report", "- (standard output) cannot hold a report directory; name a directory");
   const fs::path dir = clean(report_dir);
   report_target(dir);
   for (const std::string& input : inputs)
