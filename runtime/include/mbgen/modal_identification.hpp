@@ -56,6 +56,8 @@ struct ModalData {
 // The quantity a UFF file's FRF records (function type 4) declare by their ordinate's specific data type
 // (record 9: 8 displacement, 11 velocity, 12 acceleration), when they all agree; else Unknown.
 FrfQuantity uff_frf_quantity(const std::vector<Uff58Record>& records);
+// The same for FRFs already read (FrfData::uff_ordinate_type): Unknown for CSV data.
+FrfQuantity uff_frf_quantity(const FrfData& frf);
 
 struct FrequencyBand {
   double lo_hz = 0;

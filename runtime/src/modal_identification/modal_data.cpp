@@ -62,21 +62,27 @@ int frf_quantity_power(FrfQuantity q) {
   }
 }
 
+namespace {
+FrfQuantity quantity_of_ordinate_type(int type) {
+  return type == 8 ? FrfQuantity::Receptance : type == 11 ? FrfQuantity::Mobility
+         : type == 12 ? FrfQuantity::Accelerance : FrfQuantity::Unknown;
+}
+}  // namespace
+
 FrfQuantity uff_frf_quantity(const std::vector<Uff58Record>& records) {
   FrfQuantity q = FrfQuantity::Unknown;
   bool first = true;
   for (const Uff58Record& r : records) {
     if (r.function_type != 4) continue;
-    const FrfQuantity here = r.ordinate_type == 8    ? FrfQuantity::Receptance
-                             : r.ordinate_type == 11 ? FrfQuantity::Mobility
-                             : r.ordinate_type == 12 ? FrfQuantity::Accelerance
-                                                     : FrfQuantity::Unknown;
+    const FrfQuantity here = quantity_of_ordinate_type(r.ordinate_type);
     if (!first && here != q) return FrfQuantity::Unknown;
     q = here;
     first = false;
   }
   return q;
 }
+
+FrfQuantity uff_frf_quantity(const FrfData& frf) { return quantity_of_ordinate_type(frf.uff_ordinate_type); }
 
 ModalData modal_data(const std::vector<FrfData>& files, const FrequencyBand& band, FrfQuantity quantity) {
   if (files.empty()) throw DataError("modal analysis: no FRF data given");
