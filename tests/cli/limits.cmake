@@ -33,7 +33,8 @@ expect_run(STATUS 2 STDERR "--set: m1=1e999999999999999999: out of range" ARGS i
 # 100 001 starts here and time out); so is 0, which CLI11 described as "not in range 0.000000 to 1797693...".
 expect_run(STATUS 2 STDERR "^mbgen: --starts: Value 100001 not in range 1 to 100000" ARGS ${FAST_FIT} --starts 100001)
 expect_run(STATUS 2 STDERR "^mbgen: --starts: Value 0 not in range 1 to 100000" ARGS ${FAST_FIT} --starts 0)
-expect_run(STATUS 2 STDERR "^mbgen: --starts: Value 100001 not in range" ARGS diagnose one.mdl --data one_frf.csv --starts 100001)
+expect_run(STATUS 2 STDERR "^mbgen: --starts: Value 100001 not in range"
+  ARGS diagnose one.mdl --data one_frf.csv --starts 100001)
 expect_run(STATUS 2 STDERR "^mbgen: --warm-starts: Value 100001 not in range"
   ARGS monitor one.mdl --data one_frf.csv --warm-starts 100001)
 

@@ -68,7 +68,8 @@ TEST_CASE("modal_data names the file for every data problem", "[modal][data]") {
   zero.channels[1].values.setZero();
   zero.channels[1].values[0] = {1, 0};  // at 0 Hz, outside every band
   CHECK_THROWS_WITH(modal_data({zero}, {}),
-                    Catch::StartsWith("z.csv: error: channel y2/u1 is zero at every line in the band: it has no modes"));
+                    Catch::StartsWith("z.csv: error: channel y2/u1 is zero at every line in the band: it has no "
+                                      "modes"));
   FrfData tiny = frf("t.csv", {"y1/u1"}, 101, 1.0);
   tiny.channels[0].values *= 1e-200;
   CHECK_THROWS_WITH(modal_data({tiny}, {}),
