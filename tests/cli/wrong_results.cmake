@@ -72,6 +72,10 @@ foreach(i RANGE 0 199)
   string(APPEND tiny_out "${i}e-3,${sign},${sign}e-200\n")
   string(APPEND tiny_in "${i}e-3,${sign}e-200,${sign}e-3\n")
 endforeach()
+# A record without a column for the model's input: said to be "every input is zero throughout the record".
+file(WRITE "${WORK}/no_input.csv" "t,y\n0,0\n1e-3,1e-4\n2e-3,2e-4\n3e-3,1e-4\n")
+expect_run(STATUS 1 STDERR "^no_input.csv: error: the record has no column of the model's inputs \\(F\\)"
+  ARGS fit one.mdl --data no_input.csv --starts 1)
 file(WRITE "${WORK}/tiny_out.csv" "${tiny_out}")
 file(WRITE "${WORK}/tiny_in.csv" "${tiny_in}")
 expect_run(STATUS 1 STDERR "^tiny_out.csv: error: output y is too small to fit: its largest magnitude, 1e-200, is below"

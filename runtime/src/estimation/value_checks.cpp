@@ -83,14 +83,25 @@ void check_measured_signals(const Model& model, const std::vector<DataSet>& data
       continue;
     }
     double input_peak = 0;
+    bool any_input = false;
     for (const Signal& s : std::get<TimeRecord>(d.content).signals) {
       const double peak = largest(s.values);
-      if (info.input_index(s.name) >= 0) input_peak = std::max(input_peak, peak);
+      if (info.input_index(s.name) >= 0) {
+        any_input = true;
+        input_peak = std::max(input_peak, peak);
+      }
       if (info.output_index(s.name) < 0) continue;
       if (peak == 0)
         throw DataError(d.file(), 0, 0, "output " + s.name + " is zero throughout the record: there is nothing to fit");
       if (peak < kMinSignalMagnitude)
         throw DataError(d.file(), 0, 0, "output " + s.name + " is too small to fit: " + too_small(peak));
+    }
+    if (!any_input) {  // it was called "every input is zero throughout the record", true but not the point
+      std::string names;
+      for (const std::string& n : info.inputs) names += (names.empty() ? "" : ", ") + n;
+      throw DataError(d.file(), 0, 0,
+                      "the record has no column of the model's inputs (" + names +
+                          "): the model's response would be zero");
     }
     if (input_peak == 0)
       throw DataError(d.file(), 0, 0, "every input is zero throughout the record: the model's response would be zero");
