@@ -46,6 +46,9 @@ std::string summary(const FitResult& r) {
                   note.c_str());
     out += line;
   }
+  // An empty table alone said nothing of why.
+  if (r.parameters.empty())
+    out += "(no parameter is declared `estimate`: the model is compared with the data at its values)\n";
   std::snprintf(line, sizeof line, "\nnrmse %.4g   BIC %.6g   (%ld residuals, %s)\n", r.nrmse, r.bic, r.residual_count,
                 r.method.c_str());
   out += line;

@@ -83,6 +83,13 @@ expect_run(STATUS 1 STDERR "^tiny_out.csv: error: output y is too small to fit: 
 expect_run(STATUS 1 STDERR "^tiny_in.csv: error: every input is too small: its largest magnitude, 1e-200, is below"
   ARGS fit one.mdl --data tiny_in.csv --starts 1)
 
+# A model with nothing to estimate: the fit compares it with the data, and says so (it printed an empty table).
+file(READ "${WORK}/one.mdl" one_text)
+string(REPLACE " estimate in [0.5, 10]" "" fixed_text "${one_text}")
+file(WRITE "${WORK}/fixed.mdl" "${fixed_text}")
+expect_run(STATUS 0 STDOUT "no parameter is declared `estimate`: the model is compared with the data at its values"
+  ARGS fit fixed.mdl --data one_frf.csv --starts 1)
+
 # One name for a parameter, a spring and an input.
 file(WRITE "${WORK}/twice.mdl" "model twice\nparam F = 1000\nground g\nbody b { mass 1; dof x }\n"
            "spring F { from g; to b; along x; stiffness F }\ninput F force on b along x\n")
