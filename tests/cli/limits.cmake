@@ -38,6 +38,13 @@ expect_run(STATUS 2 STDERR "^mbgen: --starts: Value 100001 not in range"
 expect_run(STATUS 2 STDERR "^mbgen: --warm-starts: Value 100001 not in range"
   ARGS monitor one.mdl --data one_frf.csv --warm-starts 100001)
 
+# A model file is read up to 16 MiB (`inspect /dev/zero` read until the memory ran out): 17 MiB of comments.
+string(REPEAT "# a comment line of exactly sixty-four characters, newline too.\n" 16 line16)
+string(REPEAT "${line16}" 17408 comments)  # 17408 * 16 * 64 bytes = 17 MiB
+file(WRITE "${WORK}/big_file.mdl" "${comments}")
+expect_run(STATUS 1 STDERR "^big_file.mdl: error: the model file is larger than 16 MiB" ARGS inspect big_file.mdl)
+file(REMOVE "${WORK}/big_file.mdl")
+
 string(REPEAT " + 0.001" 99999 terms)
 file(WRITE "${WORK}/sum.mdl" "model m\nparam m1 = 0.001${terms}\nground g\nbody b { mass m1; dof x }\n"
            "spring s { from g; to b; along x; stiffness 1 }\n")
