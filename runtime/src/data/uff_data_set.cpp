@@ -176,7 +176,7 @@ std::string uff_channel_name(const UffMapping& mapping, int node, int direction)
 UffMapping read_uff_mapping(std::istream& in, const std::string& file_name) {
   UffMapping mapping;
   DataConfig config;
-  LineReader reader(in);
+  LineReader reader(in, file_name);
   std::string line;
   while (reader.next(line)) {
     const int at = reader.line_number();
