@@ -7,6 +7,7 @@
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
+#include "cli/starts_option.hpp"
 #include "cli/version.hpp"
 #include "diagnosis/engine/diagnose.hpp"
 #include "diagnosis/engine/diagnosis_json.hpp"
@@ -63,7 +64,7 @@ int run_diagnose(int argc, char** argv) {
                  "when extended, write the extended model here (and its C++ as OUT_model.cpp/.hpp beside it)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("--starts", options.fit.starts, "starts of the nominal fit's global search (default 16)")
-      ->check(CLI::PositiveNumber);
+      ->check(starts_range());
   app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)");
   app.add_option("--full-fits", options.full_fits,
                  "candidates fitted fully after the screening (default 6; 0: every candidate)")

@@ -18,6 +18,7 @@
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
+#include "cli/starts_option.hpp"
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/message.hpp"
@@ -45,6 +46,9 @@ std::string summary(const FitResult& r) {
                   note.c_str());
     out += line;
   }
+  // An empty table alone said nothing of why.
+  if (r.parameters.empty())
+    out += "(no parameter is declared `estimate`: the model is compared with the data at its values)\n";
   std::snprintf(line, sizeof line, "\nnrmse %.4g   BIC %.6g   (%ld residuals, %s)\n", r.nrmse, r.bic, r.residual_count,
                 r.method.c_str());
   out += line;
@@ -96,7 +100,8 @@ int run_fit(int argc, char** argv) {
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
-  app.add_option("--starts", options.starts, "number of starts of the global search (default 16)")->check(CLI::PositiveNumber);
+  app.add_option("--starts", options.starts, "number of starts of the global search (default 16)")
+      ->check(starts_range());
   app.add_option("--seed", options.seed, "seed of the global search (default 1)");
   app.add_option("--band", band, "fit only the FRF lines within LO:HI Hz (the band the model is meant to represent)");
   TwoStepOptions two_step;

@@ -3,12 +3,8 @@
 #include <mbgen/data_error.hpp>
 #include <mbgen/data_set.hpp>
 #include <mbgen/modal_report.hpp>
-#include <mbgen/uff.hpp>
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -22,17 +18,6 @@
 #include "frontend/parser.hpp"
 
 namespace mbgen::cli {
-
-namespace {
-
-bool is_uff_path(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return path != "-" && (ext == ".uff" || ext == ".unv");
-}
-
-}  // namespace
 
 int run_modal(int argc, char** argv) {
   CLI::App app{
@@ -94,7 +79,9 @@ int run_modal(int argc, char** argv) {
       DataSet file = model ? read_data_file(path, model->info().inputs, model->info().outputs) : read_data_file(path);
       if (!file.is_frf()) throw DataError(path, 0, 0, "modal analysis needs FRFs, but this is a time record");
       frfs.push_back(std::get<FrfData>(std::move(file.content)));
-      const FrfQuantity here = is_uff_path(path) ? uff_frf_quantity(read_uff58(path)) : FrfQuantity::Unknown;
+      // From the records as read: by the file's name it missed UFF on standard input, through a pipe or under
+      // another extension (the modes and their std then differed), and it read the file a second time.
+      const FrfQuantity here = uff_frf_quantity(frfs.back());
       quantity = d == 0 || here == quantity ? here : FrfQuantity::Unknown;
     }
     if (quantity != FrfQuantity::Unknown) quantity_source = "from the UFF ordinate type";

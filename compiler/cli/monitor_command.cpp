@@ -20,6 +20,7 @@
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
+#include "cli/starts_option.hpp"
 #include "cli/version.hpp"
 #include "diagnosis/engine/channel_residuals.hpp"
 #include "diagnosis/engine/diagnose.hpp"
@@ -226,10 +227,10 @@ int run_monitor(int argc, char** argv) {
   app.add_option("--report", report_dir, "write a report directory (Markdown with parameter trend plots)");
   app.add_option("--set", settings.sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("--starts", options.fit.starts, "starts of the first data set's fit (default 16)")
-      ->check(CLI::PositiveNumber);
+      ->check(starts_range());
   app.add_option("--warm-starts", options.warm_starts,
                  "starts of each later, warm-started fit (default 4: the previous estimate, the priors, 2 random; at most --starts)")
-      ->check(CLI::PositiveNumber);
+      ->check(starts_range());
   app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)");
   app.add_flag("--no-diagnosis", settings.no_diagnosis, "report a structural change without running the diagnosis on it");
   app.add_option("--manifest", manifest_path,

@@ -105,6 +105,30 @@ void require_writable_directory(const fs::path& destination) {
     fail(destination, "cannot write: directory `" + dir.string() + "` is not writable");
 }
 
+// A destination that is a symbolic link, a character device or a named pipe (`/dev/null`, `/dev/stdout`, a link of
+// the user's) is written through, not replaced by a renamed temporary: the rename put a regular file in its place
+// (as root, /dev/null itself) and dropped the user's link.
+bool written_through(const fs::path& destination) {
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(destination, ec))) return true;
+  const fs::file_status st = fs::status(destination, ec);
+  return fs::is_character_file(st) || fs::is_fifo(st);
+}
+
+// What a written-through destination needs: write permission on what exists (its directory need not be writable:
+// /dev is not, for a user), or on the directory where a dangling link's target would be made.
+void require_writable_through(const fs::path& destination) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(destination, ec);
+  if (!fs::exists(st)) {
+    require_writable_directory(resolved(destination));
+  } else if (!fs::is_regular_file(st) && !fs::is_character_file(st) && !fs::is_fifo(st)) {
+    fail(destination, "cannot write: it is neither a file, a character device nor a named pipe");
+  } else if (::access(destination.c_str(), W_OK) != 0) {
+    fail(destination, std::string("cannot write: ") + std::strerror(errno));
+  }
+}
+
 // Every entry below `dir`, relative to it, directories with a trailing '/', sorted.
 std::vector<std::string> entries_below(const fs::path& dir) {
   std::vector<std::string> out;
@@ -204,9 +228,18 @@ void OutputPlan::check() const {
                                              ", which is written whole; write it elsewhere");
     std::error_code ec;
     if (fs::is_directory(path, ec)) fail(path, "cannot write: it is a directory");
+    if (written_through(path)) {
+      require_writable_through(path);
+      continue;
+    }
+    if (fs::exists(fs::status(path, ec)) && !fs::is_regular_file(fs::status(path, ec)))
+      fail(path, "cannot write: it is neither a file, a character device nor a named pipe");
     require_writable_directory(path);
   }
   if (report_dir.empty()) return;
+  // Elsewhere `-` means standard output, which cannot hold a directory; it made a directory named `-`.
+  if (report_dir == "-")
+    throw CLI::ValidationError("--report", "- (standard output) cannot hold a report directory; name a directory");
   const fs::path dir = clean(report_dir);
   report_target(dir);
   for (const std::string& input : inputs)
@@ -226,6 +259,10 @@ void OutputFiles::add(const std::string& path, const std::string& content) {
     return;
   }
   const fs::path destination = clean(path);
+  if (written_through(destination)) {
+    through_.push_back({destination.string(), content});
+    return;
+  }
   remove_stale_temporaries(destination);
   const fs::path temp = temp_for(destination, "tmp");
   staged_.push_back({temp.string(), destination.string(), false});
@@ -304,6 +341,16 @@ void OutputFiles::commit() {
                             ec.message());
     }
     done.push_back(d);
+  }
+  // Then the destinations written through (devices, pipes, links), which cannot be staged: one failing undoes the
+  // renames, though what it had written to its device stays written.
+  for (const Through& t : through_) {
+    try {
+      write_file(t.path, t.content, t.path);
+    } catch (...) {
+      undo();
+      throw;
+    }
   }
   for (const Done& d : done) {  // all in place: what they replaced goes
     std::error_code ec;

@@ -5,7 +5,9 @@
 //   temporaries left by a killed run (same host, process gone) are removed by the next run writing there;
 // - a report directory is written only where nothing of the user's can be lost: a new directory, an empty one, or
 //   one that mbgen wrote before (it holds the marker file kReportMarker), which is then replaced whole;
-// - no output may be an input, lie inside the report directory, or be named twice.
+// - no output may be an input, lie inside the report directory, or be named twice;
+// - a destination that is a symbolic link, a character device or a named pipe (/dev/null, /dev/stdout) is written
+//   through at commit, after the renames, instead of being replaced.
 // "-" means standard output.
 #pragma once
 
@@ -63,6 +65,10 @@ class OutputFiles {
     bool directory = false;
   };
   std::vector<Staged> staged_;
+  struct Through {
+    std::string path, content;
+  };
+  std::vector<Through> through_;  // destinations written through at commit (symbolic links, devices, pipes)
   std::vector<std::string> stdout_chunks_;
   bool committed_ = false;
 };

@@ -2,6 +2,8 @@
 // depend on its parameters (runtime/include/mbgen/sensitivity.hpp, docs/sensitivity.md).
 #include <mbgen/sensitivity_report.hpp>
 
+#include <Eigen/Cholesky>
+
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -12,6 +14,7 @@
 #include "cli/run_guarded.hpp"
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
+#include "frontend/diagnostics.hpp"
 #include "frontend/parser.hpp"
 
 namespace mbgen::cli {
@@ -19,6 +22,7 @@ namespace mbgen::cli {
 namespace {
 
 struct Sweep {
+  std::string text;  // as given: NAME=LO:HI:N
   int index = 0;
   double lo = 0, hi = 0;
   int points = 0;
@@ -30,6 +34,7 @@ Sweep parse_sweep(const std::string& text, const ModelInfo& info) {
   const std::size_t eq = text.find('=');
   if (eq == std::string::npos) throw fail("expected NAME=LO:HI:N");
   Sweep s;
+  s.text = text;
   s.index = info.parameter_index(text.substr(0, eq));
   if (s.index < 0) throw fail("the model has no parameter `" + text.substr(0, eq) + "`");
   std::vector<std::string> parts;
@@ -52,6 +57,32 @@ Sweep parse_sweep(const std::string& text, const ModelInfo& info) {
   if (!std::isfinite(s.lo) || !std::isfinite(s.hi) || !(s.lo < s.hi)) throw fail("expected finite LO < HI");
   if (s.points < 2 || s.points > 100000) throw fail("expected 2 <= N <= 100000");
   return s;
+}
+
+// What a sweep means for the model, checked as --set's values are (status 1, at the parameter's declaration): the
+// range within the declared bounds, and a positive definite mass matrix at every point. A sweep through negative
+// masses or beyond the bounds was computed and reported with status 0 (while --set refuses both); one through a
+// zero mass failed on a singular mass matrix without saying which value.
+void check_sweep(const Sweep& s, const Model& model, const ir::Model& declared) {
+  const ParameterInfo& p = model.info().parameters[static_cast<std::size_t>(s.index)];
+  ir::SourceLoc loc;
+  for (const ir::Parameter& d : declared.parameters)
+    if (d.name == p.name) loc = d.loc;
+  if (s.lo < p.lower || s.hi > p.upper)
+    throw frontend::ModelError(declared.file, loc, "--sweep {}: outside the bounds [{}, {}] declared for `{}`", s.text,
+                               p.lower, p.upper, p.name);
+  Eigen::VectorXd q = model.info().default_values();
+  const Eigen::VectorXd values = Eigen::VectorXd::LinSpaced(s.points, s.lo, s.hi);
+  ModelMatrices m;
+  for (const double v : values) {
+    q[s.index] = v;
+    model.evaluate(q, m);
+    if (Eigen::LLT<Eigen::MatrixXd>(m.M).info() != Eigen::Success)
+      throw frontend::ModelError(declared.file, loc,
+                                 "--sweep {}: at {} = {} the mass matrix is not positive definite (a mass or inertia "
+                                 "is zero or negative)",
+                                 s.text, p.name, v);
+  }
 }
 
 }  // namespace
@@ -91,10 +122,12 @@ int run_sensitivity(int argc, char** argv) {
     plan.check();
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(sets);
-    const auto model = evaluator::make_evaluator(frontend::parse_file(model_path), derive);
+    const ir::Model declared = frontend::parse_file(model_path);
+    const auto model = evaluator::make_evaluator(declared, derive);
     const ModelInfo& info = model->info();
     std::vector<Sweep> parsed;
     for (const std::string& s : sweeps) parsed.push_back(parse_sweep(s, info));
+    for (const Sweep& s : parsed) check_sweep(s, *model, declared);
     const Eigen::VectorXd p = info.default_values();
 
     const LocalSensitivity local = local_sensitivity(*model, p);

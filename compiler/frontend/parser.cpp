@@ -602,19 +602,31 @@ ir::Model parse_string(const std::string& text, const std::string& file_name) {
   return model;
 }
 
-std::string read_model_text(const std::string& path) {
-  std::ostringstream text;
-  if (path == "-") {
-    text << std::cin.rdbuf();
-  } else {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw ModelError(path, {}, "is a directory, not a model file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ModelError(path, {}, "cannot open the model file");
-    text << in.rdbuf();
-    if (in.bad()) throw ModelError(path, {}, "cannot read the model file");
+namespace {
+
+// The whole of `in`, refused beyond kMaxModelBytes: `inspect /dev/zero` (or a stray multi-gigabyte file) read until
+// the memory ran out.
+std::string read_bounded(std::istream& in, const std::string& path) {
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxModelBytes)
+      throw ModelError(path, {}, "the model file is larger than {} MiB (docs/limits.md)", kMaxModelBytes >> 20);
   }
-  return text.str();
+  if (in.bad()) throw ModelError(path, {}, "cannot read the model file");
+  return text;
+}
+
+}  // namespace
+
+std::string read_model_text(const std::string& path) {
+  if (path == "-") return read_bounded(std::cin, path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw ModelError(path, {}, "is a directory, not a model file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ModelError(path, {}, "cannot open the model file");
+  return read_bounded(in, path);
 }
 
 ir::Model parse_file(const std::string& path) { return parse_string(read_model_text(path), path); }

@@ -56,3 +56,15 @@ expect_run(STATUS 1 STDERR "^one_frf.csv: error: --method time-output-error need
 file(WRITE "${WORK}/rec.csv" "t,F,y\n0,1,0\n0.001,1,0.0001\n0.002,1,0.0002\n0.003,1,0.0003\n")
 expect_run(STATUS 1 STDERR "^rec.csv: error: --method frf-output-error needs FRF data"
   ARGS fit one.mdl --data rec.csv --starts 1 --method frf-output-error)
+
+# A UFF file read from standard input or under another name: the FRFs' quantity is still the one its records declare.
+# It was taken from the records only for a name ending in .uff (by reading the file again), so the beam came out
+# "unknown" there, with other modes and std than from measurement.uff.
+set(beam "${SOURCE}/examples/beam/measurement.uff")
+execute_process(COMMAND "${MBGEN}" modal --data - --json - WORKING_DIRECTORY "${WORK}" INPUT_FILE "${beam}"
+  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_QUIET TIMEOUT 60)
+if(NOT status EQUAL 0 OR NOT out MATCHES "\"quantity\": \"accelerance\"")
+  message(SEND_ERROR "modal --data - < measurement.uff: status ${status}, not accelerance")
+endif()
+file(COPY_FILE "${beam}" "${WORK}/beam.dat")
+expect_run(STATUS 0 STDOUT "\"quantity\": \"accelerance\"" ARGS modal --data beam.dat --json -)

@@ -28,6 +28,23 @@ expect_run(STATUS 0 ARGS inspect fine.mdl)
 write_model(m)
 expect_run(STATUS 2 STDERR "--set: m1=1e999999999999999999: out of range" ARGS inspect m.mdl --set m1=1e999999999999999999)
 
+# The number of starts is bounded (docs/limits.md): every start's point and result are held at once, and
+# `fit --starts 2000000000` took 9 GB within 20 s. One above the bound is refused as usage (the old code would run
+# 100 001 starts here and time out); so is 0, which CLI11 described as "not in range 0.000000 to 1797693...".
+expect_run(STATUS 2 STDERR "^mbgen: --starts: Value 100001 not in range 1 to 100000" ARGS ${FAST_FIT} --starts 100001)
+expect_run(STATUS 2 STDERR "^mbgen: --starts: Value 0 not in range 1 to 100000" ARGS ${FAST_FIT} --starts 0)
+expect_run(STATUS 2 STDERR "^mbgen: --starts: Value 100001 not in range"
+  ARGS diagnose one.mdl --data one_frf.csv --starts 100001)
+expect_run(STATUS 2 STDERR "^mbgen: --warm-starts: Value 100001 not in range"
+  ARGS monitor one.mdl --data one_frf.csv --warm-starts 100001)
+
+# A model file is read up to 16 MiB (`inspect /dev/zero` read until the memory ran out): 17 MiB of comments.
+string(REPEAT "# a comment line of exactly sixty-four characters, newline too.\n" 16 line16)
+string(REPEAT "${line16}" 17408 comments)  # 17408 * 16 * 64 bytes = 17 MiB
+file(WRITE "${WORK}/big_file.mdl" "${comments}")
+expect_run(STATUS 1 STDERR "^big_file.mdl: error: the model file is larger than 16 MiB" ARGS inspect big_file.mdl)
+file(REMOVE "${WORK}/big_file.mdl")
+
 string(REPEAT " + 0.001" 99999 terms)
 file(WRITE "${WORK}/sum.mdl" "model m\nparam m1 = 0.001${terms}\nground g\nbody b { mass m1; dof x }\n"
            "spring s { from g; to b; along x; stiffness 1 }\n")

@@ -34,6 +34,12 @@ tree_state(before "${WORK}")
 expect_run(STATUS 2 STDERR "--json: .*inside the report directory" ARGS ${fit} --json out/f.json --report out)
 expect_unchanged("${before}" "${WORK}" "--json inside --report")
 
+# `-` (standard output elsewhere) cannot hold a directory: a usage error; it made a directory named `-`.
+tree_state(before "${WORK}")
+expect_run(STATUS 2 STDERR "^mbgen: --report: - \\(standard output\\) cannot hold a report directory"
+  ARGS ${fit} --report -)
+expect_unchanged("${before}" "${WORK}" "--report -")
+
 # A new directory, then the same directory again (it carries the marker): replaced whole.
 expect_run(STATUS 0 ARGS ${fit} --report new)
 if(NOT EXISTS "${WORK}/new/report.md" OR NOT EXISTS "${WORK}/new/.mbgen-report")

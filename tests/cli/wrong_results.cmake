@@ -12,6 +12,18 @@ expect_run(STATUS 1 STDERR "^m.mdl:2:7: error: --set m1=20: outside the bounds \
 write_model(outside "param v = 3 in [0, 1]")
 expect_run(STATUS 1 STDERR "^outside.mdl:9:11: error: the value of parameter `v` lies outside its bounds" ARGS inspect outside.mdl)
 
+# `sensitivity --sweep` is held to what --set is: within the declared bounds, and a positive definite mass matrix at
+# every point. Sweeps beyond the bounds and through negative masses were computed with status 0.
+expect_run(STATUS 1 STDERR "^m.mdl:2:7: error: --sweep m1=5:20:3: outside the bounds \\[0.5, 10\\] declared for `m1`"
+  ARGS sensitivity m.mdl --sweep m1=5:20:3)
+expect_run(STATUS 0 STDOUT "feature map: m1 from 0.5 to 10, 3 points" ARGS sensitivity m.mdl --sweep m1=0.5:10:3)
+file(WRITE "${WORK}/free.mdl" "model free\nparam m1 = 2\nground g\nbody b { mass m1; dof x }\n"
+           "spring s { from g; to b; along x; stiffness 1000 }\n")
+expect_run(STATUS 1 STDERR "^free.mdl:2:7: error: --sweep m1=-2:1:4: at m1 = -2 the mass matrix is not positive"
+  ARGS sensitivity free.mdl --sweep m1=-2:1:4)
+expect_run(STATUS 1 STDERR "^free.mdl:2:7: error: --sweep m1=0:1:3: at m1 = 0 the mass matrix"
+  ARGS sensitivity free.mdl --sweep m1=0:1:3)
+
 # Data: `# set m1=0.000` (the mass matrix singular, as --set m1=0 is refused), all-zero and 1e300 values.
 file(STRINGS "${MDOF2_FRF}" lines)
 list(GET lines 1 header)
@@ -31,7 +43,52 @@ file(WRITE "${WORK}/set0.csv" "${set0}")
 expect_run(STATUS 1 STDERR "^set0.csv:1: error: the values of its `# set` lines are not admissible: the mass matrix"
   ARGS fit ${MDOF2} --data set0.csv --starts 1)
 expect_run(STATUS 1 STDERR "^zero.csv: error: FRF d1/F1 is zero at every frequency" ARGS fit ${MDOF2} --data zero.csv --starts 1)
+# The modal analysis too: it reported no modes and a channel error of 0 (a perfect fit) with status 0.
+expect_run(STATUS 1 STDERR "^zero.csv: error: channel d1/F1 is zero at every line in the band"
+  ARGS modal --data zero.csv)
 expect_run(STATUS 1 STDERR "^huge.csv:2:2: error: '1e300' is too large" ARGS fit ${MDOF2} --data huge.csv --starts 1)
+
+# Signals too small to square: every value's square below the smallest normal double. The FRF and the record's
+# output gave nrmse NaN with status 0 (and an estimate with a std); an input that small gave nrmse 1 with status 0.
+file(STRINGS "${WORK}/one_frf.csv" one_lines)
+set(tiny_frf "")
+foreach(line IN LISTS one_lines)
+  if(line MATCHES "^[0-9]")
+    string(REGEX MATCH "^[^,]+" f "${line}")
+    string(APPEND tiny_frf "${f},1e-200,-3e-201\n")
+  elseif(NOT line MATCHES "^#")
+    string(APPEND tiny_frf "${line}\n")
+  endif()
+endforeach()
+file(WRITE "${WORK}/tiny_frf.csv" "${tiny_frf}")
+expect_run(STATUS 1
+  STDERR "^tiny_frf.csv: error: FRF y/F is too small to fit: its largest magnitude, 1.04403e-200, is below 1e-150"
+  ARGS fit one.mdl --data tiny_frf.csv --starts 1)
+expect_run(STATUS 1 STDERR "^tiny_frf.csv: error: channel y/F is too small to analyse" ARGS modal --data tiny_frf.csv)
+set(tiny_out "t,F,y\n")
+set(tiny_in "t,F,y\n")
+foreach(i RANGE 0 199)
+  math(EXPR sign "1 - 2 * (${i} % 2)")
+  string(APPEND tiny_out "${i}e-3,${sign},${sign}e-200\n")
+  string(APPEND tiny_in "${i}e-3,${sign}e-200,${sign}e-3\n")
+endforeach()
+# A record without a column for the model's input: said to be "every input is zero throughout the record".
+file(WRITE "${WORK}/no_input.csv" "t,y\n0,0\n1e-3,1e-4\n2e-3,2e-4\n3e-3,1e-4\n")
+expect_run(STATUS 1 STDERR "^no_input.csv: error: the record has no column of the model's inputs \\(F\\)"
+  ARGS fit one.mdl --data no_input.csv --starts 1)
+file(WRITE "${WORK}/tiny_out.csv" "${tiny_out}")
+file(WRITE "${WORK}/tiny_in.csv" "${tiny_in}")
+expect_run(STATUS 1 STDERR "^tiny_out.csv: error: output y is too small to fit: its largest magnitude, 1e-200, is below"
+  ARGS fit one.mdl --data tiny_out.csv --starts 1)
+expect_run(STATUS 1 STDERR "^tiny_in.csv: error: every input is too small: its largest magnitude, 1e-200, is below"
+  ARGS fit one.mdl --data tiny_in.csv --starts 1)
+
+# A model with nothing to estimate: the fit compares it with the data, and says so (it printed an empty table).
+file(READ "${WORK}/one.mdl" one_text)
+string(REPLACE " estimate in [0.5, 10]" "" fixed_text "${one_text}")
+file(WRITE "${WORK}/fixed.mdl" "${fixed_text}")
+expect_run(STATUS 0 STDOUT "no parameter is declared `estimate`: the model is compared with the data at its values"
+  ARGS fit fixed.mdl --data one_frf.csv --starts 1)
 
 # One name for a parameter, a spring and an input.
 file(WRITE "${WORK}/twice.mdl" "model twice\nparam F = 1000\nground g\nbody b { mass 1; dof x }\n"

@@ -15,6 +15,12 @@
 
 namespace mbgen {
 
+// A measured signal (an FRF channel, a record's output, a record's inputs together) none of whose values exceeds
+// this in magnitude, though not all zero, has squares below the smallest normal double: its sum of squares is 0 and a
+// normalized error NaN (or, in the modal analysis, a perfect 0). The fit and the modal analysis refuse it. The
+// counterpart of the readers' largest magnitude, 1e150; no measurement in any unit comes near either.
+constexpr double kMinSignalMagnitude = 1e-150;
+
 // One measured data set, as a data file holds it: an FRF table or a time record, each with its file name and its
 // `# set` values (which override parameters for this data set alone). What the readers return and the estimators take.
 struct DataSet {

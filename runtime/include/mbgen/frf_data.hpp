@@ -23,6 +23,10 @@ struct FrfData {
   SetMap set;        // `# set NAME=VALUE` lines
   Eigen::VectorXd f_hz;  // frequencies in Hz, non-negative, strictly increasing
   std::vector<FrfChannel> channels;  // in file column order
+  // Read from UFF 58: the ordinate's specific data type (record 9) that all the FRF records declare (8 displacement,
+  // 11 velocity, 12 acceleration, ...); 0 for CSV, or when the records differ. Kept with the data so that it does
+  // not depend on the file's name or on reading it twice (standard input and pipes cannot be).
+  int uff_ordinate_type = 0;
 
   // The channel OUTPUT/INPUT, or nullptr.
   const FrfChannel* find(const std::string& output, const std::string& input) const;

@@ -56,6 +56,8 @@ struct ModalData {
 // The quantity a UFF file's FRF records (function type 4) declare by their ordinate's specific data type
 // (record 9: 8 displacement, 11 velocity, 12 acceleration), when they all agree; else Unknown.
 FrfQuantity uff_frf_quantity(const std::vector<Uff58Record>& records);
+// The same for FRFs already read (FrfData::uff_ordinate_type): Unknown for CSV data.
+FrfQuantity uff_frf_quantity(const FrfData& frf);
 
 struct FrequencyBand {
   double lo_hz = 0;
@@ -64,8 +66,9 @@ struct FrequencyBand {
 
 // Collects the channels of `files` (in file and column order) on the lines with lo <= f <= hi and f > 0 (the
 // lower residual term is singular at 0 Hz). Throws DataError naming the file for: no files or channels, a
-// channel that appears twice, files whose frequencies differ within the band, non-finite values, and a band
-// holding fewer than kMinModalLines lines.
+// channel that appears twice, files whose frequencies differ within the band, non-finite values, a channel zero
+// or below kMinSignalMagnitude (mbgen/data_set.hpp) throughout the band, and a band holding fewer than
+// kMinModalLines lines.
 constexpr int kMinModalLines = 8;
 ModalData modal_data(const std::vector<FrfData>& files, const FrequencyBand& band,
                      FrfQuantity quantity = FrfQuantity::Unknown);

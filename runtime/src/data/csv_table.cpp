@@ -14,7 +14,7 @@ int column_of(std::size_t index) { return static_cast<int>(index) + 1; }
 CsvTable read_csv_table(std::istream& in, const std::string& file) {
   CsvTable table;
   table.file = file;
-  LineReader reader(in);
+  LineReader reader(in, file);
   std::string line;
   bool any_line = false;
 

@@ -56,7 +56,7 @@ void skip_byte_order_mark(std::istream& in) {
 // The kind of data from the name and the first lines, read from the stream's position.
 Kind detect(std::istream& in, const std::string& file_name) {
   if (has_uff_extension(file_name)) return Kind::Uff;
-  LineReader reader(in);
+  LineReader reader(in, file_name);
   std::string line;
   bool any = false;
   while (reader.next(line)) {

@@ -80,3 +80,21 @@ TEST_CASE("UFF files, with the sidecar mapping PATH.map or an explicit one") {
   CHECK(std::holds_alternative<TimeRecord>(read_data_file(sample("binary8byte.uff")).content));
   CHECK_THROWS_WITH(read_data_file(sample("dataset_milestone_in_header.uff")), Catch::Contains("cut off"));
 }
+
+TEST_CASE("a line is read up to 16 MiB, and lines of any other length as they are") {
+  // `--data /dev/zero` (no newline ever) grew one line until the memory ran out.
+  std::istringstream endless("f_hz," + std::string((std::size_t(16) << 20) + 1, '0'));
+  CHECK_THROWS_WITH(read_data(endless, "zero.csv"), "zero.csv:1: error: line longer than 16 MiB");
+  // Lines at and around the reader's 64 KiB buffer, with and without a final newline, CRLF, empty lines.
+  for (const std::size_t width : {std::size_t(65534), std::size_t(65535), std::size_t(65536), std::size_t(200000)}) {
+    const std::string comment = "# " + std::string(width - 2, 'c');
+    for (const char* end : {"\n", "\r\n", ""}) {
+      std::istringstream in(comment + "\n\nf_hz,y/F.re,y/F.im\r\n1,2,3\n\n2,4,5" + end);
+      const DataSet d = read_data(in, "wide.csv");
+      const FrfData& f = std::get<FrfData>(d.content);
+      INFO("width " << width << ", end `" << end << "`");
+      REQUIRE(f.f_hz.size() == 2);
+      CHECK(f.channels.at(0).values[1] == std::complex<double>(4, 5));
+    }
+  }
+}

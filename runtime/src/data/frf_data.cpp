@@ -21,6 +21,7 @@ FrfData within_band(const FrfData& data, double lo_hz, double hi_hz) {
   FrfData out;
   out.file = data.file;
   out.set = data.set;
+  out.uff_ordinate_type = data.uff_ordinate_type;
   out.f_hz.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) out.f_hz[i] = data.f_hz[kept[static_cast<std::size_t>(i)]];
   for (const FrfChannel& c : data.channels) {

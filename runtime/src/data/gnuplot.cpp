@@ -1,4 +1,5 @@
 #include "mbgen/gnuplot.hpp"
+#include "mbgen/utf8.hpp"
 
 #include <cerrno>
 #include <string>
@@ -42,7 +43,7 @@ Run run_gnuplot(const std::string& dir, const std::string& script) {
 
 std::string gnuplot_string(std::string_view s) {
   std::string out = "'";
-  for (const char c : s) {
+  for (const char c : valid_utf8(s)) {  // gnuplot copies titles into the SVG, which must be UTF-8 to be XML
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
       out += ' ';  // a newline would end the command
     } else {

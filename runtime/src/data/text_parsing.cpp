@@ -16,7 +16,34 @@ std::string_view trim(std::string_view s) {
 }
 
 bool LineReader::next(std::string& line) {
-  if (!std::getline(in_, line)) return false;
+  // istream::getline into a buffer stops when the buffer is full (failbit, the rest of the line still unread), where
+  // std::getline would grow the string without end. A line takes one call unless it is longer than the buffer.
+  // Counts come from gcount(), not strlen: a line may hold NUL bytes.
+  char chunk[1 << 16];
+  line.clear();
+  bool any = false;
+  while (true) {
+    in_.getline(chunk, sizeof chunk);
+    const auto got = static_cast<std::size_t>(in_.gcount());
+    if (in_.eof()) {  // the last line, without a newline, or nothing more
+      line.append(chunk, got);
+      any = any || got > 0;
+      break;
+    }
+    if (!in_.fail()) {  // a newline ended the line (counted in gcount, not stored)
+      line.append(chunk, got - 1);
+      any = true;
+      break;
+    }
+    if (in_.bad()) return false;
+    line.append(chunk, got);  // the buffer was full: the line goes on
+    any = true;
+    in_.clear();
+    if (line.size() > kMaxLineBytes) break;
+  }
+  if (line.size() > kMaxLineBytes)
+    throw DataError(file_, line_ + 1, 0, "line longer than " + std::to_string(kMaxLineBytes >> 20) + " MiB");
+  if (!any) return false;
   ++line_;
   if (!line.empty() && line.back() == '\r') line.pop_back();
   return true;

@@ -2,6 +2,7 @@
 // number parsing, and the `# set` / `# hold` configuration lines.
 #pragma once
 
+#include <cstddef>
 #include <istream>
 #include <optional>
 #include <string>
@@ -14,15 +15,19 @@ namespace mbgen::data_detail {
 
 std::string_view trim(std::string_view s);
 
-// Reads lines, counting them from 1 and dropping a trailing '\r' (files written on Windows).
+// Reads lines, counting them from 1 and dropping a trailing '\r' (files written on Windows). A line longer than
+// kMaxLineBytes is a DataError naming `file` and the line: `--data /dev/zero` (no newline ever) grew one line until
+// the memory ran out.
+constexpr std::size_t kMaxLineBytes = std::size_t(16) << 20;
 class LineReader {
  public:
-  explicit LineReader(std::istream& in) : in_(in) {}
+  LineReader(std::istream& in, std::string file) : in_(in), file_(std::move(file)) {}
   bool next(std::string& line);
   int line_number() const { return line_; }
 
  private:
   std::istream& in_;
+  std::string file_;
   int line_ = 0;
 };
 

@@ -94,6 +94,9 @@ FrfData frf_from_records(const std::vector<const Uff58Record*>& frfs, const std:
     data.channels.push_back(std::move(ch));
   }
   data.f_hz = first.x;
+  data.uff_ordinate_type = first.ordinate_type;
+  for (const Uff58Record* r : frfs)
+    if (r->ordinate_type != first.ordinate_type) data.uff_ordinate_type = 0;
   for (Eigen::Index k = 0; k < data.f_hz.size(); ++k) {
     if (data.f_hz[k] < 0)
       throw DataError(file, first.line, 0, "UFF FRF record has a negative frequency " + format_double(data.f_hz[k]));
@@ -173,7 +176,7 @@ std::string uff_channel_name(const UffMapping& mapping, int node, int direction)
 UffMapping read_uff_mapping(std::istream& in, const std::string& file_name) {
   UffMapping mapping;
   DataConfig config;
-  LineReader reader(in);
+  LineReader reader(in, file_name);
   std::string line;
   while (reader.next(line)) {
     const int at = reader.line_number();

@@ -63,23 +63,50 @@ void check_data_set_values(const Model& model, const Eigen::VectorXd& prior, con
 
 void check_measured_signals(const Model& model, const std::vector<DataSet>& data) {
   const ModelInfo& info = model.info();
-  auto zero = [](const auto& v) { return v.size() == 0 || v.cwiseAbs().maxCoeff() == 0; };
+  const auto largest = [](const auto& v) { return v.size() == 0 ? 0.0 : double(v.cwiseAbs().maxCoeff()); };
+  // A signal all of whose values lie below kMinSignalMagnitude (but not all zero) has squares below the smallest
+  // normal double: its sum of squares underflows to zero and the fit's nrmse became NaN, with exit status 0 and an
+  // estimate computed from noise weights that had underflowed too.
+  const auto too_small = [](double peak) {
+    return "its largest magnitude, " + text_of(peak) +
+           ", is below 1e-150, where squares underflow a double; give the data in smaller units";
+  };
   for (const DataSet& d : data) {
     if (d.is_frf()) {
-      for (const FrfChannel& c : std::get<FrfData>(d.content).channels)
-        if (zero(c.values))
-          throw DataError(d.file(), 0, 0,
-                          "FRF " + c.output + "/" + c.input + " is zero at every frequency: there is nothing to fit");
+      for (const FrfChannel& c : std::get<FrfData>(d.content).channels) {
+        const std::string name = "FRF " + c.output + "/" + c.input;
+        const double peak = largest(c.values);
+        if (peak == 0) throw DataError(d.file(), 0, 0, name + " is zero at every frequency: there is nothing to fit");
+        if (peak < kMinSignalMagnitude)
+          throw DataError(d.file(), 0, 0, name + " is too small to fit: " + too_small(peak));
+      }
       continue;
     }
+    double input_peak = 0;
     bool any_input = false;
     for (const Signal& s : std::get<TimeRecord>(d.content).signals) {
-      if (info.input_index(s.name) >= 0) any_input = any_input || !zero(s.values);
-      if (info.output_index(s.name) >= 0 && zero(s.values))
+      const double peak = largest(s.values);
+      if (info.input_index(s.name) >= 0) {
+        any_input = true;
+        input_peak = std::max(input_peak, peak);
+      }
+      if (info.output_index(s.name) < 0) continue;
+      if (peak == 0)
         throw DataError(d.file(), 0, 0, "output " + s.name + " is zero throughout the record: there is nothing to fit");
+      if (peak < kMinSignalMagnitude)
+        throw DataError(d.file(), 0, 0, "output " + s.name + " is too small to fit: " + too_small(peak));
     }
-    if (!any_input)
+    if (!any_input) {  // it was called "every input is zero throughout the record", true but not the point
+      std::string names;
+      for (const std::string& n : info.inputs) names += (names.empty() ? "" : ", ") + n;
+      throw DataError(d.file(), 0, 0,
+                      "the record has no column of the model's inputs (" + names +
+                          "): the model's response would be zero");
+    }
+    if (input_peak == 0)
       throw DataError(d.file(), 0, 0, "every input is zero throughout the record: the model's response would be zero");
+    if (input_peak < kMinSignalMagnitude)
+      throw DataError(d.file(), 0, 0, "every input is too small: " + too_small(input_peak));
   }
 }
 

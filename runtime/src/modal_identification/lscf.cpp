@@ -82,9 +82,10 @@ StabilizationDiagram lscf(const ModalData& data, const LscfOptions& options) {
   const int m = layout.references;
   const Eigen::Index lines = data.f_hz.size();
   const int n_max = options.max_order > 0 ? options.max_order : lscf_default_max_order(data, m);
-  if (2 * static_cast<Eigen::Index>(n_max) > lines)
+  const Eigen::Index lines_needed = 2 * static_cast<Eigen::Index>(n_max);  // in an int, 2 * n_max may overflow
+  if (lines_needed > lines)
     throw std::invalid_argument("the highest order " + std::to_string(n_max) + " needs at least " +
-                                std::to_string(2 * n_max) + " lines in the band; it holds " + std::to_string(lines));
+                                std::to_string(lines_needed) + " lines in the band; it holds " + std::to_string(lines));
 
   StabilizationDiagram diagram;
   diagram.references = m;

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <string>
 
 namespace mbgen {
@@ -28,6 +29,18 @@ ModalIdentification from_uff() {
 }
 
 }  // namespace
+
+TEST_CASE("the FRFs' quantity is the UFF records' whatever the file is called or read from", "[modal][beam]") {
+  // `modal` took it from the records only for a name ending in .uff (reading the file a second time): on standard
+  // input, through a pipe or as beam.dat the beam came out "unknown", and its modes and their std differed.
+  const std::string path = kDir + "measurement.uff";
+  std::ifstream in(path, std::ios::binary);
+  const FrfData as_dat = std::get<FrfData>(read_data(in, "beam.dat").content);
+  CHECK(as_dat.uff_ordinate_type == 12);
+  CHECK(uff_frf_quantity(as_dat) == FrfQuantity::Accelerance);
+  CHECK(uff_frf_quantity(within_band(as_dat, 100, 200)) == FrfQuantity::Accelerance);
+  CHECK(uff_frf_quantity(read_frf_csv(kDir + "frf_beam_3pt.csv")) == FrfQuantity::Unknown);
+}
 
 TEST_CASE("the beam's six bending modes, with plausible damping", "[modal][beam]") {
   const ModalIdentification id = from_uff();

@@ -1,7 +1,9 @@
 // The FRFs of one or more files on one frequency axis, cut to the band.
 #include "mbgen/data_error.hpp"
+#include "mbgen/data_set.hpp"
 #include "mbgen/modal_identification.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -60,21 +62,27 @@ int frf_quantity_power(FrfQuantity q) {
   }
 }
 
+namespace {
+FrfQuantity quantity_of_ordinate_type(int type) {
+  return type == 8 ? FrfQuantity::Receptance : type == 11 ? FrfQuantity::Mobility
+         : type == 12 ? FrfQuantity::Accelerance : FrfQuantity::Unknown;
+}
+}  // namespace
+
 FrfQuantity uff_frf_quantity(const std::vector<Uff58Record>& records) {
   FrfQuantity q = FrfQuantity::Unknown;
   bool first = true;
   for (const Uff58Record& r : records) {
     if (r.function_type != 4) continue;
-    const FrfQuantity here = r.ordinate_type == 8    ? FrfQuantity::Receptance
-                             : r.ordinate_type == 11 ? FrfQuantity::Mobility
-                             : r.ordinate_type == 12 ? FrfQuantity::Accelerance
-                                                     : FrfQuantity::Unknown;
+    const FrfQuantity here = quantity_of_ordinate_type(r.ordinate_type);
     if (!first && here != q) return FrfQuantity::Unknown;
     q = here;
     first = false;
   }
   return q;
 }
+
+FrfQuantity uff_frf_quantity(const FrfData& frf) { return quantity_of_ordinate_type(frf.uff_ordinate_type); }
 
 ModalData modal_data(const std::vector<FrfData>& files, const FrequencyBand& band, FrfQuantity quantity) {
   if (files.empty()) throw DataError("modal analysis: no FRF data given");
@@ -120,6 +128,18 @@ ModalData modal_data(const std::vector<FrfData>& files, const FrequencyBand& ban
         if (!std::isfinite(ch.values[k].real()) || !std::isfinite(ch.values[k].imag()))
           throw DataError(frf.file, 0, 0,
                           "channel " + ch.output + "/" + ch.input + " is not finite at " + hz(frf.f_hz[k]) + " Hz");
+    // A channel zero in the band, or too small to square, has no modes to find, and its relative error came out
+    // as 0 (a perfect fit) with exit status 0.
+    for (const FrfChannel& ch : frf.channels) {
+      double peak = 0;
+      for (const Eigen::Index k : lines) peak = std::max(peak, std::abs(ch.values[k]));
+      const std::string name = "channel " + ch.output + "/" + ch.input;
+      if (peak == 0) throw DataError(frf.file, 0, 0, name + " is zero at every line in the band: it has no modes");
+      if (peak < kMinSignalMagnitude)
+        throw DataError(frf.file, 0, 0,
+                        name + " is too small to analyse: its largest magnitude in the band, " + hz(peak) +
+                            ", is below 1e-150, where squares underflow a double; give the data in smaller units");
+    }
   }
   // Same lines in every file: the first file's line indices hold for all only if the axes agree entirely, so
   // each column is gathered with its own file's indices.

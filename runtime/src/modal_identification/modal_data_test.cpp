@@ -63,6 +63,20 @@ TEST_CASE("modal_data names the file for every data problem", "[modal][data]") {
   nan.channels[0].values[30] = {std::numeric_limits<double>::quiet_NaN(), 0};
   CHECK_THROWS_WITH(modal_data({nan}, {}), Catch::StartsWith("a.csv: error: channel y1/u1 is not finite at 30 Hz"));
   CHECK_NOTHROW(modal_data({nan}, {40, 100}));  // outside the band it does not matter
+  // A channel zero in the band, or too small to square (its error came out 0, a perfect fit, with status 0).
+  FrfData zero = frf("z.csv", {"y1/u1", "y2/u1"}, 101, 1.0);
+  zero.channels[1].values.setZero();
+  zero.channels[1].values[0] = {1, 0};  // at 0 Hz, outside every band
+  CHECK_THROWS_WITH(modal_data({zero}, {}),
+                    Catch::StartsWith("z.csv: error: channel y2/u1 is zero at every line in the band: it has no "
+                                      "modes"));
+  FrfData tiny = frf("t.csv", {"y1/u1"}, 101, 1.0);
+  tiny.channels[0].values *= 1e-200;
+  CHECK_THROWS_WITH(modal_data({tiny}, {}),
+                    Catch::StartsWith("t.csv: error: channel y1/u1 is too small to analyse: its largest magnitude in "
+                                      "the band, 1.118033989e-200, is below 1e-150"));
+  tiny.channels[0].values *= 1e60;  // 1e-140: squares 1e-280, normal doubles
+  CHECK_NOTHROW(modal_data({tiny}, {}));
 }
 
 TEST_CASE("frf quantities have names and powers of i w", "[modal][data]") {

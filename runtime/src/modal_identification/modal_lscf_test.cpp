@@ -90,6 +90,9 @@ TEST_CASE("LSCF refuses an order the band's lines cannot support", "[modal][lscf
   LscfOptions options;
   options.max_order = 21;
   CHECK_THROWS_WITH(lscf(data, options), Catch::Contains("needs at least 42 lines") && Catch::Contains("holds 40"));
+  // `modal --max-order 2000000000`: twice the order overflowed an int in the message ("at least -294967296 lines").
+  options.max_order = 2000000000;
+  CHECK_THROWS_WITH(lscf(data, options), Catch::Contains("needs at least 4000000000 lines"));
   options.max_order = 0;  // the default fits the band
   CHECK(lscf(data, options).orders.back() == 10);
 }
