@@ -22,7 +22,7 @@
 #include "cli/run_guarded.hpp"
 #include "cli/starts_option.hpp"
 #include "cli/version.hpp"
-#include "diagnosis/engine/channel_residuals.hpp"
+#include <mbgen/channel_residuals.hpp>
 #include "diagnosis/engine/diagnose.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/message.hpp"

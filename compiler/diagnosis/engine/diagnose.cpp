@@ -8,12 +8,13 @@
 #include <mutex>
 #include <set>
 
+#include <mbgen/channel_residuals.hpp>
+#include <mbgen/data_split.hpp>
+#include <mbgen/parallel.hpp>
+#include <mbgen/same_response.hpp>
 #include <mbgen/spectral_companion.hpp>
 
-#include "diagnosis/engine/channel_residuals.hpp"
-#include "diagnosis/engine/data_split.hpp"
-#include <mbgen/parallel.hpp>
-#include "diagnosis/engine/same_response.hpp"
+#include "diagnosis/engine/thresholds.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
 
@@ -143,7 +144,7 @@ bool still_shows(const std::vector<ChannelResidual>& nominal, const ModelState& 
                        [&](const Discrepancy& e) { return e.kind == d.kind && e.parameter == d.parameter; });
   const double before = band_mean_z(nominal, d), after = band_mean_z(extended.channels, d);
   if (before < 0 || after < 0) return true;  // not judged again: counts as shown
-  return after > threshold || after - 1.0 > 0.5 * (before - 1.0);
+  return after > threshold || after - 1.0 > thresholds::kExplainedExcessFraction * (before - 1.0);
 }
 
 // Whether the fit pressed an estimate against one of its bounds: it stands at the bound (within a thousandth of
@@ -152,11 +153,11 @@ bool still_shows(const std::vector<ChannelResidual>& nominal, const ModelState& 
 // parameter the data barely see may drift to a bound with nothing pulling it: that is no misfit. "upper" or
 // "lower", or empty.
 std::string pressed_bound(const ParameterEstimate& p, const ParameterInfo& info) {
-  if (!p.estimated || !p.identifiable || p.pull_chi2 <= 10) return {};
+  if (!p.estimated || !p.identifiable || p.pull_chi2 <= thresholds::kBoundPullChi2) return {};
   const auto at = [&](double bound) {
     if (!std::isfinite(bound)) return false;
-    if (bound == 0) return std::abs(p.value) <= 1e-3 * std::abs(p.prior);
-    return std::abs(p.value - bound) <= 1e-3 * std::max(std::abs(bound), std::abs(p.value));
+    if (bound == 0) return std::abs(p.value) <= thresholds::kAtBoundRelative * std::abs(p.prior);
+    return std::abs(p.value - bound) <= thresholds::kAtBoundRelative * std::max(std::abs(bound), std::abs(p.value));
   };
   if (p.toward < 0 && at(info.lower)) return "lower";
   if (p.toward > 0 && at(info.upper)) return "upper";
@@ -192,9 +193,6 @@ std::map<std::string, double> values_by_name(const ModelInfo& info, const Eigen:
   for (std::size_t i = 0; i < info.parameters.size(); ++i) out[info.parameters[i].name] = values[static_cast<Eigen::Index>(i)];
   return out;
 }
-
-// A new parameter whose std exceeds this fraction of its value is not determined by the data.
-constexpr double kPoorlyDetermined = 0.5;
 
 class Diagnoser {
  public:
@@ -371,7 +369,7 @@ class Diagnoser {
   // and is not taken.
   bool explains(const ModelState& current, const ModelState& chosen) const {
     const double before = current.residual.mean_z, after = chosen.residual.mean_z;
-    if (before > 1.0 && after - 1.0 <= 0.5 * (before - 1.0)) return true;
+    if (before > 1.0 && after - 1.0 <= thresholds::kExplainedExcessFraction * (before - 1.0)) return true;
     say(format("best candidate leaves the mean normalized residual at %.3g (from %.3g; noise alone gives 1): "
                "not an explanation", after, before));
     return false;
@@ -421,7 +419,8 @@ class Diagnoser {
     int best = -1;
     for (std::size_t k = 0; k < outcomes.size(); ++k)
       if (outcomes[k].qualifies &&
-          (best < 0 || outcomes[k].delta_bic < outcomes[static_cast<std::size_t>(best)].delta_bic - 0.01))
+          (best < 0 ||
+           outcomes[k].delta_bic < outcomes[static_cast<std::size_t>(best)].delta_bic - thresholds::kBicTie))
         best = static_cast<int>(k);
     return best;
   }
@@ -444,12 +443,14 @@ class Diagnoser {
       std::size_t best = first;
       for (std::size_t k = first; k < end; ++k)
         if (tier(k) < tier(best) ||
-            (tier(k) == tier(best) && tier(k) <= 1 && outcomes[k].delta_bic < outcomes[best].delta_bic - 0.01))
+            (tier(k) == tier(best) && tier(k) <= 1 &&
+             outcomes[k].delta_bic < outcomes[best].delta_bic - thresholds::kBicTie))
           best = k;
       CandidateOutcome o = outcomes[best];
       o.variants_tried = static_cast<int>(end - first);
       for (std::size_t k = first; k < end; ++k)
-        if (k != best && tier(k) == tier(best) && tier(k) <= 1 && std::abs(outcomes[k].delta_bic - o.delta_bic) <= 0.01)
+        if (k != best && tier(k) == tier(best) && tier(k) <= 1 &&
+            std::abs(outcomes[k].delta_bic - o.delta_bic) <= thresholds::kBicTie)
           o.equivalent_variants.push_back(outcomes[k].variant);
       if (!o.equivalent_variants.empty()) {
         std::string names;
@@ -469,7 +470,7 @@ class Diagnoser {
     std::vector<std::string> out;
     for (std::size_t k = 0; k < outcomes.size(); ++k)
       if (static_cast<int>(k) != best && outcomes[k].qualifies &&
-          std::abs(outcomes[k].delta_bic - outcomes[static_cast<std::size_t>(best)].delta_bic) <= 0.01)
+          std::abs(outcomes[k].delta_bic - outcomes[static_cast<std::size_t>(best)].delta_bic) <= thresholds::kBicTie)
         out.push_back(outcomes[k].id);
     return out;
   }
@@ -504,20 +505,21 @@ class Diagnoser {
       const double rms = std::sqrt(c.measured.cwiseAbs2().mean());
       const auto unexplained = [&](double f) {
         return std::none_of(model_peaks.begin(), model_peaks.end(), [&](int m) {
-          return std::abs(c.f_hz[static_cast<std::size_t>(m)] - f) <= 0.08 * f;
+          return std::abs(c.f_hz[static_cast<std::size_t>(m)] - f) <= thresholds::kPriorPeakMatch * f;
         });
       };
       // One scan for both lists: the 6 dB peaks are among the 3 dB ones.
       for (int i = 1; i + 1 < static_cast<int>(c.measured.size()); ++i) {
         const double prominence = peak_prominence_db(c.measured, i);
         const double f = c.f_hz[static_cast<std::size_t>(i)];
-        if (prominence < 3.0 || !unexplained(f)) continue;
+        if (prominence < thresholds::kPeakProminenceDb || !unexplained(f)) continue;
         // The rise must stand out of the noise too (4 standard deviations): in data near the noise level, noise
         // alone makes wiggles of several dB.
         const double magnitude = std::abs(c.measured[i]);
-        if (magnitude * (1.0 - std::pow(10.0, -prominence / 20.0)) < 4.0 * c.sigma[i]) continue;
+        const double rise = magnitude * (1.0 - std::pow(10.0, -prominence / 20.0));
+        if (rise < thresholds::kPeakNoiseSigmas * c.sigma[i]) continue;
         const double height = std::abs(c.measured[i]) / rms;
-        if (prominence >= 6.0) found.emplace_back(height, f);
+        if (prominence >= thresholds::kStrongPeakProminenceDb) found.emplace_back(height, f);
         by_output[output_of(c.channel)].push_back({height, prominence, f});
       }
     }
@@ -528,7 +530,7 @@ class Diagnoser {
       for (const OutputPeak& peak : entry.second) {
         const bool elsewhere = std::any_of(by_output.begin(), by_output.end(), [&](const auto& other) {
           return other.first != output && std::any_of(other.second.begin(), other.second.end(), [&](const OutputPeak& q) {
-                   return std::abs(q.f - peak.f) <= 0.02 * peak.f;
+                   return std::abs(q.f - peak.f) <= thresholds::kSamePeak * peak.f;
                  });
         });
         if (elsewhere)
@@ -560,9 +562,9 @@ class Diagnoser {
       if (s.second > 0) excess[output] = s.first / static_cast<double>(s.second) - 1.0;
     std::set<std::string> out;
     for (const auto& [output, e] : excess) {
-      bool alone = e > 0.5;
+      bool alone = e > thresholds::kSensorAloneExcess;
       for (const auto& [other, f] : excess)
-        if (other != output && !(e >= 2.0 * f)) alone = false;
+        if (other != output && !(e >= thresholds::kSensorAloneRatio * f)) alone = false;
       if (alone) out.insert(output);
     }
     return out;
@@ -570,7 +572,8 @@ class Diagnoser {
 
   // Appends f to `peaks` unless one already there is within 2 % of it (the same peak, seen again).
   static void add_distinct(std::vector<double>& peaks, double f) {
-    if (std::none_of(peaks.begin(), peaks.end(), [&](double g) { return std::abs(f - g) <= 0.02 * f; }))
+    if (std::none_of(peaks.begin(), peaks.end(),
+                     [&](double g) { return std::abs(f - g) <= thresholds::kSamePeak * f; }))
       peaks.push_back(f);
   }
 
@@ -918,7 +921,8 @@ class Diagnoser {
     std::vector<std::string> out;
     for (const NewParameter& np : ext.new_parameters)
       for (const ParameterEstimate& p : fit.parameters)
-        if (p.name == np.name && p.pull_chi2 <= 10 && (!p.identifiable || p.std > kPoorlyDetermined * std::abs(p.value)))
+        if (p.name == np.name && p.pull_chi2 <= thresholds::kBoundPullChi2 &&
+            (!p.identifiable || p.std > thresholds::kPoorlyDetermined * std::abs(p.value)))
           out.push_back(p.name);
     return out;
   }
@@ -961,7 +965,7 @@ class Diagnoser {
         o.doubts.push_back(name + " is not identifiable from the data");
         continue;
       }
-      if (p.std > kPoorlyDetermined * std::abs(p.value))
+      if (p.std > thresholds::kPoorlyDetermined * std::abs(p.value))
         o.doubts.push_back(name + " is poorly determined (std over 50 % of its value)");
       const int index = info.parameter_index(name);
       if (index < 0) continue;

@@ -1,4 +1,4 @@
-#include "diagnosis/engine/data_split.hpp"
+#include "mbgen/data_split.hpp"
 
 #include <mbgen/frf_sigma.hpp>
 

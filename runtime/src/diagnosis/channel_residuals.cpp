@@ -1,4 +1,4 @@
-#include "diagnosis/engine/channel_residuals.hpp"
+#include "mbgen/channel_residuals.hpp"
 
 #include <mbgen/frf.hpp>
 #include <mbgen/frf_noise.hpp>
@@ -12,7 +12,7 @@
 #include <optional>
 #include <tuple>
 
-#include "diagnosis/engine/data_split.hpp"
+#include <mbgen/data_split.hpp>
 
 namespace mbgen::diagnosis {
 

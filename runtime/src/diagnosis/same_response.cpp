@@ -1,4 +1,4 @@
-#include "diagnosis/engine/same_response.hpp"
+#include "mbgen/same_response.hpp"
 
 #include <mbgen/frf.hpp>
 
