@@ -190,7 +190,7 @@ void OutputErrorProblem::evaluate(const Eigen::VectorXd& values, const std::vect
           }
           r[at] = value.real();
           r[at + 1] = value.imag();
-          if (!dH) continue;
+          if (!dH || k == 0) continue;  // no columns: J has no storage to point into
           double* J_row = J->data() + at;
           const Eigen::Index stride = J->rows();
           for (Eigen::Index j = 0; j < k; ++j, J_row += stride) {
