@@ -4,6 +4,8 @@
 
 #include "ir/identifier.hpp"
 
+#include <mbgen/utf8.hpp>
+
 namespace mbgen::emit {
 
 namespace {
@@ -14,26 +16,6 @@ std::string hex_escape(unsigned char c) {
   char buf[8];
   std::snprintf(buf, sizeof buf, "\\x%02X", c);
   return buf;
-}
-
-// Length of the valid UTF-8 sequence (2 to 4 bytes, no overlong forms or surrogates) at s[i], or 0.
-std::size_t utf8_sequence(std::string_view s, std::size_t i) {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
-  const unsigned char c = byte(i);
-  std::size_t n = 0;
-  unsigned char lo = 0x80, hi = 0xBF;  // range of the second byte
-  if (c >= 0xC2 && c <= 0xDF) n = 2;
-  else if (c == 0xE0) n = 3, lo = 0xA0;
-  else if (c == 0xED) n = 3, hi = 0x9F;
-  else if (c >= 0xE1 && c <= 0xEF) n = 3;
-  else if (c == 0xF0) n = 4, lo = 0x90;
-  else if (c == 0xF4) n = 4, hi = 0x8F;
-  else if (c >= 0xF1 && c <= 0xF3) n = 4;
-  if (n == 0 || i + n > s.size()) return 0;
-  if (byte(i + 1) < lo || byte(i + 1) > hi) return 0;
-  for (std::size_t k = 2; k < n; ++k)
-    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
-  return n;
 }
 
 }  // namespace
@@ -64,7 +46,7 @@ std::string cxx_comment_text(std::string_view s) {
       out += s[i++];
       continue;
     }
-    if (const std::size_t n = c >= 0x80 ? utf8_sequence(s, i) : 0) {
+    if (const std::size_t n = c >= 0x80 ? utf8_sequence_length(s, i) : 0) {
       out.append(s.substr(i, n));
       i += n;
       continue;

@@ -4,6 +4,7 @@
 // same way (nlohmann's error_handler::replace).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -12,5 +13,9 @@ namespace mbgen {
 // `s` with each byte that does not start a valid UTF-8 sequence (overlong forms and surrogates are invalid) replaced
 // by U+FFFD; valid text is returned unchanged.
 std::string valid_utf8(std::string_view s);
+
+// Length of the valid UTF-8 sequence at s[i] (1 for ASCII; 2 to 4 bytes without overlong forms or surrogates), or 0
+// when s[i] starts none.
+std::size_t utf8_sequence_length(std::string_view s, std::size_t i);
 
 }  // namespace mbgen
