@@ -94,34 +94,62 @@ double prediction_errors(const Layout& L, const Signals& s, const Eigen::VectorX
   return std::isfinite(cost) ? cost : std::numeric_limits<double>::infinity();
 }
 
-// The prediction errors' derivatives with respect to phi, stacked output by output (rows o N .. o N + N - 1):
-// for A's section k, d e_o / d s_l = q^-l (A / A_k) y_o / C; for b, -q^-l u / C; for C's section k,
-// -q^-l e_o / C_k (from C e = A y - B u).
+// What every output's prediction-error derivatives share: C's polynomial, u / C, and A without each of its sections.
+struct DerivativeParts {
+  Sections S;
+  Eigen::VectorXd cv, c, uf;
+  std::vector<Eigen::VectorXd> a_without;
+  DerivativeParts(const Layout& L, const Signals& s, const Eigen::VectorXd& phi)
+      : S{L.n}, cv(phi.segment(L.c(1), L.n)), c(polynomial_of(S, cv)), uf(s.u) {
+    divide_by(c, uf);
+    const Eigen::VectorXd av = phi.head(L.n);
+    a_without.resize(static_cast<std::size_t>(S.count()));
+    for (int k = 0; k < S.count(); ++k) a_without[static_cast<std::size_t>(k)] = polynomial_of(S, av, k);
+  }
+};
+
+// Output o's prediction errors' derivatives (N x 2 n + nb: A's sections, o's b, C's sections), for A's section k
+// d e_o / d s_l = q^-l (A / A_k) y_o / C; for b, -q^-l u / C; for C's section k, -q^-l e_o / C_k (from
+// C e = A y - B u). J is N rows, zero on entry; `global` gets each column's index in phi.
+void output_derivatives(const Layout& L, const Signals& s, const DerivativeParts& d, const Eigen::VectorXd& e_o, int o,
+                        Eigen::MatrixXd& J, std::vector<Eigen::Index>& global) {
+  const Eigen::Index N = s.u.size();
+  const Sections& S = d.S;
+  const Eigen::VectorXd& y = s.y[static_cast<std::size_t>(o)];
+  for (int k = 0; k < S.count(); ++k) {
+    Eigen::VectorXd w = multiply_by(d.a_without[static_cast<std::size_t>(k)], y);
+    divide_by(d.c, w);
+    Eigen::VectorXd v = e_o;
+    divide_by(section(S, d.cv, k), v);
+    for (int l = 1; l <= S.order(k); ++l) {
+      J.col(S.offset(k) + l - 1).tail(N - l) = w.head(N - l);
+      J.col(L.n + L.nb() + S.offset(k) + l - 1).tail(N - l) = -v.head(N - l);
+    }
+  }
+  global.resize(static_cast<std::size_t>(2 * Eigen::Index(L.n) + L.nb()));
+  for (Eigen::Index j = 0; j < L.n; ++j) {
+    global[static_cast<std::size_t>(j)] = j;
+    global[static_cast<std::size_t>(L.n + L.nb() + j)] = L.c(1) + j;
+  }
+  for (int l = L.first_lag; l <= L.n; ++l) {
+    J.col(L.n + l - L.first_lag).tail(N - l) = -d.uf.head(N - l);
+    global[static_cast<std::size_t>(L.n + l - L.first_lag)] = L.b(o, l);
+  }
+}
+
+// The prediction errors' derivatives with respect to phi, stacked output by output (rows o N .. o N + N - 1).
 Eigen::MatrixXd jacobian(const Layout& L, const Signals& s, const Eigen::VectorXd& phi,
                          const std::vector<Eigen::VectorXd>& e) {
   const Eigen::Index N = s.u.size();
-  const Sections S{L.n};
-  const Eigen::VectorXd av = phi.head(L.n), cv = phi.segment(L.c(1), L.n);
-  const Eigen::VectorXd c = polynomial_of(S, cv);
-  Eigen::VectorXd uf = s.u;
-  divide_by(c, uf);
-  std::vector<Eigen::VectorXd> a_without(static_cast<std::size_t>(S.count()));
-  for (int k = 0; k < S.count(); ++k) a_without[static_cast<std::size_t>(k)] = polynomial_of(S, av, k);
+  const DerivativeParts d(L, s, phi);
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(N * L.outputs, L.size());
+  Eigen::MatrixXd block(N, 2 * Eigen::Index(L.n) + L.nb());
+  std::vector<Eigen::Index> global;
   for (int o = 0; o < L.outputs; ++o) {
-    const Eigen::Index r0 = Eigen::Index(o) * N;
-    const Eigen::VectorXd& y = s.y[static_cast<std::size_t>(o)];
-    for (int k = 0; k < S.count(); ++k) {
-      Eigen::VectorXd w = multiply_by(a_without[static_cast<std::size_t>(k)], y);
-      divide_by(c, w);
-      Eigen::VectorXd v = e[static_cast<std::size_t>(o)];
-      divide_by(section(S, cv, k), v);
-      for (int l = 1; l <= S.order(k); ++l) {
-        J.col(S.offset(k) + l - 1).segment(r0 + l, N - l) = w.head(N - l);
-        J.col(L.c(1) + S.offset(k) + l - 1).segment(r0 + l, N - l) = -v.head(N - l);
-      }
-    }
-    for (int l = L.first_lag; l <= L.n; ++l) J.col(L.b(o, l)).segment(r0 + l, N - l) = -uf.head(N - l);
+    block.setZero();
+    output_derivatives(L, s, d, e[static_cast<std::size_t>(o)], o, block, global);
+    for (Eigen::Index i = 0; i < block.cols(); ++i)
+      J.col(global[static_cast<std::size_t>(i)]).segment(Eigen::Index(o) * N, N) = block.col(i);
   }
   return J;
 }
@@ -131,39 +159,15 @@ Eigen::MatrixXd jacobian(const Layout& L, const Signals& s, const Eigen::VectorX
 void normal_equations(const Layout& L, const Signals& s, const Eigen::VectorXd& phi,
                       const std::vector<Eigen::VectorXd>& e, Eigen::MatrixXd& H, Eigen::VectorXd& g) {
   const Eigen::Index N = s.u.size(), p = L.size();
-  const Sections S{L.n};
-  const Eigen::VectorXd av = phi.head(L.n), cv = phi.segment(L.c(1), L.n);
-  const Eigen::VectorXd c = polynomial_of(S, cv);
-  Eigen::VectorXd uf = s.u;
-  divide_by(c, uf);
-  std::vector<Eigen::VectorXd> a_without(static_cast<std::size_t>(S.count()));
-  for (int k = 0; k < S.count(); ++k) a_without[static_cast<std::size_t>(k)] = polynomial_of(S, av, k);
+  const DerivativeParts d(L, s, phi);
   const Eigen::Index local = 2 * Eigen::Index(L.n) + L.nb();
-  std::vector<Eigen::Index> global(static_cast<std::size_t>(local));
-  for (Eigen::Index j = 0; j < L.n; ++j) {
-    global[static_cast<std::size_t>(j)] = j;
-    global[static_cast<std::size_t>(L.n + L.nb() + j)] = L.c(1) + j;
-  }
+  std::vector<Eigen::Index> global;
   H = Eigen::MatrixXd::Zero(p, p);
   g = Eigen::VectorXd::Zero(p);
   Eigen::MatrixXd J(N, local);
   for (int o = 0; o < L.outputs; ++o) {
-    const Eigen::VectorXd& y = s.y[static_cast<std::size_t>(o)];
     J.setZero();
-    for (int k = 0; k < S.count(); ++k) {
-      Eigen::VectorXd w = multiply_by(a_without[static_cast<std::size_t>(k)], y);
-      divide_by(c, w);
-      Eigen::VectorXd v = e[static_cast<std::size_t>(o)];
-      divide_by(section(S, cv, k), v);
-      for (int l = 1; l <= S.order(k); ++l) {
-        J.col(S.offset(k) + l - 1).tail(N - l) = w.head(N - l);
-        J.col(L.n + L.nb() + S.offset(k) + l - 1).tail(N - l) = -v.head(N - l);
-      }
-    }
-    for (int l = L.first_lag; l <= L.n; ++l) {
-      J.col(L.n + l - L.first_lag).tail(N - l) = -uf.head(N - l);
-      global[static_cast<std::size_t>(L.n + l - L.first_lag)] = L.b(o, l);
-    }
+    output_derivatives(L, s, d, e[static_cast<std::size_t>(o)], o, J, global);
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(local, local);
     G.selfadjointView<Eigen::Lower>().rankUpdate(J.transpose());
     G = G.selfadjointView<Eigen::Lower>();
