@@ -16,7 +16,9 @@
 // data generator once did) breaks the identity, and this formula then biases the estimates.
 //
 // Without coherence, every line of a channel gets the channel's RMS |h| (the channels balanced by their size).
-// In both cases var >= (floor RMS|h|)^2, so that a coherence of exactly 1 does not give infinite weight.
+// In both cases var >= (floor RMS|h|)^2, so that a coherence of exactly 1 does not give infinite weight. And where
+// the coherence is printed too close to 1 to carry 1 - g2 (under 1e-5: a resonance far above the noise, six digits),
+// a line's variance is at least a quarter of its neighbours' median (frf_sigma.cpp says why).
 //
 // Relation to frf_noise.hpp: the fit needs only relative weights (it estimates the noise's scale from its residuals,
 // s^2 = RSS / (n - k)), so n (FrfWeighting::averages, default 1) only matters when several data sets are fitted

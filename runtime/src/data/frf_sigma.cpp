@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace mbgen {
 
@@ -20,6 +21,24 @@ Eigen::VectorXd frf_variance(const FrfChannel& channel, double averages, double 
       v = (1 - g2) / (g2 * n_avg) * mag[k] * mag[k];
     }
     var[k] = std::max(v, floor2);
+  }
+  if (channel.coherence) {
+    // A coherence is printed with a few digits (six in a CSV, a float's seven in UFF): at a resonance 70 dB above
+    // the noise 1 - g2 falls below the last digit and reads 0, or keeps one uncertain digit, and the line got up to
+    // (1 / floor)^2 = 10^6 times the weight its neighbours' noise supports (a fit then passed exactly through it).
+    // The residual power is a smooth spectrum across a few lines: where 1 - g2 is under 1e-5 (one or no digit
+    // left in six), a line's variance is taken at least a quarter of the median over its nine-line neighbourhood.
+    // Only there: elsewhere the printed value is exact enough, and a floor everywhere changed the weights of
+    // few-average estimates (a record's Welch H1) enough to move a multi-start search to another optimum.
+    const Eigen::VectorXd raw = var;
+    std::vector<double> window;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (!(1.0 - (*channel.coherence)[k] < 1e-5)) continue;
+      const Eigen::Index lo = std::max<Eigen::Index>(0, k - 4), hi = std::min<Eigen::Index>(n - 1, k + 4);
+      window.assign(raw.data() + lo, raw.data() + hi + 1);
+      std::nth_element(window.begin(), window.begin() + static_cast<long>(window.size() / 2), window.end());
+      var[k] = std::max(raw[k], 0.25 * window[window.size() / 2]);
+    }
   }
   return var;
 }
