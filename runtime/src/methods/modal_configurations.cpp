@@ -4,8 +4,9 @@
 #include "mbgen/modal.hpp"
 #include "mbgen/modal_pairing.hpp"
 
-#include <cstdio>
 #include <exception>
+
+#include "../data/string_format.hpp"
 
 namespace mbgen::methods {
 
@@ -91,9 +92,7 @@ bool objectives_at(const ModalProblem& pr, const Eigen::VectorXd& p, const std::
 std::string set_label(const std::map<std::string, double>& set) {
   std::string s;
   for (const auto& [name, v] : set) {
-    char b[64];
-    std::snprintf(b, sizeof b, "%s%s=%.10g", s.empty() ? "" : ", ", name.c_str(), v);
-    s += b;
+    s += detail::format("%s%s=%.10g", s.empty() ? "" : ", ", name.c_str(), v);
   }
   return s.empty() ? "no `# set` values" : s;
 }
@@ -101,9 +100,7 @@ std::string set_label(const std::map<std::string, double>& set) {
 std::string hz_list(const std::vector<IdentifiedMode>& modes) {
   std::string s;
   for (const IdentifiedMode& m : modes) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%s%.4g Hz", s.empty() ? "" : ", ", m.f_hz);
-    s += b;
+    s += detail::format("%s%.4g Hz", s.empty() ? "" : ", ", m.f_hz);
   }
   return s.empty() ? "none" : s;
 }
