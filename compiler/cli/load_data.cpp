@@ -4,6 +4,7 @@
 #include <mbgen/data_set.hpp>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <cstdio>
@@ -12,12 +13,33 @@
 
 #include <unistd.h>
 
+#include "frontend/diagnostics.hpp"
+#include "symbolic/to_ginac.hpp"
+
 namespace mbgen::cli {
 
-std::vector<DataSet> load_data(const std::vector<std::string>& paths, const ModelInfo& model) {
+std::vector<DataSet> load_data(const std::vector<std::string>& paths, const ModelInfo& model, const ir::Model& declared,
+                               const std::map<std::string, std::string>& sets) {
   std::vector<DataSet> out;
   for (const std::string& path : paths) out.push_back(read_data_file(path, model.inputs, model.outputs));
+  check_set_lines(declared, sets, out);
   return out;
+}
+
+void check_set_lines(const ir::Model& declared, const std::map<std::string, std::string>& sets,
+                     const std::vector<DataSet>& data) {
+  for (const DataSet& d : data)
+    for (const auto& [name, value] : d.set()) {
+      std::map<std::string, std::string> overrides = sets;
+      overrides[name] = value.text;  // a data set's value replaces --set's for that data set
+      try {
+        const symbolic::ParameterTable checked(declared, overrides, "# set");
+      } catch (const frontend::ModelError& e) {
+        const std::string at =
+            e.loc().line > 0 ? fmt::format(" ({}:{}:{})", e.file(), e.loc().line, e.loc().column) : "";
+        throw DataError(d.file(), value.line, 0, e.message() + at);
+      }
+    }
 }
 
 Band parse_band(const std::string& option, const std::string& text) {
