@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <stdexcept>
 
 #include <unistd.h>
 
@@ -56,7 +57,9 @@ Band parse_band(const std::string& option, const std::string& text) {
     std::size_t used = 0;
     try {
       out = std::stod(s, &used);
-    } catch (const std::exception&) {
+    } catch (const std::invalid_argument&) {  // what std::stod throws for text that is no number
+      throw fail();
+    } catch (const std::out_of_range&) {  // and for one beyond a double
       throw fail();
     }
     if (used != s.size() || !std::isfinite(out)) throw fail();
