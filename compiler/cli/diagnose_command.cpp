@@ -95,7 +95,7 @@ int run_diagnose(int argc, char** argv) {
     const ir::Model model = frontend::parse_string(text, model_path);
     symbolic::DeriveOptions derive;
     derive.set = options.set;
-    const std::vector<DataSet> data = load_data(data_paths, evaluator::make_evaluator(model, derive)->info());
+    const std::vector<DataSet> data = load_data(data_paths, evaluator::make_evaluator(model, derive)->info(), model, derive.set);
     if (!fit_band.empty()) options.fit_data = within_band(data, parse_band("--fit-band", fit_band));
     options.progress = [](const std::string& line) {
       progress_done();

@@ -132,7 +132,7 @@ int run_fit(int argc, char** argv) {
     plan.check();
     const ir::Model model = frontend::parse_file(model_path);
     const auto evaluator = evaluator::make_evaluator(model, derive);
-    std::vector<DataSet> data = load_data(data_paths, evaluator->info());
+    std::vector<DataSet> data = load_data(data_paths, evaluator->info(), model, derive.set);
     if (!band.empty()) data = within_band(data, parse_band("--band", band));
     // A named method that cannot use the data is bad input (status 1), as docs/interfaces.md says.
     for (const DataSet& d : data) {

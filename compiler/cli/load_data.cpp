@@ -4,20 +4,43 @@
 #include <mbgen/data_set.hpp>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <stdexcept>
 
 #include <unistd.h>
 
+#include "frontend/diagnostics.hpp"
+#include "symbolic/to_ginac.hpp"
+
 namespace mbgen::cli {
 
-std::vector<DataSet> load_data(const std::vector<std::string>& paths, const ModelInfo& model) {
+std::vector<DataSet> load_data(const std::vector<std::string>& paths, const ModelInfo& model, const ir::Model& declared,
+                               const std::map<std::string, std::string>& sets) {
   std::vector<DataSet> out;
   for (const std::string& path : paths) out.push_back(read_data_file(path, model.inputs, model.outputs));
+  check_set_lines(declared, sets, out);
   return out;
+}
+
+void check_set_lines(const ir::Model& declared, const std::map<std::string, std::string>& sets,
+                     const std::vector<DataSet>& data) {
+  for (const DataSet& d : data)
+    for (const auto& [name, value] : d.set()) {
+      std::map<std::string, std::string> overrides = sets;
+      overrides[name] = value.text;  // a data set's value replaces --set's for that data set
+      try {
+        const symbolic::ParameterTable checked(declared, overrides, "# set");
+      } catch (const frontend::ModelError& e) {
+        const std::string at =
+            e.loc().line > 0 ? fmt::format(" ({}:{}:{})", e.file(), e.loc().line, e.loc().column) : "";
+        throw DataError(d.file(), value.line, 0, e.message() + at);
+      }
+    }
 }
 
 Band parse_band(const std::string& option, const std::string& text) {
@@ -34,7 +57,9 @@ Band parse_band(const std::string& option, const std::string& text) {
     std::size_t used = 0;
     try {
       out = std::stod(s, &used);
-    } catch (const std::exception&) {
+    } catch (const std::invalid_argument&) {  // what std::stod throws for text that is no number
+      throw fail();
+    } catch (const std::out_of_range&) {  // and for one beyond a double
       throw fail();
     }
     if (used != s.size() || !std::isfinite(out)) throw fail();

@@ -90,7 +90,7 @@ MonitorResult monitor_machine(const std::string& model_path, const std::vector<s
     ordered_paths.push_back(data_paths[i]);
     times.push_back(stamps[i] ? std::optional<std::string>(stamps[i]->text) : std::nullopt);
   }
-  const std::vector<DataSet> data = load_data(ordered_paths, evaluator->info());
+  const std::vector<DataSet> data = load_data(ordered_paths, evaluator->info(), parsed, derive.set);
   if (static_cast<int>(data.size()) <= options.baseline)
     throw CLI::ValidationError("--data", "monitoring needs more data sets than the baseline's " +
                                              std::to_string(options.baseline) + " (--baseline)");

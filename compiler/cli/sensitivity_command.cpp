@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
@@ -51,7 +52,9 @@ Sweep parse_sweep(const std::string& text, const ModelInfo& info) {
     if (used != parts[1].size()) throw fail("HI is not a number");
     s.points = std::stoi(parts[2], &used);
     if (used != parts[2].size()) throw fail("N is not an integer");
-  } catch (const std::logic_error&) {
+  } catch (const std::invalid_argument&) {  // what std::stod and std::stoi throw for text that is no number
+    throw fail("expected numbers in LO:HI:N");
+  } catch (const std::out_of_range&) {  // and for one beyond the type
     throw fail("expected numbers in LO:HI:N");
   }
   if (!std::isfinite(s.lo) || !std::isfinite(s.hi) || !(s.lo < s.hi)) throw fail("expected finite LO < HI");

@@ -171,26 +171,28 @@ std::string ParameterTable::too_large_text() {
   return fmt::format("its numerator or denominator would have more than {} bits", kMaxNumberBits);
 }
 
-ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::string, std::string>& overrides)
+ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::string, std::string>& overrides,
+                               const std::string& origin)
     : model_(model) {
   for (const auto& [name, value] : overrides) {
     const ir::Parameter* p = model.find_parameter(name);
     if (!p)
       throw frontend::ModelError(model.file, {},
-                                 "--set {}={}: the model has no parameter named `{}`; only declared parameters can be "
+                                 "{} {}={}: the model has no parameter named `{}`; only declared parameters can be "
                                  "set",
-                                 name, value, name);
+                                 origin, name, value, name);
     if (p->derived)
       throw frontend::ModelError(model.file, p->loc,
-                                 "--set {}={}: `{}` is derived (= {}) and cannot be set; set the free parameters it is "
+                                 "{} {}={}: `{}` is derived (= {}) and cannot be set; set the free parameters it is "
                                  "built from instead",
-                                 name, value, name, ir::to_string(p->value));
+                                 origin, name, value, name, ir::to_string(p->value));
     if (!is_decimal_literal(value))
       throw frontend::ModelError(model.file, {},
-                                 "--set {}={}: the value must be a decimal number such as 1.5, -2 or 60e6", name,
-                                 value);
+                                 "{} {}={}: the value must be a decimal number such as 1.5, -2 or 60e6", origin,
+                                 name, value);
     if (const std::string violation = decimal_limits_violation(value); !violation.empty())
-      throw frontend::ModelError(model.file, {}, "--set {}={}: out of range: {}", name, value, violation);
+      throw frontend::ModelError(model.file, {}, "{} {}={}: out of range: {}", origin, name, value,
+                                 violation);
   }
   for (const ir::Parameter& p : model.parameters) {
     if (p.derived) continue;
@@ -218,7 +220,7 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
   }
   // One map of the values for all checks (a map per parameter made a 300-parameter model's table quadratic).
   const GiNaC::exmap at = values();
-  for (const FreeParameter& fp : free_) check_bounds(fp, overrides.count(fp.name) ? overrides.at(fp.name) : "", at);
+  for (const FreeParameter& fp : free_) check_bounds(fp, overrides.count(fp.name) ? overrides.at(fp.name) : "", origin, at);
   // Every value, derived ones included, must be a real number at these values (sqrt(-1) as a mass is not).
   for (const ir::Parameter& p : model.parameters) {
     const GiNaC::ex v = GiNaC::evalf(convert(ir::Expr::symbol(p.name, p.value.loc)).subs(at));
@@ -227,7 +229,7 @@ ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::strin
   }
 }
 
-void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& set_text,
+void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& set_text, const std::string& origin,
                                   const GiNaC::exmap& at) const {
   const ir::Parameter& p = *fp.ir;
   // Values and bounds become doubles in generated code and fits: beyond the double range they would be infinite,
@@ -242,7 +244,7 @@ void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& se
   const GiNaC::ex value = GiNaC::evalf(fp.value);
   if (beyond_doubles(value))
     throw frontend::ModelError(model_.file, set_text.empty() ? p.value.loc : p.loc, "{}the value of `{}` is {}",
-                               set_text.empty() ? "" : fmt::format("--set {}={}: ", p.name, set_text), p.name,
+                               set_text.empty() ? "" : fmt::format("{} {}={}: ", origin, p.name, set_text), p.name,
                                kBeyondDoubles);
   if (!p.lower && !p.upper) return;
   auto value_of = [&](const ir::Expr& bound) {
@@ -265,8 +267,8 @@ void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& se
                                "parameter `{}`: the upper bound lies below the lower bound in {}", p.name, range);
   if ((p.lower && below(value, lower)) || (p.upper && below(upper, value))) {
     if (!set_text.empty())
-      throw frontend::ModelError(model_.file, p.loc, "--set {}={}: outside the bounds {} declared for `{}`", p.name,
-                                 set_text, range, p.name);
+      throw frontend::ModelError(model_.file, p.loc, "{} {}={}: outside the bounds {} declared for `{}`", origin,
+                                 p.name, set_text, range, p.name);
     throw frontend::ModelError(model_.file, p.value.loc, "the value of parameter `{}` lies outside its bounds {}",
                                p.name, range);
   }

@@ -34,7 +34,9 @@ class ParameterTable {
  public:
   // Throws frontend::ModelError for an unknown or derived override name, a malformed override value, a cycle
   // among derived parameters, an unknown name in an expression, or a free parameter whose value is not constant.
-  ParameterTable(const ir::Model& model, const std::map<std::string, std::string>& overrides = {});
+  // `origin` names where the overrides come from in the messages ("--set m1=0: ..."; "# set" for a data file's).
+  ParameterTable(const ir::Model& model, const std::map<std::string, std::string>& overrides = {},
+                 const std::string& origin = "--set");
 
   // The expression over the free-parameter symbols; throws ModelError at the offending node.
   GiNaC::ex convert(const ir::Expr& e) const;
@@ -45,9 +47,10 @@ class ParameterTable {
 
  private:
   GiNaC::ex derived_value(const ir::Parameter& p) const;
-  // Throws ModelError when a free parameter's value (`set_text`: as given by --set, else empty) lies outside its
+  // Throws ModelError when a free parameter's value (`set_text`: as given by `origin`, else empty) lies outside its
   // declared bounds, or the bounds are reversed.
-  void check_bounds(const FreeParameter& fp, const std::string& set_text, const GiNaC::exmap& at) const;
+  void check_bounds(const FreeParameter& fp, const std::string& set_text, const std::string& origin,
+                    const GiNaC::exmap& at) const;
   // Throw ModelError at `e` when a power or an exact number exceeds the limits above.
   void check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const;
   GiNaC::ex bounded(const ir::Expr& e, const GiNaC::ex& value) const;

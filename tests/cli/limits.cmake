@@ -45,6 +45,21 @@ file(WRITE "${WORK}/big_file.mdl" "${comments}")
 expect_run(STATUS 1 STDERR "^big_file.mdl: error: the model file is larger than 16 MiB" ARGS inspect big_file.mdl)
 file(REMOVE "${WORK}/big_file.mdl")
 
+# Data files are read as they come, a line at most 16 MiB (docs/limits.md): standard input and UFF files were read
+# whole first, so `--data -` from a pipe that never ends, or a UFF "file" that is /dev/zero, took memory until there
+# was none (a pipe from /dev/zero ran for minutes under a 3 GB limit).
+if(EXISTS /dev/zero)
+  foreach(command "fit;one.mdl;--data;-;--starts;1" "modal;--data;-")
+    execute_process(COMMAND cat /dev/zero COMMAND "${MBGEN}" ${command} WORKING_DIRECTORY "${WORK}"
+      RESULT_VARIABLE status ERROR_VARIABLE err TIMEOUT 60)
+    if(NOT status EQUAL 1 OR NOT err MATCHES "^-:1: error: line longer than 16 MiB")
+      message(SEND_ERROR "`cat /dev/zero | mbgen ${command}`: status ${status}, stderr: ${err}")
+    endif()
+  endforeach()
+  file(CREATE_LINK /dev/zero "${WORK}/zero.uff" SYMBOLIC)
+  expect_run(STATUS 1 STDERR "^zero.uff:1: error: line longer than 16 MiB" ARGS modal --data zero.uff)
+endif()
+
 string(REPEAT " + 0.001" 99999 terms)
 file(WRITE "${WORK}/sum.mdl" "model m\nparam m1 = 0.001${terms}\nground g\nbody b { mass m1; dof x }\n"
            "spring s { from g; to b; along x; stiffness 1 }\n")

@@ -42,6 +42,28 @@ file(WRITE "${WORK}/huge.csv" "${huge}")
 file(WRITE "${WORK}/set0.csv" "${set0}")
 expect_run(STATUS 1 STDERR "^set0.csv:1: error: the values of its `# set` lines are not admissible: the mass matrix"
   ARGS fit ${MDOF2} --data set0.csv --starts 1)
+# Every `# set` value is checked by the code that checks --set's (symbolic::ParameterTable), at its line: exactly
+# against the declared bounds (a double just below 1/3 passed the bounds compared as doubles), within the range of a
+# double (1e-310 passed), and a derived parameter is named as such (it was "no free parameter").
+write_model(setm "param third = 0.5 in [1/3, 1]" "param tiny = 1" "param k2 = 10 in [1, 1e9]" "param twice = 2*c")
+foreach(case "third=0.3333333333333333|outside the bounds \\[1/3, 1\\] declared for `third` \\(setm.mdl:9:7\\)"
+             "tiny=1e-310|the value of `tiny` is beyond the range of a double"
+             "k2=0|outside the bounds \\[1, 1e9\\] declared for `k2`"
+             "twice=3|`twice` is derived \\(= 2\\*c\\) and cannot be set"
+             "nothing=1|the model has no parameter named `nothing`")
+  string(REPLACE "|" ";" case "${case}")
+  list(GET case 0 assignment)
+  list(GET case 1 why)
+  string(REGEX REPLACE "[=.*+-]" "_" stem "${assignment}")
+  file(READ "${WORK}/one_frf.csv" one_frf)
+  file(WRITE "${WORK}/set_${stem}.csv" "# set m1=2\n# set ${assignment}\n${one_frf}")
+  string(REPLACE "." "\\." shown "${assignment}")
+  expect_run(STATUS 1 STDERR "^set_${stem}.csv:2: error: # set ${shown}: ${why}"
+    ARGS fit setm.mdl --data set_${stem}.csv --starts 1)
+endforeach()
+# The same values by --set, for comparison: the same checks.
+expect_run(STATUS 1 STDERR "--set third=0.3333333333333333: outside the bounds \\[1/3, 1\\]"
+  ARGS fit setm.mdl --data one_frf.csv --starts 1 --set third=0.3333333333333333)
 expect_run(STATUS 1 STDERR "^zero.csv: error: FRF d1/F1 is zero at every frequency" ARGS fit ${MDOF2} --data zero.csv --starts 1)
 # The modal analysis too: it reported no modes and a channel error of 0 (a perfect fit) with status 0.
 expect_run(STATUS 1 STDERR "^zero.csv: error: channel d1/F1 is zero at every line in the band"

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <iterator>
 #include <streambuf>
+#include <string>
 
 #include "mbgen/csv.hpp"
 #include "mbgen/data_error.hpp"
@@ -27,21 +27,49 @@ bool has_uff_extension(const std::string& name) {
 
 enum class Kind { Uff, Time, Frf };
 
-// An input stream over bytes already in memory, without copying them (std::istringstream would).
-class BytesBuffer : public std::streambuf {
+// A stream that can go back to its start only until release(): it keeps what it reads until then. The kind of data
+// is told from the first lines, which are then read again by the parser; standard input cannot be rewound, and was
+// read whole for this (`--data -` from /dev/zero grew one string until the memory ran out). What is kept is the
+// lines looked at (each at most kMaxLineBytes) and one chunk.
+class RewindableBuffer : public std::streambuf {
  public:
-  explicit BytesBuffer(std::string& bytes) { setg(bytes.data(), bytes.data(), bytes.data() + bytes.size()); }
+  explicit RewindableBuffer(std::streambuf& source) : source_(source) { setg(kept_.data(), kept_.data(), kept_.data()); }
+  // From here on nothing more is kept: the rest of what was kept is read, then the source in chunks.
+  void release() { keeping_ = false; }
 
  protected:
-  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
-    char* const from = dir == std::ios_base::beg ? eback() : dir == std::ios_base::cur ? gptr() : egptr();
-    if (off < eback() - from || off > egptr() - from) return pos_type(off_type(-1));
-    setg(eback(), from + off, egptr());
-    return pos_type(gptr() - eback());
+  int_type underflow() override {
+    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    if (keeping_) {
+      const std::size_t at = kept_.size();
+      kept_.resize(at + sizeof chunk_);
+      const auto got = static_cast<std::size_t>(source_.sgetn(kept_.data() + at, sizeof chunk_));
+      kept_.resize(at + got);
+      setg(kept_.data(), kept_.data() + at, kept_.data() + kept_.size());
+    } else {
+      if (!kept_.empty()) std::string().swap(kept_);
+      const auto got = static_cast<std::size_t>(source_.sgetn(chunk_, sizeof chunk_));
+      setg(chunk_, chunk_, chunk_ + got);
+    }
+    return gptr() < egptr() ? traits_type::to_int_type(*gptr()) : traits_type::eof();
   }
-  pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
-    return seekoff(off_type(pos), std::ios_base::beg, which);
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode which) override {
+    if (!keeping_ || dir == std::ios_base::end) return pos_type(off_type(-1));
+    const off_type base = dir == std::ios_base::beg ? 0 : gptr() - eback();
+    return seekpos(pos_type(base + off), which);
   }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode) override {
+    const auto at = off_type(pos);
+    if (!keeping_ || at < 0 || at > static_cast<off_type>(kept_.size())) return pos_type(off_type(-1));
+    setg(kept_.data(), kept_.data() + at, kept_.data() + kept_.size());
+    return pos;
+  }
+
+ private:
+  std::streambuf& source_;
+  std::string kept_;
+  bool keeping_ = true;
+  char chunk_[1 << 16];
 };
 
 // Skips a UTF-8 byte order mark (as some programs write before the first line) at the stream's position.
@@ -93,26 +121,16 @@ DataSet parse(Kind kind, std::istream& body, const std::string& file_name, const
 
 DataSet read_any(std::istream& in, const std::string& file_name, const std::optional<ChannelNames>& known,
                  const std::optional<UffMapping>& uff_mapping, const std::string& sidecar) {
-  // A file is parsed from the stream itself after a look at its first lines, and so never held as text beside its
-  // numbers (docs/limits.md, "Memory of a time record"). Standard input cannot be rewound: it is read whole first.
-  const std::streampos start = in.tellg();
-  if (start != std::streampos(-1)) {
-    skip_byte_order_mark(in);
-    const std::streampos body = in.tellg();
-    const Kind kind = detect(in, file_name);
-    in.clear();
-    in.seekg(body);
-    return parse(kind, in, file_name, known, uff_mapping, sidecar);
-  }
-  in.clear();
-  std::string bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>{});
-  BytesBuffer buffer(bytes);
+  // Any input, a file or standard input, is parsed from the stream itself after a look at its first lines, and so
+  // never held as text beside its numbers (docs/limits.md, "Memory of a time record").
+  RewindableBuffer buffer(*in.rdbuf());
   std::istream text(&buffer);
   skip_byte_order_mark(text);
   const std::streampos body = text.tellg();
   const Kind kind = detect(text, file_name);
   text.clear();
   text.seekg(body);
+  buffer.release();
   return parse(kind, text, file_name, known, uff_mapping, sidecar);
 }
 

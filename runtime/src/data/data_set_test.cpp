@@ -26,6 +26,39 @@ std::string write(const std::string& name, const std::string& text) {
 
 std::string sample(const std::string& name) { return std::string(MBGEN_TEST_DATA_DIR) + "/uff/" + name; }
 
+// Standard input as the reader sees it: no seeking, bytes in pieces of `piece`. Serves `text`, or with an empty text
+// `endless` zero bytes (a pipe from /dev/zero, ended here so that a reader that reads everything still stops), and
+// counts what it served.
+class Pipe : public std::streambuf {
+ public:
+  Pipe(std::string text, std::size_t piece, std::size_t endless = 0)
+      : text_(std::move(text)), piece_(piece), endless_(endless) {}
+  std::size_t served() const { return served_; }
+
+ protected:
+  int_type underflow() override {
+    const std::size_t total = text_.empty() ? endless_ : text_.size();
+    const std::size_t n = std::min(piece_, total - served_);
+    if (n == 0) return traits_type::eof();
+    buffer_.assign(n, '\0');
+    if (!text_.empty()) buffer_.assign(text_, served_, n);
+    served_ += n;
+    setg(buffer_.data(), buffer_.data(), buffer_.data() + n);
+    return traits_type::to_int_type(buffer_[0]);
+  }
+
+ private:
+  std::string text_, buffer_;
+  std::size_t piece_, endless_, served_ = 0;
+};
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
 }  // namespace
 
 TEST_CASE("CSV kinds are told by the first header column") {
@@ -55,6 +88,46 @@ TEST_CASE("streams: standard-input style reading") {
   const auto set = read_data(uff, "-");
   REQUIRE(std::holds_alternative<FrfData>(set.content));
   CHECK(std::get<FrfData>(set.content).f_hz.size() == 6);
+}
+
+TEST_CASE("standard input and UFF files are read as they come, never whole") {
+  // `--data -` from /dev/zero, and a UFF file that is /dev/zero: both were read whole before a line was looked at,
+  // until the memory ran out. Now a line is refused past 16 MiB, when little more than that has been read.
+  const std::size_t endless = std::size_t(64) << 20;
+  for (const std::string name : {"-", "zero.uff"}) {
+    Pipe zeros("", 1 << 16, endless);
+    std::istream in(&zeros);
+    CHECK_THROWS_WITH(read_data(in, name), name + ":1: error: line longer than 16 MiB");
+    CHECK(zeros.served() < (std::size_t(17) << 20));
+  }
+  // Every kind through a pipe in odd pieces: told from its first lines, which are read again, then parsed as a file.
+  for (const std::size_t piece : {std::size_t(1), std::size_t(7), std::size_t(4096)}) {
+    INFO("pieces of " << piece);
+    Pipe csv("\xEF\xBB\xBF# set m=2\nt,F\n0,1\n1,2\n", piece);
+    std::istream csv_in(&csv);
+    const DataSet record = read_data(csv_in, "-");
+    REQUIRE(std::holds_alternative<TimeRecord>(record.content));
+    CHECK(std::get<TimeRecord>(record.content).signals.at(0).values[1] == 2);
+    CHECK(record.set().at("m").line == 1);
+    for (const char* name : {"non_ascii_header.uff", "Sample_UFF58b_bin.uff", "binary8byte.uff"}) {
+      INFO(name);
+      const DataSet expected = read_data_file(sample(name));
+      Pipe uff(file_text(sample(name)), piece);
+      std::istream uff_in(&uff);
+      const DataSet got = read_data(uff_in, "-");
+      REQUIRE(got.content.index() == expected.content.index());
+      if (const auto* f = std::get_if<FrfData>(&got.content)) {
+        const FrfData& e = std::get<FrfData>(expected.content);
+        CHECK(f->f_hz == e.f_hz);
+        CHECK(f->channels.at(0).values == e.channels.at(0).values);
+      } else {
+        const TimeRecord& t = std::get<TimeRecord>(got.content);
+        const TimeRecord& e = std::get<TimeRecord>(expected.content);
+        CHECK(t.t == e.t);
+        CHECK(t.signals.at(0).values == e.signals.at(0).values);
+      }
+    }
+  }
 }
 
 TEST_CASE("UFF files, with the sidecar mapping PATH.map or an explicit one") {

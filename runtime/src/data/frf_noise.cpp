@@ -5,9 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <cstdio>
 #include <limits>
 #include <vector>
+
+#include "string_format.hpp"
 
 namespace mbgen {
 
@@ -201,31 +202,23 @@ FrfNoise from_coherence(const FrfChannel& channel, double floor) {
 }  // namespace
 
 std::string FrfNoise::description() const {
-  char text[256];
   switch (source) {
     case Source::Coherence:
       if (averages > 1)
-        std::snprintf(text, sizeof text,
-                      "coherence, for an FRF averaged %.3g times (the number that matches the data's scatter between "
-                      "neighbouring lines)",
-                      averages);
-      else
-        std::snprintf(text, sizeof text,
-                      "coherence, its variance scaled by %.3g to match the data's scatter between neighbouring lines "
-                      "(larger than one average's)",
-                      coherence_scale);
-      break;
+        return detail::format("coherence, for an FRF averaged %.3g times (the number that matches the data's scatter "
+                              "between neighbouring lines)",
+                              averages);
+      return detail::format("coherence, its variance scaled by %.3g to match the data's scatter between neighbouring "
+                            "lines (larger than one average's)",
+                            coherence_scale);
     case Source::Scatter:
-      std::snprintf(text, sizeof text,
-                    "the data's scatter between neighbouring lines (no coherence): %.3g at the band's centre, its "
-                    "variance changing by a factor %.3g across the band",
-                    std::sqrt(additive), std::exp(drift));
-      break;
+      return detail::format("the data's scatter between neighbouring lines (no coherence): %.3g at the band's centre, "
+                            "its variance changing by a factor %.3g across the band",
+                            std::sqrt(additive), std::exp(drift));
     case Source::TooFewLines:
-      std::snprintf(text, sizeof text, "too few lines to estimate it: the channel's RMS");
       break;
   }
-  return text;
+  return "too few lines to estimate it: the channel's RMS";
 }
 
 FrfNoise frf_noise(const Eigen::VectorXd& f_hz, const FrfChannel& channel) {

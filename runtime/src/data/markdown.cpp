@@ -1,8 +1,9 @@
 #include "mbgen/markdown.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstring>
+
+#include "string_format.hpp"
 
 namespace mbgen {
 
@@ -10,11 +11,7 @@ namespace {
 
 bool control(unsigned char c) { return c < 0x20 || c == 0x7f; }
 
-std::string hex(unsigned char c) {
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "\\x%02X", c);
-  return buf;
-}
+std::string hex(unsigned char c) { return detail::format("\\x%02X", c); }
 
 }  // namespace
 

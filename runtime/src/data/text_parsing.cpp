@@ -49,6 +49,14 @@ bool LineReader::next(std::string& line) {
   return true;
 }
 
+std::size_t LineReader::read_block(char* out, std::size_t n) {
+  in_.read(out, static_cast<std::streamsize>(n));
+  const auto got = static_cast<std::size_t>(in_.gcount());
+  for (std::size_t i = 0; i < got; ++i)
+    if (out[i] == '\n') ++line_;
+  return got;
+}
+
 std::vector<std::string_view> split_fields(std::string_view line) {
   std::vector<std::string_view> fields;
   std::size_t start = 0;

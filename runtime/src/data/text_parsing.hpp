@@ -23,6 +23,9 @@ class LineReader {
  public:
   LineReader(std::istream& in, std::string file) : in_(in), file_(std::move(file)) {}
   bool next(std::string& line);
+  // Up to `n` bytes as they are (a binary block between lines), counting the newlines among them as lines so that
+  // the lines after it keep their numbers. Returns how many bytes there were.
+  std::size_t read_block(char* out, std::size_t n);
   int line_number() const { return line_; }
 
  private:

@@ -4,7 +4,6 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <iterator>
 
 #include "mbgen/data_error.hpp"
 #include "mbgen/uff.hpp"
@@ -16,35 +15,24 @@ using namespace data_detail;
 
 namespace {
 
-// Walks the file's bytes line by line; binary bodies are taken by byte count.
+// Walks the file line by line from the stream (never holding the whole file: `--data x.uff` naming /dev/zero, or a
+// stray huge file, grew one string until the memory ran out); a line is at most kMaxLineBytes (LineReader). Binary
+// bodies are taken by byte count. A line returned stays valid until the next call.
 class Cursor {
  public:
-  explicit Cursor(const std::string& bytes) : bytes_(bytes) {}
+  Cursor(std::istream& in, const std::string& file) : reader_(in, file) {}
   bool next_line(std::string_view& line) {
-    if (pos_ >= bytes_.size()) return false;
-    const auto end = bytes_.find('\n', pos_);
-    const std::size_t stop = end == std::string::npos ? bytes_.size() : end;
-    line = std::string_view(bytes_).substr(pos_, stop - pos_);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    pos_ = end == std::string::npos ? bytes_.size() : end + 1;
-    ++line_;
+    if (!reader_.next(buffer_)) return false;
+    line = buffer_;
     return true;
   }
-  std::size_t remaining() const { return bytes_.size() - pos_; }
-  std::string_view take(std::size_t n) {
-    const std::string_view block = std::string_view(bytes_).substr(pos_, n);
-    pos_ += n;
-    // Keep line numbers as an editor would show them after the block.
-    for (char c : block)
-      if (c == '\n') ++line_;
-    return block;
-  }
-  int line() const { return line_; }
+  // Up to n bytes of a binary block; line numbers after it stay as an editor would show them.
+  std::size_t take(char* out, std::size_t n) { return reader_.read_block(out, n); }
+  int line() const { return reader_.line_number(); }
 
  private:
-  const std::string& bytes_;
-  std::size_t pos_ = 0;
-  int line_ = 0;
+  LineReader reader_;
+  std::string buffer_;
 };
 
 bool is_delimiter(std::string_view line) { return trim(line) == "-1"; }
@@ -122,7 +110,7 @@ void fill_points(Uff58Record& r, const std::vector<double>& v) {
   }
 }
 
-void parse_header_records(const std::vector<std::string_view>& lines, int first_line, const std::string& file,
+void parse_header_records(const std::vector<std::string>& lines, int first_line, const std::string& file,
                           Uff58Record& r) {
   for (int i = 0; i < 5; ++i) r.id[static_cast<std::size_t>(i)] = std::string(trim(lines[static_cast<std::size_t>(i)]));
 
@@ -227,30 +215,42 @@ void read_binary_body(Cursor& c, const std::string& file, Uff58Record& r, bool l
                     "UFF dataset 58b: the header declares " + std::to_string(bytes) + " bytes, but " +
                         std::to_string(r.points) + " points need " + std::to_string(expected) + " values of " +
                         std::to_string(size) + " bytes");
-  if (static_cast<long long>(c.remaining()) < bytes)
-    throw DataError(file, r.line, 0,
-                    "UFF dataset 58b is cut off: the header declares " + std::to_string(bytes) +
-                        " bytes of data, the file holds " + std::to_string(c.remaining()));
-  const std::string_view block = c.take(static_cast<std::size_t>(bytes));
+  // Read in chunks as the file holds them: the declared count alone allocates nothing (a header may claim terabytes).
   const bool swap = little_endian != host_is_little_endian();
-  std::vector<double> values(static_cast<std::size_t>(expected));
-  unsigned char raw[8];
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    std::memcpy(raw, block.data() + i * size, size);
-    if (swap)
-      for (std::size_t j = 0; j < size / 2; ++j) std::swap(raw[j], raw[size - 1 - j]);
-    if (size == 4) {
-      float f;
-      std::memcpy(&f, raw, 4);
-      values[i] = f;
-    } else {
-      std::memcpy(&values[i], raw, 8);
+  std::vector<double> values;
+  values.reserve(static_cast<std::size_t>(std::min<Eigen::Index>(expected, 1 << 24)));
+  char chunk[1 << 16];  // a multiple of both value sizes
+  long long left = bytes, held = 0;
+  while (left > 0) {
+    const auto want = static_cast<std::size_t>(std::min<long long>(left, static_cast<long long>(sizeof chunk)));
+    const std::size_t got = c.take(chunk, want);
+    held += static_cast<long long>(got);
+    if (got < want)
+      throw DataError(file, r.line, 0,
+                      "UFF dataset 58b is cut off: the header declares " + std::to_string(bytes) +
+                          " bytes of data, the file holds " + std::to_string(held));
+    left -= static_cast<long long>(got);
+    unsigned char raw[8];
+    for (std::size_t at = 0; at < got; at += size) {
+      std::memcpy(raw, chunk + at, size);
+      if (swap)
+        for (std::size_t j = 0; j < size / 2; ++j) std::swap(raw[j], raw[size - 1 - j]);
+      double v;
+      if (size == 4) {
+        float f;
+        std::memcpy(&f, raw, 4);
+        v = f;
+      } else {
+        std::memcpy(&v, raw, 8);
+      }
+      const std::size_t i = values.size();
+      if (!std::isfinite(v))
+        throw DataError(file, r.line, 0, "UFF dataset 58b: value " + std::to_string(i + 1) + " is not finite");
+      if (std::abs(v) > kMaxDataMagnitude)
+        throw DataError(file, r.line, 0, "UFF dataset 58b: value " + std::to_string(i + 1) + " is too large: "
+                                         "magnitudes above 1e150 are rejected (their squares overflow)");
+      values.push_back(v);
     }
-    if (!std::isfinite(values[i]))
-      throw DataError(file, r.line, 0, "UFF dataset 58b: value " + std::to_string(i + 1) + " is not finite");
-    if (std::abs(values[i]) > kMaxDataMagnitude)
-      throw DataError(file, r.line, 0, "UFF dataset 58b: value " + std::to_string(i + 1) + " is too large: magnitudes "
-                                       "above 1e150 are rejected (their squares overflow)");
   }
   fill_points(r, values);
   std::string_view line;
@@ -289,13 +289,13 @@ Uff58Record read_dataset_58(Cursor& c, const std::string& file, std::string_view
     if (bytes < 0) throw DataError(file, r.line, tokens[4].second, "UFF 58b: negative byte count");
     little_endian = order == 1;
   }
-  std::vector<std::string_view> header;
+  std::vector<std::string> header;
   std::string_view line;
   while (header.size() < 11) {
     if (!c.next_line(line) || is_delimiter(line))
       throw DataError(file, c.line(), 0,
                       "UFF dataset 58 ends after " + std::to_string(header.size()) + " of its 11 header lines");
-    header.push_back(line);
+    header.emplace_back(line);
   }
   parse_header_records(header, r.line + 1, file, r);
   if (r.binary)
@@ -308,27 +308,27 @@ Uff58Record read_dataset_58(Cursor& c, const std::string& file, std::string_view
 }  // namespace
 
 std::vector<Uff58Record> read_uff58(std::istream& in, const std::string& file_name) {
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (trim(bytes).empty()) throw DataError(file_name, 0, 0, "empty file");
-  Cursor c(bytes);
+  Cursor c(in, file_name);
   std::vector<Uff58Record> records;
   std::string_view line;
+  bool any_text = false;
   while (c.next_line(line)) {
     if (trim(line).empty()) continue;
+    any_text = true;
     if (!is_delimiter(line))
       throw DataError(file_name, c.line(), 1, "expected '    -1' (start of a UFF dataset), found " + shown(line));
     if (!c.next_line(line)) break;  // a lone trailing delimiter
     const auto tokens = number_tokens(line);
     if (tokens.empty())
       throw DataError(file_name, c.line(), 1, "expected a UFF dataset number after '    -1'");
-    const std::string_view number = tokens[0].first;
+    const std::string number(tokens[0].first);  // the line's text is gone after the next line is read
     if (number == "58" || number == "58b") {
       records.push_back(read_dataset_58(c, file_name, line));
       continue;
     }
     if (!number.empty() && number.back() == 'b')
       throw DataError(file_name, c.line(), tokens[0].second,
-                      "binary UFF dataset " + std::string(number) + " is not supported (only 58 and 58b)");
+                      "binary UFF dataset " + number + " is not supported (only 58 and 58b)");
     // Another ASCII dataset (units, header, geometry): skip to its closing delimiter.
     const int start = c.line();
     bool closed = false;
@@ -337,8 +337,9 @@ std::vector<Uff58Record> read_uff58(std::istream& in, const std::string& file_na
         closed = true;
         break;
       }
-    if (!closed) throw DataError(file_name, start, 0, "UFF dataset " + std::string(number) + " is not closed by '    -1'");
+    if (!closed) throw DataError(file_name, start, 0, "UFF dataset " + number + " is not closed by '    -1'");
   }
+  if (!any_text) throw DataError(file_name, 0, 0, "empty file");
   if (records.empty()) throw DataError(file_name, 0, 0, "no UFF dataset 58 or 58b in the file");
   return records;
 }

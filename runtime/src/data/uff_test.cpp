@@ -255,6 +255,9 @@ TEST_CASE("UFF errors are clear") {
   CHECK_THAT(uff_error("    -1\n    58b     1     1          11          16     0     0           0           0\n" + h),
              Catch::Contains("floating-point format 1 is not supported"));
   CHECK_THAT(uff_error("    -1\n  2414b\n"), Catch::Contains("binary UFF dataset 2414b is not supported"));
+  // Lines are read as the CSV readers read them, at most 16 MiB each, with the line named (the file was read whole).
+  CHECK_THAT(uff_error("    -1\n    58\n" + h + std::string((std::size_t(16) << 20) + 1, '1') + "\n    -1\n"),
+             Catch::Equals("fix.uff:14: error: line longer than 16 MiB"));
 }
 
 TEST_CASE("UFF to data set: unsupported and mixed function types") {

@@ -2,23 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
 #include <limits>
+
+#include "../data/string_format.hpp"
 
 namespace mbgen {
 
 namespace {
 
-// printf-style formatting into a std::string (the runtime keeps to the standard library and Eigen).
-__attribute__((format(printf, 1, 2))) std::string format(const char* pattern, ...) {
-  va_list args;
-  va_start(args, pattern);
-  char buffer[512];
-  std::vsnprintf(buffer, sizeof buffer, pattern, args);
-  va_end(args);
-  return buffer;
-}
+using detail::format;
 
 double db(double ratio) { return 20.0 * std::log10(std::max(ratio, 1e-300)); }
 

@@ -3,7 +3,7 @@
 #include "fit_setup.hpp"
 
 #include <cmath>
-#include <exception>
+#include <stdexcept>
 
 namespace mbgen::estimation {
 
@@ -25,8 +25,11 @@ ResidualFunction Estimator::function(const std::vector<int>& free, ResidualKind 
           transforms_[static_cast<std::size_t>(free[j])].derivative(theta[static_cast<Eigen::Index>(j)]);
     try {
       problem_.evaluate(full, free, kind, r, J, &derivative);
-    } catch (const std::exception&) {
-      return false;  // e.g. a singular mass matrix far from the prior: a failed trial step
+    } catch (const std::runtime_error&) {
+      // e.g. a singular mass matrix far from the prior (DynamicsError): a failed trial step. Only runtime errors,
+      // the kind mbgen throws for what the input makes fail: a std::logic_error (out_of_range from .at() too) is a
+      // bug, and was taken for a failed step; it goes on to the command's internal-error status (docs/cli.md).
+      return false;
     }
     return true;
   };

@@ -25,6 +25,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 
 namespace mbgen {
 
@@ -410,7 +411,7 @@ std::vector<Mode> modes_at(const Model& model, const Eigen::VectorXd& values) {
   model.evaluate(values, m);
   try {
     return modal_analysis(m.M, m.C, m.K);
-  } catch (const std::exception&) {
+  } catch (const std::runtime_error&) {  // DynamicsError; a logic_error is a bug and goes on
     return {};
   }
 }

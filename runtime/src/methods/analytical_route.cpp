@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace mbgen::methods {
 
@@ -32,7 +33,7 @@ bool admissible(const Model& model, const Eigen::VectorXd& v, const std::vector<
   }
   try {
     estimation::check_parameter_values(model, v, "two-step");
-  } catch (const std::exception&) {
+  } catch (const std::runtime_error&) {  // FitError, DynamicsError; a logic_error is a bug and goes on
     return false;
   }
   return true;
@@ -117,7 +118,7 @@ AnalyticalOutcome analytical_route(const Model& model, const std::vector<StepOne
       if (evaluated) {
         try {
           problem.evaluate(v, free, r, &J);
-        } catch (const std::exception&) {
+        } catch (const std::runtime_error&) {  // DynamicsError there; a logic_error is a bug and goes on
           evaluated = false;
         }
       }

@@ -355,7 +355,8 @@ Eigen::VectorXd ArmaxEstimate::c_polynomial() const {
 ArmaxEstimate estimate_armax(const Eigen::VectorXd& u, const std::vector<Eigen::VectorXd>& y, int n,
                              bool first_order_hold, const ArmaxOptions& options, const ArmaxEstimate* previous,
                              const std::vector<std::complex<double>>& poles, double dt) {
-  if (y.empty() || n < 1) throw std::invalid_argument("estimate_armax: bad arguments");
+  // A caller's bug: std::logic_error, not invalid_argument, which the callers take for data that cannot serve.
+  if (y.empty() || n < 1) throw std::logic_error("estimate_armax: bad arguments");
   Layout L;
   L.n = n;
   L.first_lag = first_order_hold ? 0 : 1;
@@ -477,7 +478,7 @@ ArmaxIdentification identify_armax(const Eigen::VectorXd& u, const std::vector<E
   const int O = static_cast<int>(y.size());
   const Eigen::Index N = u.size();
   if (O == 0 || q < 2 || q % 2 || static_cast<int>(numerator_degree.size()) != O)
-    throw std::invalid_argument("identify_armax: bad arguments");
+    throw std::logic_error("identify_armax: bad arguments");  // a caller's bug (estimate_armax), not the data's
   const int first_lag = first_order_hold ? 0 : 1;
   auto coefficients = [&](int n) { return 2.0 * n + double(O) * (n - first_lag + 1); };
   if (double(O) * double(N) < 20.0 * coefficients(q))

@@ -130,7 +130,7 @@ ArxIdentification identify_arx(const Eigen::VectorXd& u, const std::vector<Eigen
   const int O = static_cast<int>(y.size());
   const Eigen::Index N = u.size();
   if (O == 0 || q < 2 || q % 2 || static_cast<int>(numerator_degree.size()) != O)
-    throw std::invalid_argument("identify_arx: bad arguments");
+    throw std::logic_error("identify_arx: bad arguments");  // a caller's bug (fit_rational_frf), not the data's
   ArxLayout layout;
   layout.outputs = O;
   layout.first_lag = first_order_hold ? 0 : 1;

@@ -65,7 +65,8 @@ struct ArxIdentification {
 };
 
 // u: the input; y: per output; dt the sample interval; q the model's order (even); numerator_degree per output: the
-// model's. Throws std::invalid_argument (a message for the user) when the record is too short or shows no mode.
+// model's. Throws std::invalid_argument (a message for the user) when the record is too short or shows no mode, and
+// std::logic_error (a bug of the caller) for arguments that break these rules.
 ArxIdentification identify_arx(const Eigen::VectorXd& u, const std::vector<Eigen::VectorXd>& y,
                                const std::vector<std::string>& outputs, const std::string& input, double dt,
                                bool first_order_hold, int q, const std::vector<int>& numerator_degree,

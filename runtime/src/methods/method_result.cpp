@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace mbgen::methods {
 
@@ -46,7 +47,7 @@ void score_by_output_error(const Model& model, const std::vector<DataSet>& data,
   model.evaluate(result.values, m);
   try {
     result.modes = modal_analysis(m.M, m.C, m.K);
-  } catch (const std::exception&) {
+  } catch (const std::runtime_error&) {
     result.modes.clear();  // e.g. a singular mass matrix: no modes to report
   }
 }

@@ -4,8 +4,9 @@
 #include "mbgen/modal.hpp"
 #include "mbgen/modal_pairing.hpp"
 
-#include <cstdio>
-#include <exception>
+#include <stdexcept>
+
+#include "../data/string_format.hpp"
 
 namespace mbgen::methods {
 
@@ -37,17 +38,30 @@ std::vector<ModeRef> identify_reference_modes(const Model& model, const Eigen::V
   for (std::size_t c = 0; c < configurations.size(); ++c) {
     ModalConfiguration& cf = configurations[c];
     const std::string where = configurations.size() > 1 ? " (configuration " + set_label(cf.set) + ")" : "";
+    // Bad input: DataError, DynamicsError (runtime_error), and invalid_argument, which the modal analysis throws for
+    // data it cannot serve (too few lines for the order, channels the model does not have). Any other logic_error
+    // is a bug and goes on to the command's internal-error status.
+    const auto failed = [&](const std::string& what) {
+      return FitError(std::string("fit: error: --method modal") + where + ": " + what);
+    };
     try {
       cf.data = modal_data(cf.frfs, FrequencyBand{}, FrfQuantity::Unknown);
       cf.data.quantity = model_modes(model, in_configuration(cf, prior), cf.data).quantity;
-    } catch (const std::exception& e) {
-      throw FitError(std::string("fit: error: --method modal") + where + ": " + e.what());
+    } catch (const std::runtime_error& e) {
+      throw failed(e.what());
+    } catch (const std::invalid_argument& e) {
+      throw failed(e.what());
     }
+    const auto analysis_failed = [&](const std::string& what) {
+      return FitError(std::string("fit: error: --method modal: the modal analysis of the FRFs") + where +
+                      " failed: " + what);
+    };
     try {
       cf.reference = identify_modes(cf.data, ModalOptions{}).modes;
-    } catch (const std::exception& e) {
-      throw FitError(std::string("fit: error: --method modal: the modal analysis of the FRFs") + where +
-                     " failed: " + e.what());
+    } catch (const std::runtime_error& e) {
+      throw analysis_failed(e.what());
+    } catch (const std::invalid_argument& e) {
+      throw analysis_failed(e.what());
     }
     for (int m = 0; m < static_cast<int>(cf.reference.size()); ++m) modes.push_back({static_cast<int>(c), m});
   }
@@ -91,9 +105,7 @@ bool objectives_at(const ModalProblem& pr, const Eigen::VectorXd& p, const std::
 std::string set_label(const std::map<std::string, double>& set) {
   std::string s;
   for (const auto& [name, v] : set) {
-    char b[64];
-    std::snprintf(b, sizeof b, "%s%s=%.10g", s.empty() ? "" : ", ", name.c_str(), v);
-    s += b;
+    s += detail::format("%s%s=%.10g", s.empty() ? "" : ", ", name.c_str(), v);
   }
   return s.empty() ? "no `# set` values" : s;
 }
@@ -101,9 +113,7 @@ std::string set_label(const std::map<std::string, double>& set) {
 std::string hz_list(const std::vector<IdentifiedMode>& modes) {
   std::string s;
   for (const IdentifiedMode& m : modes) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%s%.4g Hz", s.empty() ? "" : ", ", m.f_hz);
-    s += b;
+    s += detail::format("%s%.4g Hz", s.empty() ? "" : ", ", m.f_hz);
   }
   return s.empty() ? "none" : s;
 }

@@ -17,9 +17,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <random>
+
+#include "../data/string_format.hpp"
 
 namespace mbgen {
 
@@ -573,11 +574,10 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
     for (const nlohmann::json& s : details["repetitions"]["last_sweep"]) {
       const int agreeing = s["agreeing"].get<int>(), repetitions = s["repetitions"].get<int>();
       if (2 * agreeing < repetitions) {
-        char mode[48];
-        std::snprintf(mode, sizeof mode, "%.4g Hz",
-                      details["reference_modes"][s["mode"].get<std::size_t>()]["f_hz"].get<double>());
+        const std::string mode =
+            detail::format("%.4g Hz", details["reference_modes"][s["mode"].get<std::size_t>()]["f_hz"].get<double>());
         disagreeing = "the repetitions did not agree on one optimum (the subproblem of the mode at " +
-                      std::string(mode) + ": " + std::to_string(agreeing) + " of " +
+                      mode + ": " + std::to_string(agreeing) + " of " +
                       std::to_string(repetitions) + " reached its best); the estimate may be a local optimum";
         break;
       }

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <exception>
+#include <stdexcept>
 
 namespace mbgen::methods {
 
@@ -16,7 +16,7 @@ ModalComparison compare_modes(const Model& model, const Eigen::VectorXd& p, cons
   ModelModes mm;
   try {
     mm = model_modes(model, p, data);
-  } catch (const std::exception&) {
+  } catch (const std::runtime_error&) {
     return c;  // e.g. a singular mass matrix at a trial point
   }
   std::vector<int> oscillating;

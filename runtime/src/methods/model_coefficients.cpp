@@ -1,6 +1,7 @@
 #include "model_coefficients.hpp"
 
 #include "../estimation/excited_block.hpp"
+#include "mbgen/dynamics_error.hpp"
 #include "mbgen/state_space.hpp"
 #include "mbgen/transfer_function.hpp"
 #include "polynomial.hpp"
@@ -146,7 +147,9 @@ Truncated truncate(const Model& model, const Eigen::VectorXd& values, int input,
     }
   Truncated out;
   for (Eigen::Index j : taken) {
-    if (j < 0) throw std::domain_error("the model has fewer vibration modes than the data show");
+    // At some parameter values (a trial step's): the model's failure there, as a singular mass matrix is, so that
+    // the searches take it for a failed trial (a std::logic_error is a bug, and they let it through).
+    if (j < 0) throw DynamicsError("the model has fewer vibration modes than the data show");
     out.kept.push_back(lambda[j]);
   }
   const ModalPolynomials mp = modal_polynomials(out.kept);

@@ -54,7 +54,8 @@ int reflect_unstable(Eigen::VectorXd& x, int q) {
 
 IdentifiedTf fit_rational_frf(const Eigen::VectorXd& omega, const std::vector<RationalChannel>& channels,
                               const std::string& input, int order, double omega0, RationalFitReport* report) {
-  if (order < 1 || channels.empty() || !(omega0 > 0)) throw std::invalid_argument("fit_rational_frf: bad arguments");
+  // A caller's bug: not invalid_argument, which the callers take for data that cannot serve.
+  if (order < 1 || channels.empty() || !(omega0 > 0)) throw std::logic_error("fit_rational_frf: bad arguments");
   const Layout layout(order, channels);
   const int q = order;
   const Eigen::Index lines = omega.size();

@@ -33,7 +33,7 @@ StepOneTf structure(const Model& model, const std::string& file, const Eigen::Ve
   s.outputs = outputs;
   try {
     s.pattern = structural_pattern(model, values, input, outputs, candidates);
-  } catch (const std::exception& e) {
+  } catch (const std::runtime_error& e) {
     throw FitError(file + ": error: two-step: the model's transfer functions from " +
                    info.inputs[static_cast<std::size_t>(input)] + " cannot be computed: " + e.what());
   }

@@ -22,6 +22,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <stdexcept>
 
 namespace mbgen {
 
@@ -56,7 +57,7 @@ class Search {
     return [this, free](const Eigen::VectorXd& theta, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
       try {
         problem_.evaluate(full(free, theta), free, r, J);
-      } catch (const std::exception&) {
+      } catch (const std::runtime_error&) {  // a failed trial (DynamicsError); a logic_error is a bug and goes on
         return false;
       }
       if (!r.allFinite() || (J && !J->allFinite())) return false;
@@ -89,7 +90,7 @@ std::optional<Eigen::VectorXd> newton(const CoefficientProblem& problem, const s
   Eigen::MatrixXd J;
   try {
     problem.evaluate(v, free, r, &J);
-  } catch (const std::exception&) {
+  } catch (const std::runtime_error&) {  // as in Search::function
     return std::nullopt;
   }
   for (int it = 0; it < 100; ++it) {
@@ -105,7 +106,7 @@ std::optional<Eigen::VectorXd> newton(const CoefficientProblem& problem, const s
       Eigen::MatrixXd Jt;
       try {
         problem.evaluate(trial, free, rt, &Jt);
-      } catch (const std::exception&) {
+      } catch (const std::runtime_error&) {  // as in Search::function
         continue;
       }
       if (!rt.allFinite() || rt.norm() >= r.norm()) continue;

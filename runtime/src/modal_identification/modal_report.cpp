@@ -6,11 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+
+#include "../data/string_format.hpp"
 
 namespace mbgen {
 
@@ -34,9 +35,7 @@ std::string num(double x, int digits = 4) {
 
 std::string fixed(double x, int decimals) {
   if (!std::isfinite(x)) return "n/a";
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, x);
-  return text;
+  return detail::format("%.*f", decimals, x);
 }
 
 double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
@@ -140,26 +139,21 @@ std::string modal_summary(const ModalReportInput& in) {
       << (in.data.channels.size() == 1 ? " channel, " : " channels, ") << num(in.data.f_hz[0], 6) << ".."
       << num(in.data.f_hz[in.data.f_hz.size() - 1], 6) << " Hz (" << frf_quantity_name(in.data.quantity) << "), "
       << r.method << ", orders 1.." << (r.diagram.orders.empty() ? 0 : r.diagram.orders.back()) << "\n";
-  char line[256];
-  std::snprintf(line, sizeof line, "%4s %12s %9s %10s %9s %7s %9s %7s%s\n", "mode", "f [Hz]", "std", "zeta [%]", "std",
-                "MPC", "MPD [deg]", "orders", in.model ? "   model mode (f [Hz], MAC)" : "");
-  out << line;
+  out << detail::format("%4s %12s %9s %10s %9s %7s %9s %7s%s\n", "mode", "f [Hz]", "std", "zeta [%]", "std", "MPC",
+                        "MPD [deg]", "orders", in.model ? "   model mode (f [Hz], MAC)" : "");
   for (std::size_t m = 0; m < r.modes.size(); ++m) {
     const IdentifiedMode& mode = r.modes[m];
-    std::snprintf(line, sizeof line, "%4zu %12.4f %9.2g %10.4f %9.2g %7.4f %9.2f %7d", m + 1, mode.f_hz, mode.f_std_hz,
-                  100 * mode.zeta, 100 * mode.zeta_std, mode.mpc, mode.mpd_deg, mode.support);
-    out << line;
+    out << detail::format("%4zu %12.4f %9.2g %10.4f %9.2g %7.4f %9.2f %7d", m + 1, mode.f_hz, mode.f_std_hz,
+                          100 * mode.zeta, 100 * mode.zeta_std, mode.mpc, mode.mpd_deg, mode.support);
     if (in.model && in.model->pairing.model_mode[m] >= 0) {
       const int k = in.model->pairing.model_mode[m];
-      std::snprintf(line, sizeof line, "   %d (%.4f, %.3f)%s", k, in.model->modes.f_hz[static_cast<std::size_t>(k)],
-                    in.model->pairing.best_mac[m], in.model->pairing.shared[m] ? " shared" : "");
-      out << line;
+      out << detail::format("   %d (%.4f, %.3f)%s", k, in.model->modes.f_hz[static_cast<std::size_t>(k)],
+                            in.model->pairing.best_mac[m], in.model->pairing.shared[m] ? " shared" : "");
     }
     out << (mode.user_selected ? "  (selected by frequency)" : "") << (mode.refined ? "" : "  (not refined)") << "\n";
   }
   for (const RejectedPole& p : r.rejected) {
-    std::snprintf(line, sizeof line, "dropped: a pole at %.4f Hz (%d orders): ", p.pole.f_hz, p.pole.support);
-    out << line << p.reason << "\n";
+    out << detail::format("dropped: a pole at %.4f Hz (%d orders): ", p.pole.f_hz, p.pole.support) << p.reason << "\n";
   }
   return out.str();
 }

@@ -6,18 +6,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
+
+#include "../data/string_format.hpp"
 
 namespace mbgen {
 
 namespace {
 
-std::string format(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
-}
+// Numbers in the change messages: four significant digits.
+std::string g4(double x) { return detail::format("%.4g", x); }
 
 const ParameterEstimate* find_estimate(const FitResult& r, const std::string& name) {
   for (const ParameterEstimate& p : r.parameters)
@@ -177,16 +175,16 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
         change.parameters.push_back(name);
         change.direction[name] = alarms[j];
         const double after = references[j].mean();
-        moved += (moved.empty() ? "" : ", ") + name + (alarms[j] > 0 ? " rose" : " fell") + " from " + format(before) +
-                 " to " + format(after);
-        if (before != 0) moved += " (" + std::string(after > before ? "+" : "") + format(100 * (after - before) / before) + " %)";
+        moved += (moved.empty() ? "" : ", ") + name + (alarms[j] > 0 ? " rose" : " fell") + " from " + g4(before) +
+                 " to " + g4(after);
+        if (before != 0) moved += " (" + std::string(after > before ? "+" : "") + g4(100 * (after - before) / before) + " %)";
       }
       const std::string where = "data set " + std::to_string(i) + " (" + here.file + ")";
       if (!moved.empty())
         change.text = moved + ", since data set " + std::to_string(change.onset) + "; detected at " + where + ".";
       if (new_structural)
         change.text += std::string(change.text.empty() ? "" : " ") + "The model no longer fits " + where + ": its misfit is " +
-                       format(ratio) + " times the baseline's, beyond what any of its parameters explains (a structural "
+                       g4(ratio) + " times the baseline's, beyond what any of its parameters explains (a structural "
                        "change).";
       result.changes.push_back(std::move(change));
       regime_first = i + 1;
@@ -203,7 +201,7 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
           }
     }
     if (options.progress) {
-      std::string line = "nrmse " + format(here.fit.nrmse) + ", misfit " + format(ratio) + "x baseline";
+      std::string line = "nrmse " + g4(here.fit.nrmse) + ", misfit " + g4(ratio) + "x baseline";
       if (any_alarm || new_structural) line += ": CHANGE: " + result.changes.back().text;
       options.progress({i, n_sets, set.file(), line});
     }

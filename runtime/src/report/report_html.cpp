@@ -2,13 +2,14 @@
 #include "mbgen/report_document.hpp"
 
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
+
+#include "../data/string_format.hpp"
 
 namespace mbgen::report {
 
@@ -29,9 +30,7 @@ std::string escape(std::string_view s) {
       case '\'': out += "&#39;"; break;
       default:
         if (c < 0x20 || c == 0x7f) {
-          char hex[8];
-          std::snprintf(hex, sizeof hex, "\\x%02X", c);
-          out += hex;
+          out += detail::format("\\x%02X", c);
         } else {
           out += ch;
         }
@@ -214,9 +213,7 @@ std::string size_attributes(const std::string& bytes, bool svg) {
     h = be32(20);
   }
   if (!(w > 0 && h > 0 && w < 1e5 && h < 1e5)) return "";
-  char text[64];
-  std::snprintf(text, sizeof text, " width=\"%.0f\" height=\"%.0f\"", w, h);
-  return text;
+  return detail::format(" width=\"%.0f\" height=\"%.0f\"", w, h);
 }
 
 std::string figure_html(const Figure& f, const std::string& dir) {

@@ -57,7 +57,7 @@ GlobalSensitivity global_sensitivity(const Model& model, const Eigen::VectorXd& 
         y[r] = m.f_hz;
         y[modes + r] = m.zeta;
       }
-    } catch (const std::exception&) {
+    } catch (const std::runtime_error&) {
       // a singular mass matrix or a failed eigenvalue iteration: this sample says nothing
     }
     return y;

@@ -6,12 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+
+#include "../data/string_format.hpp"
 
 namespace mbgen {
 
@@ -33,9 +34,7 @@ std::string num(double x, int digits = 3) {
 }
 
 std::string mode_label(const Mode& m, std::size_t r) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%zu (%.1f Hz)", r + 1, m.f_hz);
-  return text;
+  return detail::format("%zu (%.1f Hz)", r + 1, m.f_hz);
 }
 
 // Parameters ordered by the largest |normalized f sensitivity| over the modes, most influential first.
@@ -88,9 +87,7 @@ std::string sensitivity_summary(const SensitivityReportInput& in) {
       return std::abs(l.f_normalized(ri, static_cast<Eigen::Index>(a))) >
              std::abs(l.f_normalized(ri, static_cast<Eigen::Index>(b)));
     });
-    char line[160];
-    std::snprintf(line, sizeof line, "%4zu %10.3f Hz  zeta %.4g  ", r + 1, l.modes[r].f_hz, l.modes[r].zeta);
-    out << line;
+    out << detail::format("%4zu %10.3f Hz  zeta %.4g  ", r + 1, l.modes[r].f_hz, l.modes[r].zeta);
     for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k)
       out << (k ? ", " : "") << l.parameters[order[k]] << " "
           << num(l.f_normalized(ri, static_cast<Eigen::Index>(order[k])), 3);
