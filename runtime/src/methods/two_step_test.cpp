@@ -5,6 +5,7 @@
 
 #include "mbgen/methods/two_step.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
