@@ -86,7 +86,7 @@ void compare_with_sympy(int max_n, int timeout_s, const std::string& dir) {
     const std::string text = mbgen::symbolic::test::chain_model_text(n);
     std::ofstream(model_file) << text;
     const CommandRun cmd = run_command({MBGEN_COMMAND, model_file, "-o", dir + "/chain_model.cpp"});
-    const mbgen::ir::Model model = mbgen::frontend::parse_string(text, model_file);
+    const mbgen::ir::ModelIr model = mbgen::frontend::parse_string(text, model_file);
     const auto t0 = std::chrono::steady_clock::now();
     const mbgen::symbolic::SymbolicModel sm = mbgen::symbolic::derive(model, {{}, false});
     const double derive = seconds_since(t0);
@@ -170,7 +170,7 @@ int main(int argc, char** argv) {
       return 1;
     }
     auto t0 = std::chrono::steady_clock::now();
-    const mbgen::ir::Model model = mbgen::frontend::parse_string(text, model_file);
+    const mbgen::ir::ModelIr model = mbgen::frontend::parse_string(text, model_file);
     const double parse = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
     mbgen::symbolic::SymbolicModel sm = mbgen::symbolic::derive(model, {{}, false});

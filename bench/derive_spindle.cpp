@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   }
   repeats = std::max(repeats, 1);
   sympy_repeats = std::max(sympy_repeats, 1);
-  const mbgen::ir::Model model =
+  const mbgen::ir::ModelIr model =
       mbgen::frontend::parse_file(std::string(MBGEN_SOURCE_DIR) + "/examples/spindle/spindle.mdl");
   using clock = std::chrono::steady_clock;
   std::vector<double> with_tf, without_tf;

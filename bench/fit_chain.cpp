@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   std::printf("%4s %5s %6s | %-18s %9s %9s %6s %12s %9s %12s\n", "N", "DOF", "params", "fit", "wall [s]", "CPU [s]",
               "iter", "CPU/iter [s]", "estimated", "max rel err");
   for (int n : sizes) {
-    const ir::Model ir = frontend::parse_string(symbolic::test::chain_model_text(n), "chain.mdl");
+    const ir::ModelIr ir = frontend::parse_string(symbolic::test::chain_model_text(n), "chain.mdl");
     const auto model = evaluator::make_evaluator(ir, {{}, false});
     const ModelInfo& info = model->info();
     std::mt19937 rng(static_cast<unsigned>(1000 + n));

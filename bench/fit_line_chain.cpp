@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
               "CPU [s]", "wall [s]", "iter", "ident", "sv ratio", "m,k err", "c err", "max|z|", "truth?");
   std::vector<double> log_p, log_t;
   for (int n : sizes) {
-    const ir::Model ir = frontend::parse_string(lc::model_text(n, kEvery), "line_chain.mdl");
+    const ir::ModelIr ir = frontend::parse_string(lc::model_text(n, kEvery), "line_chain.mdl");
     const auto model = evaluator::make_evaluator(ir);
     const ModelInfo& info = model->info();
     for (int draw = 1; draw <= draws; ++draw) {

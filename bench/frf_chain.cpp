@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   std::printf("%4s %5s %6s | %12s %14s %7s | %10s\n", "N", "DOF", "params", "frf_jac [s]", "dense LU [s]", "ratio",
               "H vs dense");
   for (int n : sizes) {
-    const mbgen::ir::Model ir = mbgen::frontend::parse_string(mbgen::symbolic::test::chain_model_text(n), "chain.mdl");
+    const mbgen::ir::ModelIr ir = mbgen::frontend::parse_string(mbgen::symbolic::test::chain_model_text(n), "chain.mdl");
     const auto model = mbgen::evaluator::make_evaluator(ir, {{}, false});
     const Eigen::VectorXd p = model->info().default_values();
     mbgen::ModelMatrices m;

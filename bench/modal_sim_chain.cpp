@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   std::printf("%4s %5s | %10s %12s %6s | %12s %14s %6s\n", "N", "DOF", "modal [s]", "eig(A) [s]", "ratio",
               "simulate [s]", "2n x 2n x 1000", "ratio");
   for (int n : sizes) {
-    const mbgen::ir::Model ir = mbgen::frontend::parse_string(mbgen::symbolic::test::chain_model_text(n), "chain.mdl");
+    const mbgen::ir::ModelIr ir = mbgen::frontend::parse_string(mbgen::symbolic::test::chain_model_text(n), "chain.mdl");
     const auto model = mbgen::evaluator::make_evaluator(ir, {{}, false});
     mbgen::ModelMatrices m;
     model->evaluate(model->info().default_values(), m);

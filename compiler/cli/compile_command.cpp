@@ -60,7 +60,7 @@ int run_compile(int argc, char** argv) {
     for (int k = 1; k < parts; ++k) plan.files.push_back({"--parts", emit::part_file_name(source_path, k)});
     plan.inputs = {model_path};
     plan.check();
-    const ir::Model model = frontend::parse_file(model_path);
+    const ir::ModelIr model = frontend::parse_file(model_path);
     const symbolic::SymbolicModel sym = symbolic::derive(model);
     emit::CppEmitOptions options;
     options.namespace_name = ns;

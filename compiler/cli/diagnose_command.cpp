@@ -92,7 +92,7 @@ int run_diagnose(int argc, char** argv) {
     plan.check();
     // The text is read once (standard input cannot be read twice): the model is parsed from it.
     const std::string text = frontend::read_model_text(model_path);
-    const ir::Model model = frontend::parse_string(text, model_path);
+    const ir::ModelIr model = frontend::parse_string(text, model_path);
     symbolic::DeriveOptions derive;
     derive.set = options.set;
     const std::vector<DataSet> data = load_data(data_paths, evaluator::make_evaluator(model, derive)->info(), model, derive.set);
@@ -112,7 +112,7 @@ int run_diagnose(int argc, char** argv) {
     const bool extended = result.verdict == "extended";
     if (extended && !extended_path.empty()) {
       out.add(extended_path, result.final.text);
-      const ir::Model ext = frontend::parse_string(result.final.text, extended_path);
+      const ir::ModelIr ext = frontend::parse_string(result.final.text, extended_path);
       emit::CppEmitOptions cpp;
       cpp.header_file = sibling(extended_path, "_model.hpp");
       cpp.source_file = sibling(extended_path, "_model.cpp");

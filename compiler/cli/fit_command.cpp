@@ -70,7 +70,7 @@ std::string summary(const FitResult& r) {
 
 // Maps --two-step-route to the runtime's solver and, where the analytical route may be taken, gives it GiNaC's exact
 // solver on the model's symbolic coefficients (compiler/methods/analytical_solver.hpp).
-TwoStepOptions two_step_options(const ir::Model& model, const symbolic::DeriveOptions& derive, TwoStepOptions o,
+TwoStepOptions two_step_options(const ir::ModelIr& model, const symbolic::DeriveOptions& derive, TwoStepOptions o,
                                 const std::string& route) {
   o.solver = route == "numerical" ? "newton" : route;
   if (route == "auto" || route == "analytical") {
@@ -130,7 +130,7 @@ int run_fit(int argc, char** argv) {
     plan.inputs = data_paths;
     plan.inputs.push_back(model_path);
     plan.check();
-    const ir::Model model = frontend::parse_file(model_path);
+    const ir::ModelIr model = frontend::parse_file(model_path);
     const auto evaluator = evaluator::make_evaluator(model, derive);
     std::vector<DataSet> data = load_data(data_paths, evaluator->info(), model, derive.set);
     if (!band.empty()) data = within_band(data, parse_band("--band", band));

@@ -29,7 +29,7 @@ int run_inspect(int argc, char** argv) {
     plan.files = {{"-o", output}};
     plan.inputs = {model_path};
     plan.check();
-    const ir::Model model = frontend::parse_file(model_path);
+    const ir::ModelIr model = frontend::parse_file(model_path);
     const symbolic::SymbolicModel sym = symbolic::derive(model, options);
     OutputFiles out;
     out.add(output, emit::emit_inspect(sym, emit::parse_inspect_format(format)));

@@ -19,7 +19,7 @@
 
 namespace mbgen::cli {
 
-std::vector<DataSet> load_data(const std::vector<std::string>& paths, const ModelInfo& model, const ir::Model& declared,
+std::vector<DataSet> load_data(const std::vector<std::string>& paths, const ModelInfo& model, const ir::ModelIr& declared,
                                const std::map<std::string, std::string>& sets) {
   std::vector<DataSet> out;
   for (const std::string& path : paths) out.push_back(read_data_file(path, model.inputs, model.outputs));
@@ -27,7 +27,7 @@ std::vector<DataSet> load_data(const std::vector<std::string>& paths, const Mode
   return out;
 }
 
-void check_set_lines(const ir::Model& declared, const std::map<std::string, std::string>& sets,
+void check_set_lines(const ir::ModelIr& declared, const std::map<std::string, std::string>& sets,
                      const std::vector<DataSet>& data) {
   for (const DataSet& d : data)
     for (const auto& [name, value] : d.set()) {

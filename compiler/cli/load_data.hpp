@@ -13,7 +13,7 @@ namespace mbgen::cli {
 
 // The data sets at `paths`, their channels named as `model`'s inputs and outputs. Their `# set` values are checked
 // as the command's `--set` values (`sets`) are (check_set_lines).
-std::vector<DataSet> load_data(const std::vector<std::string>& paths, const ModelInfo& model, const ir::Model& declared,
+std::vector<DataSet> load_data(const std::vector<std::string>& paths, const ModelInfo& model, const ir::ModelIr& declared,
                                const std::map<std::string, std::string>& sets);
 
 // Each `# set NAME=VALUE` of `data` checked by the code that checks `--set NAME=VALUE` (symbolic::ParameterTable),
@@ -22,7 +22,7 @@ std::vector<DataSet> load_data(const std::vector<std::string>& paths, const Mode
 // (`# set third=0.3333333333333333` is below a bound of 1/3). A DataError at the `# set` line otherwise, naming the
 // declaration. The fit checks the rest at the data set's values as it checks --set's: a positive definite mass
 // matrix (estimation::check_data_set_values).
-void check_set_lines(const ir::Model& declared, const std::map<std::string, std::string>& sets,
+void check_set_lines(const ir::ModelIr& declared, const std::map<std::string, std::string>& sets,
                      const std::vector<DataSet>& data);
 
 // A frequency band `LO:HI` in Hz, as `--band` and `--fit-band` take it (0 <= LO < HI); CLI::ValidationError

@@ -76,7 +76,7 @@ MonitorResult monitor_machine(const std::string& model_path, const std::vector<s
   const bool no_diagnosis = settings.no_diagnosis;
   // The text is read once (standard input cannot be read twice): the model is parsed from it.
   const std::string text = frontend::read_model_text(model_path);
-  const ir::Model parsed = frontend::parse_string(text, model_path);
+  const ir::ModelIr parsed = frontend::parse_string(text, model_path);
   symbolic::DeriveOptions derive;
   derive.set = parse_set_options(sets);
   const auto evaluator = evaluator::make_evaluator(parsed, derive);

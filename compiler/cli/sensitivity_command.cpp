@@ -66,7 +66,7 @@ Sweep parse_sweep(const std::string& text, const ModelInfo& info) {
 // range within the declared bounds, and a positive definite mass matrix at every point. A sweep through negative
 // masses or beyond the bounds was computed and reported with status 0 (while --set refuses both); one through a
 // zero mass failed on a singular mass matrix without saying which value.
-void check_sweep(const Sweep& s, const Model& model, const ir::Model& declared) {
+void check_sweep(const Sweep& s, const Model& model, const ir::ModelIr& declared) {
   const ParameterInfo& p = model.info().parameters[static_cast<std::size_t>(s.index)];
   ir::SourceLoc loc;
   for (const ir::Parameter& d : declared.parameters)
@@ -125,7 +125,7 @@ int run_sensitivity(int argc, char** argv) {
     plan.check();
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(sets);
-    const ir::Model declared = frontend::parse_file(model_path);
+    const ir::ModelIr declared = frontend::parse_file(model_path);
     const auto model = evaluator::make_evaluator(declared, derive);
     const ModelInfo& info = model->info();
     std::vector<Sweep> parsed;

@@ -8,13 +8,13 @@
 
 namespace mbgen::diagnosis {
 
-std::vector<Extension> enumerate_extensions(const ir::Model& nominal, const std::string& nominal_text,
+std::vector<Extension> enumerate_extensions(const ir::ModelIr& nominal, const std::string& nominal_text,
                                             const ExtensionContext& ctx) {
   // The operators edit the text at the locations the parser records, so they work on the model parsed from
   // that very text (a model built in code is written out first).
   const std::string text = nominal_text.empty() ? frontend::write_model(nominal) : nominal_text;
   const std::string file = nominal.file.empty() ? "model.mdl" : nominal.file;
-  const ir::Model located = frontend::parse_string(text, file);
+  const ir::ModelIr located = frontend::parse_string(text, file);
   if (frontend::write_model(located) != frontend::write_model(nominal))
     throw std::invalid_argument("enumerate_extensions: the model is not the one its text `" + file + "` describes");
 

@@ -102,7 +102,7 @@ TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {
 
 TEST_CASE("a model built in code is written out and extended the same way", "[diagnosis]") {
   const test::Example ex = test::load("mdof2");
-  ir::Model built = ex.model;
+  ir::ModelIr built = ex.model;
   built.file.clear();
   const std::vector<Extension> xs = enumerate_extensions(built, "", {});
   REQUIRE(xs.size() == 4);

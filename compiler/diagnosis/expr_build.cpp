@@ -52,7 +52,7 @@ ir::Expr neg(ir::Expr a) {
   return ir::Expr::negate(std::move(a));
 }
 
-ir::Expr expand_derived(const ir::Model& model, const ir::Expr& e) {
+ir::Expr expand_derived(const ir::ModelIr& model, const ir::Expr& e) {
   if (e.kind == K::Symbol) {
     const ir::Parameter* p = model.find_parameter(e.text);
     if (p && p->derived) return expand_derived(model, p->value);

@@ -23,6 +23,6 @@ ir::Expr neg(ir::Expr a);
 
 // `e` with every derived parameter replaced by its definition, recursively: two inertias written through
 // different names for one quantity (J_syy = J_sxx) compare equal after this.
-ir::Expr expand_derived(const ir::Model& model, const ir::Expr& e);
+ir::Expr expand_derived(const ir::ModelIr& model, const ir::Expr& e);
 
 }  // namespace mbgen::diagnosis

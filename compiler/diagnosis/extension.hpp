@@ -29,7 +29,7 @@ struct Extension {
   // the best. Empty for a candidate without variants.
   std::string variant;
   std::string description;    // one plain sentence a test engineer understands
-  ir::Model model;            // the extended model; new parameters have role estimate and a start value
+  ir::ModelIr model;            // the extended model; new parameters have role estimate and a start value
   std::vector<NewParameter> new_parameters;
   std::vector<std::string> freed_parameters;  // existing parameters whose role becomes estimate
   std::string mdl_text;  // the extended model as .mdl: the original text with a small, commented change
@@ -52,7 +52,7 @@ struct ExtensionContext {
 // moment_stiffness, added_mass, resonator, sensor_dynamics, connection), then in the model's declaration order.
 // Ids are unique, except that the variants of one candidate (distinct `variant`s) share its id.
 // `nominal_text` is the text `nominal` was parsed from; each candidate's mdl_text parses to its model.
-std::vector<Extension> enumerate_extensions(const ir::Model& nominal, const std::string& nominal_text,
+std::vector<Extension> enumerate_extensions(const ir::ModelIr& nominal, const std::string& nominal_text,
                                             const ExtensionContext& ctx);
 
 }  // namespace mbgen::diagnosis

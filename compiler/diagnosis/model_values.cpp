@@ -6,7 +6,7 @@
 
 namespace mbgen::diagnosis {
 
-ModelValues::ModelValues(const ir::Model& model, std::map<std::string, double> overrides)
+ModelValues::ModelValues(const ir::ModelIr& model, std::map<std::string, double> overrides)
     : model_(model), overrides_(std::move(overrides)) {}
 
 double ModelValues::of_parameter(const std::string& name) const {

@@ -12,13 +12,13 @@ namespace mbgen::diagnosis {
 // Values of a model's expressions. `overrides` (e.g. fitted values) replace the values written in the model.
 class ModelValues {
  public:
-  ModelValues(const ir::Model& model, std::map<std::string, double> overrides);
+  ModelValues(const ir::ModelIr& model, std::map<std::string, double> overrides);
 
   double of(const ir::Expr& e) const;
   double of_parameter(const std::string& name) const;  // throws std::invalid_argument for an unknown name
 
  private:
-  const ir::Model& model_;
+  const ir::ModelIr& model_;
   std::map<std::string, double> overrides_;
 };
 

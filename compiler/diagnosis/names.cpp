@@ -4,7 +4,7 @@
 
 namespace mbgen::diagnosis {
 
-NameSet::NameSet(const ir::Model& model) {
+NameSet::NameSet(const ir::ModelIr& model) {
   for (const ir::Parameter& p : model.parameters) used_.insert(p.name);
   for (const ir::Ground& g : model.grounds) used_.insert(g.name);
   for (const ir::Body& b : model.bodies) used_.insert(b.name);

@@ -11,7 +11,7 @@ namespace mbgen::diagnosis {
 class NameSet {
  public:
   // Every name of the model, whatever it names (parameter, frame, element, signal), and the reserved words.
-  explicit NameSet(const ir::Model& model);
+  explicit NameSet(const ir::ModelIr& model);
 
   // `base` if unused, else `base_2`, `base_3`, ...; the name returned is taken from then on.
   std::string fresh(const std::string& base);

@@ -17,7 +17,7 @@ int coordinate(const symbolic::SymbolicModel& sm, const std::string& name) {
   return -1;
 }
 
-symbolic::SymbolicModel derive(const ir::Model& m) {
+symbolic::SymbolicModel derive(const ir::ModelIr& m) {
   symbolic::DeriveOptions o;
   o.transfer_functions = false;
   return symbolic::derive(m, o);
@@ -294,7 +294,7 @@ TEST_CASE("untie_parameter with two users offers one variant: freeing either is 
       "spring s1 { from wall\n to a\n along x\n stiffness k }\n"
       "spring s2 { from wall\n to a\n along x\n stiffness k }\n"
       "input F force on a along x\noutput d displacement of a along x\n";
-  const ir::Model m = frontend::parse_string(text, "two.mdl");
+  const ir::ModelIr m = frontend::parse_string(text, "two.mdl");
   const std::vector<Extension> xs = enumerate_extensions(m, text, {});
   REQUIRE(std::count_if(xs.begin(), xs.end(), [](const Extension& x) { return x.id == "untie_parameter:k"; }) == 1);
   const Extension& x = test::find(xs, "untie_parameter:k");
@@ -355,7 +355,7 @@ TEST_CASE("free_parameter:c12 changes the role only", "[diagnosis][physics]") {
   CHECK(x.new_parameters.empty());
   CHECK(x.model.find_parameter("c12")->role == ir::Role::Estimate);
   CHECK(x.mdl_text.find("\"N s/m\"  estimate") != std::string::npos);
-  ir::Model back = x.model;
+  ir::ModelIr back = x.model;
   for (ir::Parameter& p : back.parameters)
     if (p.name == "c12") p.role = ir::Role::Fixed;
   CHECK(frontend::write_model(back) == frontend::write_model(ex2.model));

@@ -17,7 +17,7 @@ namespace mbgen::diagnosis::test {
 
 struct Example {
   std::string text;
-  ir::Model model;
+  ir::ModelIr model;
 };
 
 inline Example load(const std::string& name) {
@@ -46,7 +46,7 @@ inline symbolic::SymbolicModel check_candidate(const Extension& x) {
   INFO(x.id << "\n" << x.mdl_text);
   CHECK(x.id == x.operator_name + ":" + x.target);
   CHECK(x.mdl_text.find("# --- mbgen diagnose: " + x.id + ": " + x.description + " ---\n") != std::string::npos);
-  const ir::Model parsed = frontend::parse_string(x.mdl_text, "extended.mdl");
+  const ir::ModelIr parsed = frontend::parse_string(x.mdl_text, "extended.mdl");
   CHECK(frontend::write_model(parsed) == frontend::write_model(x.model));
   for (const NewParameter& p : x.new_parameters) {
     const ir::Parameter* q = x.model.find_parameter(p.name);

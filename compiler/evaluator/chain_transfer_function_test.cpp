@@ -89,7 +89,7 @@ double relative_error(const SymbolicModel& sm, const TransferFunction& tf) {
 // factorizations of order 97 (Eigen, header-only) run tens of times slower; the libraries it tests are covered there by
 // pencil_determinants_test and transfer_functions_test.
 TEST_CASE("chain of 16 bodies: exact transfer functions, and the run-time routine meets them (slow at -O0)") {
-  const ir::Model model = frontend::parse_string(chain_model_text(16), "chain16.mdl");
+  const ir::ModelIr model = frontend::parse_string(chain_model_text(16), "chain16.mdl");
   const auto start = std::chrono::steady_clock::now();
   const SymbolicModel sm = derive(model);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

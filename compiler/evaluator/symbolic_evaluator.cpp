@@ -116,7 +116,7 @@ void SymbolicEvaluator::derivatives(const Eigen::VectorXd& p, ModelDerivatives& 
   }
 }
 
-std::unique_ptr<mbgen::Model> make_evaluator(const ir::Model& model, const symbolic::DeriveOptions& options) {
+std::unique_ptr<mbgen::Model> make_evaluator(const ir::ModelIr& model, const symbolic::DeriveOptions& options) {
   symbolic::DeriveOptions o = options;
   o.transfer_functions = false;  // the runtime computes responses numerically
   const symbolic::SymbolicModel sym = symbolic::derive(model, o);

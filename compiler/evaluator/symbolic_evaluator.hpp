@@ -39,6 +39,6 @@ class SymbolicEvaluator final : public mbgen::Model {
 };
 
 // Parses nothing: derives `model` (with `--set` overrides in `options`) and compiles it.
-std::unique_ptr<mbgen::Model> make_evaluator(const ir::Model& model, const symbolic::DeriveOptions& options = {});
+std::unique_ptr<mbgen::Model> make_evaluator(const ir::ModelIr& model, const symbolic::DeriveOptions& options = {});
 
 }  // namespace mbgen::evaluator

@@ -28,7 +28,7 @@ double evalf_at(const GiNaC::ex& e, const symbolic::SymbolicModel& sym, const Ei
 }
 
 void check_against_ginac(const std::string& file) {
-  const ir::Model model = frontend::parse_file(file);
+  const ir::ModelIr model = frontend::parse_file(file);
   symbolic::DeriveOptions o;
   o.transfer_functions = false;
   const symbolic::SymbolicModel sym = symbolic::derive(model, o);
@@ -60,7 +60,7 @@ TEST_CASE("the evaluator agrees with exact evaluation of the symbolic matrices",
 }
 
 TEST_CASE("the evaluator's derivatives agree with central differences", "[evaluator]") {
-  const ir::Model model = frontend::parse_file(mbgen::test::example_model_path("spindle"));
+  const ir::ModelIr model = frontend::parse_file(mbgen::test::example_model_path("spindle"));
   const auto eval = evaluator::make_evaluator(model);
   const Eigen::VectorXd p = random_values(eval->info(), 7);
   ModelDerivatives d;
@@ -89,7 +89,7 @@ TEST_CASE("the evaluator's derivatives agree with central differences", "[evalua
 }
 
 TEST_CASE("the evaluator reports the model's metadata", "[evaluator]") {
-  const ir::Model model = frontend::parse_file(mbgen::test::example_model_path("mdof2"));
+  const ir::ModelIr model = frontend::parse_file(mbgen::test::example_model_path("mdof2"));
   const auto eval = evaluator::make_evaluator(model);
   const ModelInfo& info = eval->info();
   CHECK(info.name == "mdof2");

@@ -15,7 +15,7 @@ namespace {
 
 class Checker {
  public:
-  explicit Checker(ir::Model& m) : m_(m) {}
+  explicit Checker(ir::ModelIr& m) : m_(m) {}
 
   void run() {
     declare_all();
@@ -194,7 +194,7 @@ class Checker {
     std::string what;
     ir::SourceLoc loc;
   };
-  ir::Model& m_;
+  ir::ModelIr& m_;
   std::map<std::string, Declared> names_;
   std::set<std::string> params_;
   std::map<std::string, int> depth_;                // expanded depth of each parameter visited
@@ -204,6 +204,6 @@ class Checker {
 
 }  // namespace
 
-void check_model(ir::Model& model) { Checker(model).run(); }
+void check_model(ir::ModelIr& model) { Checker(model).run(); }
 
 }  // namespace mbgen::frontend

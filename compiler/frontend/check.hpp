@@ -9,6 +9,6 @@
 namespace mbgen::frontend {
 
 // Throws ModelError at the first problem.
-void check_model(ir::Model& model);
+void check_model(ir::ModelIr& model);
 
 }  // namespace mbgen::frontend

@@ -129,7 +129,7 @@ std::string write_filter(const ir::Filter& f) {
   return out + "\n";
 }
 
-std::string write_model(const ir::Model& model) {
+std::string write_model(const ir::ModelIr& model) {
   std::string out = "model " + model.name + "\n";
 
   if (!model.parameters.empty()) {

@@ -1,4 +1,4 @@
-// The model writer: ir::Model -> readable .mdl text in the syntax of docs/language.md.
+// The model writer: ir::ModelIr -> readable .mdl text in the syntax of docs/language.md.
 //
 // parse_string(write_model(m)) gives a model equivalent to m (same names, values, roles, bounds, geometry and
 // signals, declared in the same order), and writing that again gives the same text. Used by `mbgen diagnose` to
@@ -13,7 +13,7 @@
 namespace mbgen::frontend {
 
 // The whole model: `model`, parameters, grounds, bodies, elements, spins, inputs, outputs, in IR order.
-std::string write_model(const ir::Model& model);
+std::string write_model(const ir::ModelIr& model);
 
 // Single statements, each ending with a newline (blocks span several lines). The operators of
 // `mbgen diagnose` use them to write the declarations they add to a model's original text.

@@ -13,7 +13,7 @@ std::string text(const ir::Expr& e) { return ir::to_string(e); }
 std::string text(const std::optional<ir::Expr>& e) { return e ? ir::to_string(*e) : "<none>"; }
 
 // Field-by-field comparison of two models, independent of the writer (locations and file name aside).
-void require_same_model(const ir::Model& a, const ir::Model& b) {
+void require_same_model(const ir::ModelIr& a, const ir::ModelIr& b) {
   CHECK(a.name == b.name);
   REQUIRE(a.parameters.size() == b.parameters.size());
   for (std::size_t i = 0; i < a.parameters.size(); ++i) {
@@ -132,9 +132,9 @@ filter dl on d delay time 1e-3 sections 2
 filter hp on a highpass1 cutoff 3; filter hp2 on v highpass2 cutoff 5 damping 1/2
 )";
 
-void check_round_trip(const ir::Model& m) {
+void check_round_trip(const ir::ModelIr& m) {
   const std::string once = frontend::write_model(m);
-  const ir::Model again = frontend::parse_string(once, "written.mdl");
+  const ir::ModelIr again = frontend::parse_string(once, "written.mdl");
   require_same_model(m, again);
   CHECK(frontend::write_model(again) == once);
 }
@@ -149,7 +149,7 @@ TEST_CASE("the examples survive write and parse", "[writer]") {
 }
 
 TEST_CASE("every construct of the language survives write and parse", "[writer]") {
-  const ir::Model m = frontend::parse_string(kEverything, "every.mdl");
+  const ir::ModelIr m = frontend::parse_string(kEverything, "every.mdl");
   check_round_trip(m);
   const std::string text = frontend::write_model(m);
   // Spot checks of the syntax itself, against the language description.

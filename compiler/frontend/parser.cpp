@@ -23,7 +23,7 @@ class Parser {
  public:
   Parser(std::vector<Token> tokens, std::string file) : tokens_(std::move(tokens)), file_(std::move(file)) {}
 
-  ir::Model run() {
+  ir::ModelIr run() {
     model_.file = file_;
     skip_newlines();
     while (peek().kind != TokenKind::End) {
@@ -582,7 +582,7 @@ class Parser {
   std::string file_;
   std::size_t i_ = 0;
   int nesting_ = 0;  // recursion depth of unary()
-  ir::Model model_;
+  ir::ModelIr model_;
 };
 
 // The model's name defaults to the file's stem, made a valid identifier (it names a C++ namespace).
@@ -595,8 +595,8 @@ std::string stem_of(const std::string& path) {
 
 }  // namespace
 
-ir::Model parse_string(const std::string& text, const std::string& file_name) {
-  ir::Model model = Parser(tokenize(text, file_name), file_name).run();
+ir::ModelIr parse_string(const std::string& text, const std::string& file_name) {
+  ir::ModelIr model = Parser(tokenize(text, file_name), file_name).run();
   if (model.name.empty()) model.name = file_name == "-" || file_name.empty() ? "model" : stem_of(file_name);
   check_model(model);
   return model;
@@ -629,6 +629,6 @@ std::string read_model_text(const std::string& path) {
   return read_bounded(in, path);
 }
 
-ir::Model parse_file(const std::string& path) { return parse_string(read_model_text(path), path); }
+ir::ModelIr parse_file(const std::string& path) { return parse_string(read_model_text(path), path); }
 
 }  // namespace mbgen::frontend

@@ -1,4 +1,4 @@
-// The .mdl parser: text -> checked ir::Model. Grammar and rules: docs/language.md.
+// The .mdl parser: text -> checked ir::ModelIr. Grammar and rules: docs/language.md.
 #pragma once
 
 #include <cstddef>
@@ -17,9 +17,9 @@ inline constexpr std::size_t kMaxModelBytes = std::size_t(16) << 20;
 std::string read_model_text(const std::string& path);
 
 // Reads and parses a model file ("-" reads standard input). Throws ModelError naming file, line and column.
-ir::Model parse_file(const std::string& path);
+ir::ModelIr parse_file(const std::string& path);
 
 // Parses model text; `file_name` is used in messages and stored in the model.
-ir::Model parse_string(const std::string& text, const std::string& file_name);
+ir::ModelIr parse_string(const std::string& text, const std::string& file_name);
 
 }  // namespace mbgen::frontend

@@ -29,7 +29,7 @@ spring s { from g; to b; along x; stiffness k }
 }  // namespace
 
 TEST_CASE("the example models parse", "[parser]") {
-  const ir::Model mdof2 = frontend::parse_file(mbgen::test::example_model_path("mdof2"));
+  const ir::ModelIr mdof2 = frontend::parse_file(mbgen::test::example_model_path("mdof2"));
   CHECK(mdof2.name == "mdof2");
   CHECK(mdof2.parameters.size() == 8);
   CHECK(mdof2.bodies.size() == 2);
@@ -39,7 +39,7 @@ TEST_CASE("the example models parse", "[parser]") {
   CHECK(mdof2.find_parameter("k11")->unit == "N/m");
   CHECK(ir::to_string(*mdof2.find_parameter("k11")->upper) == "1e9");
 
-  const ir::Model spindle = frontend::parse_file(mbgen::test::example_model_path("spindle"));
+  const ir::ModelIr spindle = frontend::parse_file(mbgen::test::example_model_path("spindle"));
   CHECK(spindle.bodies.size() == 2);
   CHECK(spindle.elements.size() == 9);
   CHECK(spindle.find_body("spindle")->dofs.size() == 5);
@@ -53,7 +53,7 @@ TEST_CASE("the example models parse", "[parser]") {
 }
 
 TEST_CASE("implicit points are the centre of mass or the ground origin", "[parser]") {
-  const ir::Model m = frontend::parse_string(
+  const ir::ModelIr m = frontend::parse_string(
       "ground g\nbody b { mass 1; at (1, 2, 3); dof x }\nspring s { from g; to b; along x; stiffness 1 }\n", "t.mdl");
   CHECK(m.name == "t");
   const ir::Element& s = m.elements[0];
@@ -68,16 +68,16 @@ TEST_CASE("expressions print with the fewest parentheses and re-parse to the sam
                            "(a + b) + c", "a*(b*c)", "a*b/c*d", "a*(b/c)", "-a*b - c"}) {
     const std::string model = std::string("param a = 1\nparam b = 2\nparam c = 3\nparam d = 4\nparam e = 5\n"
                                           "param n = 6\nparam r = ") + text + "\n";
-    const ir::Model m = frontend::parse_string(model, "t.mdl");
+    const ir::ModelIr m = frontend::parse_string(model, "t.mdl");
     CHECK(ir::to_string(m.find_parameter("r")->value) == text);
   }
   // A sum is one node whose subtracted terms are negations: `a + -b` and `a - b` are the same tree.
-  const ir::Model m = frontend::parse_string("param a = 1\nparam b = 2\nparam r = a + -b\n", "t.mdl");
+  const ir::ModelIr m = frontend::parse_string("param a = 1\nparam b = 2\nparam r = a + -b\n", "t.mdl");
   CHECK(ir::to_string(m.find_parameter("r")->value) == "a - b");
 }
 
 TEST_CASE("statements continue across lines inside brackets and after operators", "[parser]") {
-  const ir::Model m = frontend::parse_string(
+  const ir::ModelIr m = frontend::parse_string(
       "param a = 1 +\n  2\nparam b = (a\n  * 3)\nparam c = 4 \"m\" known in [0,\n 10]\n", "t.mdl");
   CHECK(ir::to_string(m.find_parameter("a")->value) == "1 + 2");
   CHECK(ir::to_string(m.find_parameter("b")->value) == "a*3");
@@ -85,7 +85,7 @@ TEST_CASE("statements continue across lines inside brackets and after operators"
 }
 
 TEST_CASE("a minimal model parses", "[parser]") {
-  const ir::Model m = frontend::parse_string(kMinimal, "t.mdl");
+  const ir::ModelIr m = frontend::parse_string(kMinimal, "t.mdl");
   CHECK(m.find_parameter("m")->role == ir::Role::Estimate);
   CHECK(ir::to_string(*m.find_parameter("m")->lower) == "0");
   CHECK_FALSE(m.find_parameter("m")->upper.has_value());

@@ -239,8 +239,8 @@ const char* to_string(OutputKind k) {
   return "?";
 }
 
-const Parameter* Model::find_parameter(const std::string& n) const { return find_named(parameters, n); }
-const Body* Model::find_body(const std::string& n) const { return find_named(bodies, n); }
-const Ground* Model::find_ground(const std::string& n) const { return find_named(grounds, n); }
+const Parameter* ModelIr::find_parameter(const std::string& n) const { return find_named(parameters, n); }
+const Body* ModelIr::find_body(const std::string& n) const { return find_named(bodies, n); }
+const Ground* ModelIr::find_ground(const std::string& n) const { return find_named(grounds, n); }
 
 }  // namespace mbgen::ir

@@ -180,7 +180,9 @@ struct Filter {
   SourceLoc loc;
 };
 
-struct Model {
+// A model as the front end describes it: what the .mdl says, checked and with source locations. Named apart from
+// the derived equations (symbolic::SymbolicModel) and the numeric model the runtime evaluates (mbgen::Model).
+struct ModelIr {
   std::string name;  // from `model NAME`
   SourceLoc name_loc;  // of NAME in the `model` statement (none when the name comes from the file name)
   std::string file;  // path it was read from ("-" for stdin, empty if built in code)

@@ -23,8 +23,8 @@ using namespace mbgen;
 
 namespace {
 
-const ir::Model& mdof2_ir() {
-  static const ir::Model model = frontend::parse_file(MBGEN_SOURCE_DIR "/examples/mdof2/mdof2.mdl");
+const ir::ModelIr& mdof2_ir() {
+  static const ir::ModelIr model = frontend::parse_file(MBGEN_SOURCE_DIR "/examples/mdof2/mdof2.mdl");
   return model;
 }
 

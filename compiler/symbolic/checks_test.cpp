@@ -11,7 +11,7 @@ using namespace mbgen::symbolic;
 namespace {
 
 std::string derive_error(const std::string& text, const DeriveOptions& options = {}) {
-  const ir::Model model = frontend::parse_string(text, "t.mdl");
+  const ir::ModelIr model = frontend::parse_string(text, "t.mdl");
   try {
     derive(model, options);
   } catch (const frontend::ModelError& e) {
@@ -94,7 +94,7 @@ TEST_CASE("a spin about an axis that is not an axis of symmetry is rejected at t
 }
 
 TEST_CASE("a model without inputs and outputs derives, with empty B and output matrices") {
-  const ir::Model model = frontend::parse_string(
+  const ir::ModelIr model = frontend::parse_string(
       "model z\nparam k = 1\nground g\nbody a {\n  mass 1\n  dof x\n}\n"
       "spring s {\n  from g\n  to a\n  along x\n  stiffness k\n}\n", "z.mdl");
   const SymbolicModel sm = derive(model);

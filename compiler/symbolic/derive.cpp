@@ -21,7 +21,7 @@ void tidy_all(GiNaC::matrix& mat) {
 
 }  // namespace
 
-SymbolicModel derive(const ir::Model& model, const DeriveOptions& options) {
+SymbolicModel derive(const ir::ModelIr& model, const DeriveOptions& options) {
   if (model.bodies.empty())
     throw frontend::ModelError(model.file, {},
                                "the model has no bodies, so there are no equations of motion to derive (is the file "

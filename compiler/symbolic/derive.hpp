@@ -1,4 +1,4 @@
-// The symbolic derivation stage: ir::Model -> exact equations of motion (Lagrange's method, thesis Ch. 3).
+// The symbolic derivation stage: ir::ModelIr -> exact equations of motion (Lagrange's method, thesis Ch. 3).
 #pragma once
 
 #include <map>
@@ -18,6 +18,6 @@ struct DeriveOptions {
 // The result points to `model`, which must outlive it. Throws frontend::ModelError, located at the offending IR
 // node, for bad overrides, parameter cycles, unknown names, invalid spins, a coordinate no element acts on and a
 // singular mass matrix.
-SymbolicModel derive(const ir::Model& model, const DeriveOptions& options = {});
+SymbolicModel derive(const ir::ModelIr& model, const DeriveOptions& options = {});
 
 }  // namespace mbgen::symbolic

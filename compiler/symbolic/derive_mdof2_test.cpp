@@ -28,7 +28,7 @@ double round_significant(double x, int digits) {
 }  // namespace
 
 TEST_CASE("mdof2: matrices are the textbook two-mass matrices") {
-  const ir::Model model = load_example("mdof2");
+  const ir::ModelIr model = load_example("mdof2");
   const SymbolicModel sm = derive(model);
   const GiNaC::ex m1 = symbol_of(sm, "m1"), m2 = symbol_of(sm, "m2"), k11 = symbol_of(sm, "k11"),
                   k12 = symbol_of(sm, "k12"), k22 = symbol_of(sm, "k22"), c11 = symbol_of(sm, "c11"),
@@ -48,7 +48,7 @@ TEST_CASE("mdof2: matrices are the textbook two-mass matrices") {
 }
 
 TEST_CASE("mdof2: G11 and G21 equal the closed-form coefficients exactly") {
-  const ir::Model model = load_example("mdof2");
+  const ir::ModelIr model = load_example("mdof2");
   const SymbolicModel sm = derive(model);
   const GiNaC::ex m1 = symbol_of(sm, "m1"), m2 = symbol_of(sm, "m2"), k11 = symbol_of(sm, "k11"),
                   k12 = symbol_of(sm, "k12"), k22 = symbol_of(sm, "k22"), c11 = symbol_of(sm, "c11"),
@@ -83,7 +83,7 @@ TEST_CASE("mdof2: G11 and G21 equal the closed-form coefficients exactly") {
 }
 
 TEST_CASE("mdof2: the values behind the thesis's Eq. 5.19 reproduce every printed digit") {
-  const ir::Model model = load_example("mdof2");
+  const ir::ModelIr model = load_example("mdof2");
   DeriveOptions options;
   options.set = {{"m1", "1.39"}, {"m2", "1.09"}, {"k11", "2.0e6"}, {"k12", "0.04e6"}, {"k22", "0.20e6"},
                  {"c11", "18"},  {"c22", "8"},   {"c12", "0"}};
@@ -104,7 +104,7 @@ TEST_CASE("mdof2: the values behind the thesis's Eq. 5.19 reproduce every printe
 }
 
 TEST_CASE("mdof2: Table 5.1 values give the modes 166.29 Hz and 89.72 Hz") {
-  const ir::Model model = load_example("mdof2");
+  const ir::ModelIr model = load_example("mdof2");
   const SymbolicModel sm = derive(model, {{}, false});
   CHECK(sm.transfer_functions.empty());
   const GiNaC::exmap values = sm.values();

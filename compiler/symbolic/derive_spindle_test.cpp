@@ -41,7 +41,7 @@ int index_of(const SymbolicModel& sm, const std::string& name) {
 }  // namespace
 
 TEST_CASE("spindle: undamped natural frequencies match the reference list") {
-  const ir::Model model = load_example("spindle");
+  const ir::ModelIr model = load_example("spindle");
   const SymbolicModel sm = derive(model);
   const GiNaC::exmap values = sm.values();
   const Eigen::MatrixXd M = to_eigen(sm.M, values), K = to_eigen(sm.K, values);
@@ -58,7 +58,7 @@ TEST_CASE("spindle: undamped natural frequencies match the reference list") {
 }
 
 TEST_CASE("spindle: symmetric matrices, no gyroscopic terms at nominal, two uncoupled blocks") {
-  const ir::Model model = load_example("spindle");
+  const ir::ModelIr model = load_example("spindle");
   const SymbolicModel sm = derive(model);
   CHECK(symmetric(sm.M));
   CHECK(symmetric(sm.C));
@@ -88,7 +88,7 @@ TEST_CASE("spindle: symmetric matrices, no gyroscopic terms at nominal, two unco
 
 TEST_CASE("spindle: spin about z gives the skew-symmetric gyroscopic matrix J_szz Omega on rx, ry") {
   const std::string text = example_text("spindle") + "\nspin spindle about z speed n_sp\n";
-  const ir::Model model = frontend::parse_string(text, "spindle_spinning.mdl");
+  const ir::ModelIr model = frontend::parse_string(text, "spindle_spinning.mdl");
   DeriveOptions options;
   options.set["n_sp"] = "100";
   const SymbolicModel sm = derive(model, options);

@@ -18,12 +18,12 @@ namespace {
 using Vec = std::array<GiNaC::ex, 3>;
 
 struct Assembler {
-  const ir::Model& model;
+  const ir::ModelIr& model;
   const SymbolicModel& sm;
   ParameterTable params;  // its own symbols, renamed to the derivation's ones
   GiNaC::exmap rename;
 
-  Assembler(const ir::Model& m, const SymbolicModel& s) : model(m), sm(s), params(m) {
+  Assembler(const ir::ModelIr& m, const SymbolicModel& s) : model(m), sm(s), params(m) {
     for (const FreeParameter& p : params.free_parameters()) rename[p.sym] = symbol_of(sm, p.name);
   }
   GiNaC::ex value(const ir::Expr& e) const { return params.convert(e).subs(rename); }
@@ -125,7 +125,7 @@ struct Assembler {
   }
 };
 
-void compare_with_independent_assembly(const ir::Model& model) {
+void compare_with_independent_assembly(const ir::ModelIr& model) {
   const SymbolicModel sm = derive(model, {{}, false});
   const Assembler a(model, sm);
   GiNaC::matrix M, K, C, B, Y;
@@ -151,7 +151,7 @@ TEST_CASE("independent route: a chain of 16 six-coordinate bodies (96 coordinate
 }
 
 TEST_CASE("independent route: oblique springs, a torsion element, products of inertia, symbolic geometry") {
-  const ir::Model model = frontend::parse_string(R"(model oblique
+  const ir::ModelIr model = frontend::parse_string(R"(model oblique
 param m = 2
 param J1 = 0.1
 param k1 = 1000

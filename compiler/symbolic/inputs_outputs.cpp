@@ -5,7 +5,7 @@
 namespace mbgen::symbolic {
 
 void add_inputs_outputs(const Mechanism& m, SymbolicModel& out) {
-  const ir::Model& model = *m.model;
+  const ir::ModelIr& model = *m.model;
   for (size_t u = 0; u < model.inputs.size(); ++u) {
     const ir::Input& in = model.inputs[u];
     if (!m.find(in.at.frame))

@@ -8,7 +8,7 @@ const BodyKinematics* Mechanism::find(const std::string& frame) const {
   return nullptr;
 }
 
-Mechanism make_mechanism(const ir::Model& model, const ParameterTable& params) {
+Mechanism make_mechanism(const ir::ModelIr& model, const ParameterTable& params) {
   Mechanism m;
   m.model = &model;
   m.params = &params;

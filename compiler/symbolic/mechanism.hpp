@@ -14,7 +14,7 @@
 namespace mbgen::symbolic {
 
 struct Mechanism {
-  const ir::Model* model = nullptr;
+  const ir::ModelIr* model = nullptr;
   const ParameterTable* params = nullptr;
   std::vector<BodyKinematics> bodies;  // model order
   int coordinate_count = 0;
@@ -22,7 +22,7 @@ struct Mechanism {
   const BodyKinematics* find(const std::string& frame) const;  // nullptr for a ground
 };
 
-Mechanism make_mechanism(const ir::Model& model, const ParameterTable& params);
+Mechanism make_mechanism(const ir::ModelIr& model, const ParameterTable& params);
 
 // n^T dr_p/dq at q = 0 for point `at.point` fixed to frame `at.frame` (zero for a ground).
 Row displacement_row(const Mechanism& m, const ir::Attachment& at, const GiNaC::matrix& n);

@@ -40,7 +40,7 @@ std::vector<Section> sections_of(const ir::Filter& f, const ParameterTable& para
 }  // namespace
 
 void add_output_filters(const ParameterTable& params, SymbolicModel& out) {
-  const ir::Model& model = *out.model;
+  const ir::ModelIr& model = *out.model;
   if (model.filters.empty()) return;
   std::vector<std::vector<Section>> sections;
   unsigned states = 0;

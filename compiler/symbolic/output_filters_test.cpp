@@ -79,10 +79,10 @@ TEST_CASE("output filters: each kind multiplies the output's transfer function b
       "filter hp2 on d2 highpass2 cutoff fc damping zf\n",
       "param tau = 5e-4 \"s\" estimate in [0, 0.01]\nfilter dl on d2 delay time tau sections 3\n",
   };
-  const ir::Model plain_model = frontend::parse_string(mdof2_text(), "mdof2.mdl");
+  const ir::ModelIr plain_model = frontend::parse_string(mdof2_text(), "mdof2.mdl");
   const SymbolicModel plain = derive(plain_model);
   for (int kind = 0; kind < 4; ++kind) {
-    const ir::Model model = frontend::parse_string(mdof2_text() + filters[kind], "filtered.mdl");
+    const ir::ModelIr model = frontend::parse_string(mdof2_text() + filters[kind], "filtered.mdl");
     const SymbolicModel sm = derive(model);
     INFO(filters[kind]);
     const GiNaC::ex s = sm.s;
@@ -118,9 +118,9 @@ TEST_CASE("output filters: filters on one output apply in declaration order, als
                            "output a1 acceleration of mass1 along x\n"
                            "filter first on a1 lowpass2 cutoff fa damping 0.5\n"
                            "filter second on a1 highpass1 cutoff fb\n";
-  const ir::Model model = frontend::parse_string(text, "chain.mdl");
+  const ir::ModelIr model = frontend::parse_string(text, "chain.mdl");
   const SymbolicModel sm = derive(model);
-  const ir::Model plain_model = frontend::parse_string(mdof2_text() + "output a1 acceleration of mass1 along x\n", "a.mdl");
+  const ir::ModelIr plain_model = frontend::parse_string(mdof2_text() + "output a1 acceleration of mass1 along x\n", "a.mdl");
   const SymbolicModel plain = derive(plain_model);
   const GiNaC::ex s = sm.s;
   const GiNaC::ex wa = 2 * GiNaC::Pi * 300, wb = 2 * GiNaC::Pi * 5;

@@ -52,7 +52,7 @@ struct Cancellation {
 };
 
 struct SymbolicModel {
-  const ir::Model* model = nullptr;
+  const ir::ModelIr* model = nullptr;
   GiNaC::symbol s{"s"};
   std::vector<FreeParameter> parameters;  // in model order, derived ones excluded
   std::vector<Coordinate> coordinates;    // in model order (bodies, then their dofs as written), then filter states

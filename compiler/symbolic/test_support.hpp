@@ -11,7 +11,7 @@
 
 namespace mbgen::symbolic::test {
 
-inline ir::Model load_example(const std::string& name) {
+inline ir::ModelIr load_example(const std::string& name) {
   return frontend::parse_file(std::string(MBGEN_SOURCE_DIR) + "/examples/" + name + "/" + name + ".mdl");
 }
 

@@ -171,7 +171,7 @@ std::string ParameterTable::too_large_text() {
   return fmt::format("its numerator or denominator would have more than {} bits", kMaxNumberBits);
 }
 
-ParameterTable::ParameterTable(const ir::Model& model, const std::map<std::string, std::string>& overrides,
+ParameterTable::ParameterTable(const ir::ModelIr& model, const std::map<std::string, std::string>& overrides,
                                const std::string& origin)
     : model_(model) {
   for (const auto& [name, value] : overrides) {

@@ -35,14 +35,14 @@ class ParameterTable {
   // Throws frontend::ModelError for an unknown or derived override name, a malformed override value, a cycle
   // among derived parameters, an unknown name in an expression, or a free parameter whose value is not constant.
   // `origin` names where the overrides come from in the messages ("--set m1=0: ..."; "# set" for a data file's).
-  ParameterTable(const ir::Model& model, const std::map<std::string, std::string>& overrides = {},
+  ParameterTable(const ir::ModelIr& model, const std::map<std::string, std::string>& overrides = {},
                  const std::string& origin = "--set");
 
   // The expression over the free-parameter symbols; throws ModelError at the offending node.
   GiNaC::ex convert(const ir::Expr& e) const;
 
   const std::vector<FreeParameter>& free_parameters() const { return free_; }
-  const ir::Model& model() const { return model_; }
+  const ir::ModelIr& model() const { return model_; }
   GiNaC::exmap values() const;  // free symbol -> exact value
 
  private:
@@ -56,7 +56,7 @@ class ParameterTable {
   GiNaC::ex bounded(const ir::Expr& e, const GiNaC::ex& value) const;
   static std::string too_large_text();
 
-  const ir::Model& model_;
+  const ir::ModelIr& model_;
   std::vector<FreeParameter> free_;
   std::map<std::string, GiNaC::ex> symbol_of_;  // free parameter name -> symbol
   mutable std::map<std::string, GiNaC::ex> derived_;  // derived parameter name -> expression (memo)

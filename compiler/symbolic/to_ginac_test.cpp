@@ -20,7 +20,7 @@ std::string error_of(const std::function<void()>& f) {
   return "no error";
 }
 
-const ir::Model two_params = frontend::parse_string(
+const ir::ModelIr two_params = frontend::parse_string(
     "model p\n"
     "param a = 0.127\n"
     "param b = a*2 + 1\n"
@@ -94,7 +94,7 @@ TEST_CASE("bad --set values and names are rejected with a clear message") {
 TEST_CASE("a derived-parameter cycle and an unknown name are located at the IR node") {
   // The parser rejects both already; the symbolic stage must not rely on it (models also come from extension
   // operators), so the IR is edited by hand here.
-  ir::Model cyclic = two_params;
+  ir::ModelIr cyclic = two_params;
   cyclic.parameters[1].value = ir::Expr::binary(ir::Expr::Kind::Mul, ir::Expr::symbol("c", {3, 11}),
                                                 ir::Expr::number("2", {3, 13}), {3, 12});
   // The table evaluates every parameter when it is made (their values must be real), in declaration order: the
@@ -102,11 +102,11 @@ TEST_CASE("a derived-parameter cycle and an unknown name are located at the IR n
   CHECK(error_of([&] { ParameterTable(cyclic).convert(ir::Expr::symbol("c")); }) ==
         "p.mdl:3:7: error: parameter `b` is defined in terms of itself (b -> c -> b); give one of these "
         "parameters a numeric value");
-  ir::Model unknown = two_params;
+  ir::ModelIr unknown = two_params;
   unknown.parameters[2].value = ir::Expr::symbol("nope", {4, 11});
   CHECK(error_of([&] { ParameterTable(unknown).convert(ir::Expr::symbol("c")); }) ==
         "p.mdl:4:11: error: unknown parameter `nope`: declare it with `param nope = VALUE`");
-  ir::Model bad_function = two_params;
+  ir::ModelIr bad_function = two_params;
   bad_function.parameters[2].value = ir::Expr::call("tan", {ir::Expr::symbol("a")}, {4, 11});
   CHECK(error_of([&] { ParameterTable(bad_function).convert(ir::Expr::symbol("c")); }) ==
         "p.mdl:4:11: error: unknown function `tan`; the functions are sqrt, sin and cos");

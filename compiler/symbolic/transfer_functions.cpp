@@ -371,7 +371,7 @@ std::optional<Cancellation> find_cancellation(const SymbolicModel& sm, const Tra
   c.output = tf.output;
   c.input = tf.input;
   c.common_factor = common;
-  const ir::Model& model = *sm.model;
+  const ir::ModelIr& model = *sm.model;
   std::string factor_text;
   {
     std::ostringstream os;

@@ -62,14 +62,14 @@ std::string example_text(const std::string& name) { return mbgen::test::example_
 }  // namespace
 
 TEST_CASE("transfer functions equal c P^-1 b at an exact complex frequency: mdof2") {
-  const ir::Model model = load_example("mdof2");
+  const ir::ModelIr model = load_example("mdof2");
   check_against_direct_solve(derive(model));
 }
 
 TEST_CASE("transfer functions equal c P^-1 b at an exact complex frequency: spindle, with and without spin") {
-  const ir::Model model = load_example("spindle");
+  const ir::ModelIr model = load_example("spindle");
   check_against_direct_solve(derive(model));
-  const ir::Model spinning =
+  const ir::ModelIr spinning =
       frontend::parse_string(example_text("spindle") + "\nspin spindle about z speed n_sp\n"
                              "output ys displacement of spindle at (0, 0, 0.25) along y\n"
                              "output as acceleration of spindle at (0, 0, 0.25) along (1, 1, 0)\n"
@@ -84,7 +84,7 @@ TEST_CASE("transfer functions equal c P^-1 b at an exact complex frequency: spin
 }
 
 TEST_CASE("transfer functions of a 3-coordinate block are symbolic, and a pair in another block is zero") {
-  const ir::Model model = frontend::parse_string(R"(model chain
+  const ir::ModelIr model = frontend::parse_string(R"(model chain
 param m = 1
 param k = 100
 param c = 0.5
@@ -148,7 +148,7 @@ TEST_CASE("an input/output pair that does not see the antisymmetric mode reports
   // Three equal masses in a symmetric chain between two walls. The mode (1, 0, -1) at sqrt(2k/m) leaves the middle
   // mass still, so the middle mass's own transfer function does not show it: m s^2 + 2k divides numerator and
   // denominator.
-  const ir::Model model = frontend::parse_string(R"(model sym3
+  const ir::ModelIr model = frontend::parse_string(R"(model sym3
 param m = 2
 param k = 800
 ground g
@@ -213,7 +213,7 @@ output x2 displacement of b2 along x
   // With the middle spring stiffer on one side the chain is no longer symmetric: no cancellation.
   DeriveOptions o;
   o.set["k"] = "800";
-  ir::Model lopsided = model;
+  ir::ModelIr lopsided = model;
   lopsided.elements[3].stiffness[0] = ir::Expr::number("801");
   CHECK(derive(lopsided, o).cancellations.empty());
 }
@@ -236,7 +236,7 @@ std::string symmetric_row(int n) {
 }  // namespace
 
 TEST_CASE("exact cancellations on a 41-coordinate block (multimodular determinants, exact gcd)") {
-  const ir::Model model = frontend::parse_string(symmetric_row(41), "row41.mdl");
+  const ir::ModelIr model = frontend::parse_string(symmetric_row(41), "row41.mdl");
   const SymbolicModel sm = derive(model);
   REQUIRE(sm.transfer_functions.size() == 1);
   const TransferFunction& tf = sm.transfer_functions[0];
@@ -265,7 +265,7 @@ TEST_CASE("a block over the exact-coefficient limit: no coefficients, cancellati
             " coordinates is too large for exact coefficients), so " + std::to_string(n - 1) +
             " poles probably cancel and do not show in this transfer function");
   // Off-centre, the input sees every mode: no cancellation, proven modulo a prime.
-  ir::Model lopsided = frontend::parse_string(symmetric_row(n), "row.mdl");
+  ir::ModelIr lopsided = frontend::parse_string(symmetric_row(n), "row.mdl");
   lopsided.elements[0].stiffness[0] = ir::Expr::number("801");
   CHECK(derive(lopsided).cancellations.empty());
 }

@@ -12,7 +12,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const mbgen::ir::Model model = mbgen::frontend::parse_string(text, "fuzz.mdl");
+    const mbgen::ir::ModelIr model = mbgen::frontend::parse_string(text, "fuzz.mdl");
     const mbgen::symbolic::ParameterTable table(model);
     for (const mbgen::ir::Parameter& p : model.parameters) {
       table.convert(p.value);

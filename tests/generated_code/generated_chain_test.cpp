@@ -146,7 +146,7 @@ TEST_CASE("chain16: split and whole code give the same matrices, Jacobians and s
 
 TEST_CASE("chain16: the split code equals the derivation and the in-process evaluator") {
   const std::string text = mbgen::symbolic::test::chain_model_text(16);
-  const mbgen::ir::Model ir = mbgen::frontend::parse_string(text, "chain16.mdl");
+  const mbgen::ir::ModelIr ir = mbgen::frontend::parse_string(text, "chain16.mdl");
   const mbgen::symbolic::SymbolicModel sm = mbgen::symbolic::derive(ir, {{}, false});
   REQUIRE(sm.parameters.size() == static_cast<std::size_t>(split::num_parameters));
   // At the defaults, exactly: the generated defaults are the doubles nearest the exact values.

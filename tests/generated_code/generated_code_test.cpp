@@ -81,7 +81,7 @@ double to_double(const GiNaC::ex& e) { return GiNaC::ex_to<GiNaC::numeric>(GiNaC
 
 // The derived model, kept alive with its IR.
 struct Derived {
-  mbgen::ir::Model ir;
+  mbgen::ir::ModelIr ir;
   mbgen::symbolic::SymbolicModel sm;
   explicit Derived(const std::string& path) : ir(mbgen::frontend::parse_file(path)), sm(mbgen::symbolic::derive(ir)) {}
   std::vector<const GiNaC::matrix*> matrices() const { return {&sm.M, &sm.C_total, &sm.K, &sm.B, &sm.Cd, &sm.Cv, &sm.Ca}; }

@@ -52,7 +52,7 @@ mpreal to_mpreal(const GiNaC::ex& e) {
 }
 
 struct Derived {
-  mbgen::ir::Model ir;
+  mbgen::ir::ModelIr ir;
   mbgen::symbolic::SymbolicModel sm;
   explicit Derived(const std::string& path) : ir(mbgen::frontend::parse_file(path)), sm(mbgen::symbolic::derive(ir)) {}
 };

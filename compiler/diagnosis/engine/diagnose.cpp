@@ -205,7 +205,7 @@ class Diagnoser {
   }
 
   // Fits `model` (parameters started at `start` where named) and judges it.
-  ModelState assess(const ir::Model& model, const std::string& text, const std::map<std::string, double>& start,
+  ModelState assess(const ir::ModelIr& model, const std::string& text, const std::map<std::string, double>& start,
                     int starts) const {
     return assess(*derive_model(model), model, text, start, starts, options_.fit.threads);
   }
@@ -213,7 +213,7 @@ class Diagnoser {
   // The same with `model` already derived (`evaluator`), the fit on `threads` workers. Uses no GiNaC: safe on a
   // worker thread.
   // `held`: parameters with role estimate that this fit keeps at their values (the others are estimated).
-  ModelState assess(const mbgen::Model& evaluator, const ir::Model& model, const std::string& text,
+  ModelState assess(const mbgen::Model& evaluator, const ir::ModelIr& model, const std::string& text,
                     const std::map<std::string, double>& start, int starts, int threads,
                     const std::map<std::string, double>& also_start_at = {},
                     const std::vector<std::string>& held = {}) const {
@@ -253,7 +253,7 @@ class Diagnoser {
   }
 
   // Derivation and tape compilation use GiNaC, which is not thread-safe: only ever on the calling thread.
-  std::unique_ptr<mbgen::Model> derive_model(const ir::Model& model) const {
+  std::unique_ptr<mbgen::Model> derive_model(const ir::ModelIr& model) const {
     symbolic::DeriveOptions derive;
     derive.set = options_.set;
     return evaluator::make_evaluator(model, derive);
@@ -261,7 +261,7 @@ class Diagnoser {
 
   // The loop of the method (docs/diagnosis.md): fit and judge the nominal model, extend it greedily one candidate
   // per round while a candidate explains what is wrong, then keep the extension only if it explains enough.
-  DiagnosisResult run(const ir::Model& model, const std::string& text) {
+  DiagnosisResult run(const ir::ModelIr& model, const std::string& text) {
     DiagnosisResult result;
     result.model_file = model.file;
     for (const DataSet& d : data_) result.data.push_back(d.file());
@@ -282,7 +282,7 @@ class Diagnoser {
   // Fits and judges the nominal model; its findings steer the candidates (sensor outputs), and with records the
   // screening runs on the records' H1 estimates, where a fit needs no simulation (records too short for them are
   // screened on themselves).
-  ModelState assess_nominal(const ir::Model& model, const std::string& text) {
+  ModelState assess_nominal(const ir::ModelIr& model, const std::string& text) {
     say("nominal model: fitting " + std::to_string(model.parameters.size()) + " parameters");
     ModelState nominal = assess(model, text, {}, options_.fit.starts);
     sensor_outputs_ = outputs_missed_alone(nominal.channels);
@@ -528,7 +528,7 @@ class Diagnoser {
   // the output's own peaks first. A peak that no other output shows is what a sensor's own resonance looks like;
   // a structural mode shows on every output that moves with it. The own peaks go by prominence, not height: a
   // displacement FRF falls with frequency, so height would favour a low wiggle over a clear peak at 1 kHz.
-  std::vector<double> prior_peaks(const ir::Model& model) {
+  std::vector<double> prior_peaks(const ir::ModelIr& model) {
     const auto evaluator = derive_model(model);
     std::vector<std::pair<double, double>> found;  // (magnitude relative to the channel's RMS, f)
     struct OutputPeak {
@@ -1027,7 +1027,7 @@ class Diagnoser {
 
 }  // namespace
 
-DiagnosisResult diagnose(const ir::Model& model, const std::string& model_text, const std::vector<DataSet>& data,
+DiagnosisResult diagnose(const ir::ModelIr& model, const std::string& model_text, const std::vector<DataSet>& data,
                          const DiagnoseOptions& options) {
   return Diagnoser(data, options).run(model, model_text);
 }

@@ -78,7 +78,7 @@ struct CandidateOutcome {
 
 // One model with its fit and judgement: the nominal, then each accepted extension.
 struct ModelState {
-  ir::Model model;
+  ir::ModelIr model;
   std::string text;  // its .mdl text
   ModelInfo info;    // parameters with bounds, signals
   FitResult fit;
@@ -101,7 +101,7 @@ struct DiagnosisResult {
   ModelState final;     // the extended model when extended, else the nominal
 };
 
-DiagnosisResult diagnose(const ir::Model& model, const std::string& model_text, const std::vector<DataSet>& data,
+DiagnosisResult diagnose(const ir::ModelIr& model, const std::string& model_text, const std::vector<DataSet>& data,
                          const DiagnoseOptions& options);
 
 }  // namespace mbgen::diagnosis

@@ -23,7 +23,7 @@ namespace {
 
 // The translations the attached elements act along: a spring's axis, all three for a spring3 or an oblique
 // spring. Torsions act on rotations, which the new body does not get.
-std::vector<ir::Dof> translations_needed(const ir::Model& m, const std::string& ground, const ModelValues& values) {
+std::vector<ir::Dof> translations_needed(const ir::ModelIr& m, const std::string& ground, const ModelValues& values) {
   bool axis[3] = {false, false, false};
   for (const ir::Element& e : m.elements) {
     if (e.a.frame != ground && e.b.frame != ground) continue;
@@ -39,7 +39,7 @@ std::vector<ir::Dof> translations_needed(const ir::Model& m, const std::string& 
 }
 
 // Bodies declared before `loc` in the text: where the parser will put a body declared at `loc`.
-std::size_t bodies_before(const ir::Model& m, ir::SourceLoc loc) {
+std::size_t bodies_before(const ir::ModelIr& m, ir::SourceLoc loc) {
   return std::count_if(m.bodies.begin(), m.bodies.end(), [&](const ir::Body& b) {
     return b.loc.line < loc.line || (b.loc.line == loc.line && b.loc.column < loc.column);
   });
@@ -100,7 +100,7 @@ ir::Vec3 point_expr(const std::array<double, 3>& p) {
 std::string ground_to_body(Draft& d, const OperatorInput& in, const ir::Ground& ground, const ir::Body& body,
                            bool centred) {
   const std::string& g = ground.name;
-  ir::Model& x = d.model();
+  ir::ModelIr& x = d.model();
   x.grounds.erase(std::find_if(x.grounds.begin(), x.grounds.end(), [&](const ir::Ground& q) { return q.name == g; }));
   x.bodies.insert(x.bodies.begin() + bodies_before(in.model, ground.loc), body);
   d.patch().replace_statement(ground.loc, "ground `" + g + "` now moves: it is a body held by spring-dampers",
@@ -137,7 +137,7 @@ struct Start {
   double total, mass, omega;
 };
 Start start_values(const OperatorInput& in) {
-  const ir::Model& m = in.model;
+  const ir::ModelIr& m = in.model;
   const double total = total_moving_mass(m, in.values);
   const double omega = in.ctx.peak_hz.empty()
                            ? 2 * std::sqrt(largest_translational_stiffness(m, in.values) / smallest_body_mass(m, in.values))
@@ -146,7 +146,7 @@ Start start_values(const OperatorInput& in) {
 }
 
 Extension simple(const OperatorInput& in, const ir::Ground& ground, const Attachments& at, bool with_variants) {
-  const ir::Model& m = in.model;
+  const ir::ModelIr& m = in.model;
   Draft d(in, "compliant_ground", ground.name);
   if (with_variants) d.set_variant("simple");
   const Start st = start_values(in);
@@ -177,7 +177,7 @@ Extension simple(const OperatorInput& in, const ir::Ground& ground, const Attach
 }
 
 // The axes the model's forces act along (a force with an oblique or symbolic direction: all three).
-std::array<bool, 3> excited_axes(const ir::Model& m, const ModelValues& values) {
+std::array<bool, 3> excited_axes(const ir::ModelIr& m, const ModelValues& values) {
   std::array<bool, 3> axis{false, false, false};
   for (const ir::Input& u : m.inputs) {
     if (u.kind != ir::InputKind::Force) continue;

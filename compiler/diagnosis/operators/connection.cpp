@@ -17,7 +17,7 @@ struct Frame {
 };
 
 // Grounds and bodies in the order the text declares them.
-std::vector<Frame> frames_in_order(const ir::Model& m) {
+std::vector<Frame> frames_in_order(const ir::ModelIr& m) {
   std::vector<Frame> out;
   for (const ir::Ground& g : m.grounds) out.push_back({g.name, g.loc, nullptr});
   for (const ir::Body& b : m.bodies) out.push_back({b.name, b.loc, &b});
@@ -27,7 +27,7 @@ std::vector<Frame> frames_in_order(const ir::Model& m) {
   return out;
 }
 
-bool joined(const ir::Model& m, const std::string& a, const std::string& b) {
+bool joined(const ir::ModelIr& m, const std::string& a, const std::string& b) {
   return std::any_of(m.elements.begin(), m.elements.end(), [&](const ir::Element& e) {
     return (e.a.frame == a && e.b.frame == b) || (e.a.frame == b && e.b.frame == a);
   });

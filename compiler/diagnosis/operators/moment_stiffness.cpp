@@ -14,7 +14,7 @@ namespace {
 // (its rotation is zero) or a body with that rotation coordinate. A body *without* the coordinate is left out:
 // it may be guided (rotation zero) or turn freely (the spindle about its own axis); a torsion would tie the
 // other frame to it either way, which is wrong in the second case.
-bool takes_part(const ir::Model& m, const std::string& frame, int axis) {
+bool takes_part(const ir::ModelIr& m, const std::string& frame, int axis) {
   if (m.is_ground(frame)) return true;
   return has_dof(*m.find_body(frame), static_cast<ir::Dof>(3 + axis));
 }

@@ -71,7 +71,7 @@ Extension Draft::finish(const std::string& description) {
   return std::move(ext_);
 }
 
-std::optional<SignalPoint> signal_point(const ir::Model& model, const std::string& body) {
+std::optional<SignalPoint> signal_point(const ir::ModelIr& model, const std::string& body) {
   for (const ir::Input& in : model.inputs)
     if (in.at.frame == body) return SignalPoint{in.name, true, &in.at, &in.direction};
   for (const ir::Output& out : model.outputs)
@@ -95,13 +95,13 @@ std::optional<int> axis_of(const ir::Direction& d, const ModelValues& values) {
 
 bool has_dof(const ir::Body& b, ir::Dof d) { return std::find(b.dofs.begin(), b.dofs.end(), d) != b.dofs.end(); }
 
-double total_moving_mass(const ir::Model& model, const ModelValues& values) {
+double total_moving_mass(const ir::ModelIr& model, const ModelValues& values) {
   double m = 0;
   for (const ir::Body& b : model.bodies) m += values.of(b.mass);
   return m;
 }
 
-double largest_translational_stiffness(const ir::Model& model, const ModelValues& values) {
+double largest_translational_stiffness(const ir::ModelIr& model, const ModelValues& values) {
   double k = 0;
   for (const ir::Element& e : model.elements) {
     if (e.kind == ir::ElementKind::Torsion) continue;
@@ -110,7 +110,7 @@ double largest_translational_stiffness(const ir::Model& model, const ModelValues
   return k;
 }
 
-double smallest_body_mass(const ir::Model& model, const ModelValues& values) {
+double smallest_body_mass(const ir::ModelIr& model, const ModelValues& values) {
   double m = INFINITY;
   for (const ir::Body& b : model.bodies) m = std::min(m, values.of(b.mass));
   return m;

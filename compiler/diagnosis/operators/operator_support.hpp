@@ -14,7 +14,7 @@
 namespace mbgen::diagnosis {
 
 struct OperatorInput {
-  const ir::Model& model;  // parsed from `text`
+  const ir::ModelIr& model;  // parsed from `text`
   const std::string& text;
   const ExtensionContext& ctx;
   ModelValues values;  // the model's values, ctx.values overriding
@@ -26,7 +26,7 @@ class Draft {
  public:
   Draft(const OperatorInput& in, const std::string& operator_name, const std::string& target);
 
-  ir::Model& model() { return ext_.model; }
+  ir::ModelIr& model() { return ext_.model; }
   NameSet& names() { return names_; }
   TextPatch& patch() { return patch_; }
 
@@ -63,16 +63,16 @@ struct SignalPoint {
   const ir::Attachment* at;   // point filled by the front end (explicit or the centre of mass)
   const ir::Direction* direction;
 };
-std::optional<SignalPoint> signal_point(const ir::Model& model, const std::string& body);
+std::optional<SignalPoint> signal_point(const ir::ModelIr& model, const std::string& body);
 
 // The global axis (0, 1, 2) a direction lies along, if it does (a vector is evaluated at the current values).
 std::optional<int> axis_of(const ir::Direction& d, const ModelValues& values);
 
 bool has_dof(const ir::Body& b, ir::Dof d);
-double total_moving_mass(const ir::Model& model, const ModelValues& values);
+double total_moving_mass(const ir::ModelIr& model, const ModelValues& values);
 // The largest stiffness value of the translational elements (spring, spring3); 0 if there are none.
-double largest_translational_stiffness(const ir::Model& model, const ModelValues& values);
-double smallest_body_mass(const ir::Model& model, const ModelValues& values);
+double largest_translational_stiffness(const ir::ModelIr& model, const ModelValues& values);
+double smallest_body_mass(const ir::ModelIr& model, const ModelValues& values);
 
 // A point body `name` (fresh) of mass `mass` at `point`, with one coordinate along global axis `axis`, held to
 // `frame` at the same point by a spring-damper (`stiffness`, `damping`) along that axis, named `name` + `suffix`:

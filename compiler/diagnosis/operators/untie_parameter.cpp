@@ -49,7 +49,7 @@ void rename(ir::Expr& e, const std::string& from, const std::string& to, std::ve
 // and bounds; the other elements keep sharing P.
 Extension untie_one(const OperatorInput& in, const ir::Parameter& p, const std::string& element, std::size_t users) {
   Draft d(in, "untie_parameter", p.name);
-  ir::Model& x = d.model();
+  ir::ModelIr& x = d.model();
   ir::Parameter copy = p;
   copy.name = d.names().fresh(p.name + "_" + element);
   // The copy starts at half of P's current value: a loose element (a loosened bolt, a worn mount) is the usual
