@@ -400,15 +400,21 @@ class Diagnoser {
   // current model is the nominal one again.
   void keep_only_full_explanations(DiagnosisResult& result, ModelState& current) const {
     if (result.selected.empty()) return;
-    // An extension that leaves a clear discrepancy (the residual well above the noise level) explains only part
-    // of what is wrong: better to say so than to extend with a confident, partly wrong model.
-    if (current.residual.mean_z > options_.max_final_residual) {
-      say(format("the extended model still leaves a mean normalized residual of %.3g (noise alone gives 1): a clear "
-                 "discrepancy remains; not extending", current.residual.mean_z));
+    // Says why, lists the nominal model's findings that still show, and takes the nominal model back.
+    const auto reject = [&](const std::string& why, const std::vector<const Discrepancy*>& still) {
+      say(why);
+      for (const Discrepancy* d : still)
+        say("  still: " + d->text +
+            format(" (band residual %.3g -> %.3g)", band_mean_z(result.nominal.channels, *d), band_mean_z(current.channels, *d)));
       result.selected.clear();
       current = result.nominal;
-      return;
-    }
+    };
+    // An extension that leaves a clear discrepancy (the residual well above the noise level) explains only part
+    // of what is wrong: better to say so than to extend with a confident, partly wrong model.
+    if (current.residual.mean_z > options_.max_final_residual)
+      return reject(format("the extended model still leaves a mean normalized residual of %.3g (noise alone gives 1): "
+                           "a clear discrepancy remains; not extending", current.residual.mean_z),
+                    {});
     // Likewise when most of the nominal model's findings remain: the extension shaved the cost of a discrepancy
     // it does not explain (on the spindle, a Maxwell element in a bearing was "explained" by one soft mount in z,
     // which left 6 of 9 findings; the correct extensions of the test cases leave at most 1 of 3 to 9).
@@ -423,25 +429,15 @@ class Diagnoser {
     const Discrepancy* strongest = nullptr;
     for (const Discrepancy& d : result.nominal.residual.discrepancies)
       if (d.kind != "parameter_at_bound" && (!strongest || d.significance > strongest->significance)) strongest = &d;
-    if (strongest && std::find(kept.begin(), kept.end(), strongest) != kept.end()) {
-      say("the extended model still shows the nominal model's strongest finding: it does not explain it; not "
-          "extending");
-      say("  still: " + strongest->text +
-          format(" (band residual %.3g -> %.3g)", band_mean_z(result.nominal.channels, *strongest),
-                 band_mean_z(current.channels, *strongest)));
-      result.selected.clear();
-      current = result.nominal;
-      return;
-    }
-    if (static_cast<double>(kept.size()) > options_.max_remaining_findings * static_cast<double>(before_findings)) {
-      say(format("the extended model still shows %.0f of the nominal model's %.0f findings: it does not explain them; "
-                 "not extending", static_cast<double>(kept.size()), static_cast<double>(before_findings)));
-      for (const Discrepancy* d : kept)
-        say("  still: " + d->text +
-            format(" (band residual %.3g -> %.3g)", band_mean_z(result.nominal.channels, *d), band_mean_z(current.channels, *d)));
-      result.selected.clear();
-      current = result.nominal;
-    }
+    if (strongest && std::find(kept.begin(), kept.end(), strongest) != kept.end())
+      return reject("the extended model still shows the nominal model's strongest finding: it does not explain it; "
+                    "not extending",
+                    {strongest});
+    if (static_cast<double>(kept.size()) > options_.max_remaining_findings * static_cast<double>(before_findings))
+      reject(format("the extended model still shows %.0f of the nominal model's %.0f findings: it does not explain "
+                    "them; not extending",
+                    static_cast<double>(kept.size()), static_cast<double>(before_findings)),
+             kept);
   }
 
   static std::string verdict_of(const DiagnosisResult& result) {
