@@ -421,7 +421,7 @@ class Diagnoser {
     const std::size_t before_findings = result.nominal.residual.discrepancies.size();
     std::vector<const Discrepancy*> kept;
     for (const Discrepancy& d : result.nominal.residual.discrepancies)
-      if (still_shows(result.nominal.channels, current, d, options_.residual.threshold)) kept.push_back(&d);
+      if (still_shows(result.nominal.channels, current, d, result.nominal.residual.threshold)) kept.push_back(&d);
     // And the strongest of them must not be among those left: an extension that leaves the main discrepancy
     // standing explains lesser ones only. (An mdof2 support with a Maxwell element, outside the library, was
     // "explained" by a 430 kg wall on a spring damped at 35 %, which cleared two weak findings and left the first

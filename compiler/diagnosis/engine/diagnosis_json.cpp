@@ -64,6 +64,7 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
                   {"fit_converged", result.nominal.fit.converged},
                   {"fit_stop_reason", result.nominal.fit.stop_reason},
                   {"mean_normalized_residual", number(result.nominal.residual.mean_z)},
+                  {"finding_threshold", number(result.nominal.residual.threshold)},
                   {"noise", noise_levels(result.nominal.channels)}};
   j["discrepancies"] = discrepancies(result.nominal.residual);
   ordered_json candidates = ordered_json::array();

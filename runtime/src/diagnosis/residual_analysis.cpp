@@ -265,8 +265,34 @@ std::vector<int> magnitude_peaks(const Eigen::VectorXcd& h, double prominence_db
   return peaks;
 }
 
-ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, const ResidualOptions& options) {
+double finding_threshold(const ResidualOptions& options, long lines) {
+  const int w = std::max(1, options.window);
+  // P(Gamma(w, 1) > w t): the chance that the mean of w independent Exp(1) variables (z of noise alone) exceeds t.
+  const auto tail = [w](double t) {
+    const double x = w * t;
+    double term = 1, sum = 1;
+    for (int k = 1; k < w; ++k) sum += (term *= x / k);
+    return std::exp(-x) * sum;
+  };
+  const double n = static_cast<double>(std::max(lines, 1L));
+  double lo = options.threshold;
+  if (n * tail(lo) <= options.false_alarm_rate) return lo;
+  double hi = lo;
+  while (n * tail(hi) > options.false_alarm_rate) hi *= 2;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (n * tail(mid) > options.false_alarm_rate ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, const ResidualOptions& given) {
   ResidualSummary summary;
+  long all_lines = 0;
+  for (const ChannelResidual& c : channels) all_lines += static_cast<long>(c.f_hz.size());
+  ResidualOptions options = given;
+  options.threshold = finding_threshold(given, all_lines);
+  summary.threshold = options.threshold;
   double z_sum = 0;
   for (const ChannelResidual& original : channels) {
     const Eigen::Index n = static_cast<Eigen::Index>(original.f_hz.size());
