@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "window_median.hpp"
+
 namespace mbgen {
 
 Eigen::VectorXd frf_variance(const FrfChannel& channel, double averages, double floor) {
@@ -35,9 +37,7 @@ Eigen::VectorXd frf_variance(const FrfChannel& channel, double averages, double 
     for (Eigen::Index k = 0; k < n; ++k) {
       if (!(1.0 - (*channel.coherence)[k] < 1e-5)) continue;
       const Eigen::Index lo = std::max<Eigen::Index>(0, k - 4), hi = std::min<Eigen::Index>(n - 1, k + 4);
-      window.assign(raw.data() + lo, raw.data() + hi + 1);
-      std::nth_element(window.begin(), window.begin() + static_cast<long>(window.size() / 2), window.end());
-      var[k] = std::max(raw[k], 0.25 * window[window.size() / 2]);
+      var[k] = std::max(raw[k], 0.25 * detail::window_median(raw.data() + lo, raw.data() + hi + 1, window));
     }
   }
   return var;

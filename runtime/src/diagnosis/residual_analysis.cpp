@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "../data/string_format.hpp"
+#include "../data/window_median.hpp"
 
 namespace mbgen {
 
@@ -78,9 +79,7 @@ std::vector<Band> contrasted_bands(const Eigen::VectorXd& z, const Band& band, c
   std::vector<double> window;
   for (int i = band.lo; i <= band.hi; ++i) {
     const int lo = std::max(band.lo, i - half), hi = std::min(band.hi, i + half);
-    window.assign(z.data() + lo, z.data() + hi + 1);
-    std::nth_element(window.begin(), window.begin() + static_cast<long>(window.size() / 2), window.end());
-    floor[static_cast<std::size_t>(i)] = window[window.size() / 2];
+    floor[static_cast<std::size_t>(i)] = detail::window_median(z.data() + lo, z.data() + hi + 1, window);
   }
   return bands_above(
       z, o, [&](int i) { return std::max(o.threshold, o.contrast * floor[static_cast<std::size_t>(i)]); }, band.lo,
@@ -277,7 +276,7 @@ double finding_threshold(const ResidualOptions& options, long lines) {
   const double n = static_cast<double>(std::max(lines, 1L));
   double lo = options.threshold;
   if (n * tail(lo) <= options.false_alarm_rate) return lo;
-  double hi = lo;
+  double hi = std::max(lo, 1.0);  // doubling from a level of 0 would never move
   while (n * tail(hi) > options.false_alarm_rate) hi *= 2;
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
