@@ -619,20 +619,17 @@ class Diagnoser {
     return peaks;
   }
 
-  // Peaks for new parameters' start values: first the resonances the current fitted model does not have (strongest
-  // first), then the data's peaks that the prior model does not account for (where the fit hid a missing mode by
-  // bending other parameters, there is no such finding and these come first). The fitted model's own findings go
-  // first because a prior peak may be a mode of the model that only its priors put elsewhere: mdof2 with a
-  // compliant wall from 2 s records put the wall's start at 136 Hz, a mode the fit had already moved there, rather
-  // than at the 328 Hz resonance the fitted model missed, and its screening fits ended far above the nominal's cost.
+  // Peaks for new parameters' start values: first the data's peaks that the prior model does not account for
+  // (strongest first: the most direct evidence of a missing mode), then the fitted model's unexplained resonances.
   ExtensionContext context(const ModelState& s) const {
     ExtensionContext ctx;
-    for (const Discrepancy& d : s.residual.discrepancies)  // already strongest first
-      if (d.kind == "unexplained_resonance") add_distinct(ctx.peak_hz, d.f_hz);
     for (double f : prior_peaks_) add_distinct(ctx.peak_hz, f);
     ctx.output_peak_hz = prior_output_peaks_;
-    for (const Discrepancy& d : s.residual.discrepancies)
-      if (d.kind == "unexplained_resonance") add_distinct(ctx.output_peak_hz[output_of(d.channel)], d.f_hz);
+    for (const Discrepancy& d : s.residual.discrepancies)  // already strongest first
+      if (d.kind == "unexplained_resonance") {
+        add_distinct(ctx.peak_hz, d.f_hz);
+        add_distinct(ctx.output_peak_hz[output_of(d.channel)], d.f_hz);
+      }
     ctx.varying_parameters = varying_parameters(data_);
     ctx.values = s.values;
     // What a sensor's own dynamics could explain: an output whose channels the model misses more than it misses
