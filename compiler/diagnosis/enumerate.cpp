@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 
@@ -7,6 +9,66 @@
 #include "diagnosis/operators/operator_support.hpp"
 
 namespace mbgen::diagnosis {
+
+namespace {
+
+// The candidates for one context, in the order of enumerate_extensions.
+std::vector<Extension> candidates(const ir::ModelIr& located, const std::string& text, const ExtensionContext& ctx) {
+  const OperatorInput in{located, text, ctx, ModelValues(located, ctx.values)};
+  std::vector<Extension> out;
+  for (auto op : {compliant_ground, gyroscopic, free_parameter, untie_parameter, moment_stiffness, added_mass,
+                  resonator, sensor_dynamics, connection}) {
+    std::vector<Extension> found = op(in);
+    for (Extension& e : found) out.push_back(std::move(e));
+  }
+  return out;
+}
+
+// The start values of e's new parameters.
+std::map<std::string, double> new_parameter_starts(const Extension& e) {
+  const ModelValues values(e.model, {});
+  std::map<std::string, double> out;
+  for (const NewParameter& p : e.new_parameters) out[p.name] = values.of_parameter(p.name);
+  return out;
+}
+
+// Extension::alternative_starts: the operators asked again with each of the next peaks first; a candidate whose
+// new parameters then start elsewhere gets those starts (once each).
+void add_alternative_starts(std::vector<Extension>& out, const ir::ModelIr& located, const std::string& text,
+                            const ExtensionContext& ctx) {
+  std::vector<std::map<std::string, double>> own;
+  for (const Extension& e : out) own.push_back(new_parameter_starts(e));
+  for (std::size_t p = 1; p < ctx.peak_hz.size() && p <= kAlternativePeaks; ++p) {
+    ExtensionContext rotated = ctx;
+    rotated.peak_hz.erase(rotated.peak_hz.begin() + static_cast<std::ptrdiff_t>(p));
+    rotated.peak_hz.insert(rotated.peak_hz.begin(), ctx.peak_hz[p]);
+    const std::vector<Extension> again = candidates(located, text, rotated);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      Extension& e = out[i];
+      const auto same = std::find_if(again.begin(), again.end(), [&](const Extension& a) {
+        return a.id == e.id && a.variant == e.variant && a.new_parameters.size() == e.new_parameters.size();
+      });
+      if (same == again.end()) continue;
+      std::map<std::string, double> start;
+      try {
+        start = new_parameter_starts(*same);
+      } catch (const std::invalid_argument&) {
+        continue;  // named otherwise: not the same candidate
+      }
+      bool elsewhere = false;
+      for (const auto& [name, v] : start) {
+        const auto it = own[i].find(name);
+        if (it == own[i].end()) { elsewhere = false; break; }
+        if (std::abs(v - it->second) > 1e-9 * std::max(std::abs(v), std::abs(it->second))) elsewhere = true;
+      }
+      if (elsewhere && std::find(e.alternative_starts.begin(), e.alternative_starts.end(), start) ==
+                           e.alternative_starts.end())
+        e.alternative_starts.push_back(std::move(start));
+    }
+  }
+}
+
+}  // namespace
 
 std::vector<Extension> enumerate_extensions(const ir::ModelIr& nominal, const std::string& nominal_text,
                                             const ExtensionContext& ctx) {
@@ -18,13 +80,8 @@ std::vector<Extension> enumerate_extensions(const ir::ModelIr& nominal, const st
   if (frontend::write_model(located) != frontend::write_model(nominal))
     throw std::invalid_argument("enumerate_extensions: the model is not the one its text `" + file + "` describes");
 
-  const OperatorInput in{located, text, ctx, ModelValues(located, ctx.values)};
-  std::vector<Extension> out;
-  for (auto op : {compliant_ground, gyroscopic, free_parameter, untie_parameter, moment_stiffness, added_mass,
-                  resonator, sensor_dynamics, connection}) {
-    std::vector<Extension> found = op(in);
-    for (Extension& e : found) out.push_back(std::move(e));
-  }
+  std::vector<Extension> out = candidates(located, text, ctx);
+  add_alternative_starts(out, located, text, ctx);
   // An id appears once, or as a run of consecutive variants with distinct names.
   std::set<std::string> ids, variants;
   for (std::size_t i = 0; i < out.size(); ++i) {

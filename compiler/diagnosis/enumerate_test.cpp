@@ -1,6 +1,7 @@
 // The candidates each example gets, and the checks every candidate passes (its text parses to its model, the
 // model derives with a non-singular mass matrix).
 #include "diagnosis/test_support.hpp"
+#include "diagnosis/model_values.hpp"
 
 using namespace mbgen;
 using namespace mbgen::diagnosis;
@@ -19,6 +20,35 @@ TEST_CASE("mdof2: the candidates come from its structure", "[diagnosis]") {
                                           "compliant_ground:wall", "free_parameter:c12", "added_mass:mass1",
                                           "added_mass:mass2", "resonator:mass1", "resonator:mass2"}));
   for (const Extension& x : with_peak) test::check_candidate(x);
+}
+
+TEST_CASE("mdof2: a candidate whose new mode starts at a peak also starts at the next peaks", "[diagnosis]") {
+  const test::Example ex = test::load("mdof2");
+  ExtensionContext ctx;
+  ctx.peak_hz = {136, 72, 328, 500};
+  const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, ctx);
+  ExtensionContext at_328 = ctx;
+  at_328.peak_hz = {328, 136, 72, 500};
+  const std::vector<Extension> ys = enumerate_extensions(ex.model, ex.text, at_328);
+  REQUIRE(xs.size() == ys.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const Extension& x = xs[i];
+    INFO(x.id);
+    if (x.id == "compliant_ground:wall" || x.id.rfind("resonator:", 0) == 0) {
+      // The second and third peaks (kAlternativePeaks), not the fourth; each start names every new parameter.
+      REQUIRE(x.alternative_starts.size() == kAlternativePeaks);
+      std::map<std::string, double> as_at_328;
+      const ModelValues values(ys[i].model, {});
+      for (const NewParameter& p : ys[i].new_parameters) as_at_328[p.name] = values.of_parameter(p.name);
+      CHECK(x.alternative_starts[1] == as_at_328);
+      CHECK(x.alternative_starts[0] != as_at_328);
+    } else {
+      CHECK(x.alternative_starts.empty());  // their starts do not depend on the peaks
+    }
+  }
+  ExtensionContext one_peak;
+  one_peak.peak_hz = {136};
+  for (const Extension& x : enumerate_extensions(ex.model, ex.text, one_peak)) CHECK(x.alternative_starts.empty());
 }
 
 TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {

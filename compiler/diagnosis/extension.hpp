@@ -33,6 +33,11 @@ struct Extension {
   std::vector<NewParameter> new_parameters;
   std::vector<std::string> freed_parameters;  // existing parameters whose role becomes estimate
   std::string mdl_text;  // the extended model as .mdl: the original text with a small, commented change
+  // Other start values of the new parameters (by name), worth a start of the fit each: those the operator gives
+  // when it places the new mode at the context's second, third... peak instead of the strongest (the strongest
+  // peak may be one the fit accounts for by moving a mode; the one the model misses comes later). Empty for a
+  // candidate whose start does not depend on the peaks.
+  std::vector<std::map<std::string, double>> alternative_starts;
 };
 
 struct ExtensionContext {
@@ -47,6 +52,9 @@ struct ExtensionContext {
   double band_lo_hz = 0, band_hi_hz = 0;         // the judged lines' frequency range over all data
   std::map<std::string, double> values;      // current (fitted) values of the nominal model's free parameters
 };
+
+// Peaks beyond the strongest that give a candidate an alternative start (Extension::alternative_starts).
+inline constexpr std::size_t kAlternativePeaks = 2;
 
 // All candidates, in a fixed order: by operator (compliant_ground, gyroscopic, free_parameter, untie_parameter,
 // moment_stiffness, added_mass, resonator, sensor_dynamics, connection), then in the model's declaration order.

@@ -213,12 +213,15 @@ class Diagnoser {
   // The same with `model` already derived (`evaluator`), the fit on `threads` workers. Uses no GiNaC: safe on a
   // worker thread.
   // `held`: parameters with role estimate that this fit keeps at their values (the others are estimated).
+  // `further_starts_at`: starts of the fit's search in addition to its `starts` (FitOptions::further_starts_at).
   ModelState assess(const mbgen::Model& evaluator, const ir::ModelIr& model, const std::string& text,
                     const std::map<std::string, double>& start, int starts, int threads,
                     const std::map<std::string, double>& also_start_at = {},
-                    const std::vector<std::string>& held = {}) const {
+                    const std::vector<std::string>& held = {},
+                    const std::vector<std::map<std::string, double>>& further_starts_at = {}) const {
     FitOptions fo = options_.fit;
     fo.also_start_at = also_start_at;
+    fo.further_starts_at = further_starts_at;
     if (!held.empty())
       for (const ParameterInfo& p : evaluator.info().parameters)
         if (p.role == ParameterRole::Estimate && std::find(held.begin(), held.end(), p.name) == held.end())
@@ -230,7 +233,7 @@ class Diagnoser {
       const int i = info.parameter_index(name);
       if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
     }
-    fo.starts = starts;
+    fo.starts = starts + static_cast<int>(further_starts_at.size());
     fo.threads = threads;
     // Two fits may run at once (candidates on worker threads): their progress reaches the caller one at a time.
     if (options_.fit.progress)
@@ -755,7 +758,7 @@ class Diagnoser {
   // screening fit, and they cannot qualify. Fills `screen_delta_bic` of every candidate in `fitted`.
   //  - On FRFs (the measured ones, or the records' H1 estimates: no simulation), two local fits to convergence,
   //    from the current estimate and from the priors (the centres of the full fit's two searches, without its
-  //    random starts, validation or residual analysis).
+  //    random starts, validation or residual analysis), and one from each of the candidate's alternative starts.
   //  - With time records also a few Gauss-Newton steps on the records from the current estimate: an effect the
   //    records show but their H1 estimates' coarse lines blur (the gyroscopic split of the spindle's modes at
   //    300 rev/s, a few Hz under 8 Hz lines: screening delta BIC +17.9 on the H1 estimates, -20681 fitted on the
@@ -767,7 +770,8 @@ class Diagnoser {
     if (options_.full_fits <= 0 || static_cast<int>(fitted.size()) <= options_.full_fits) return;
     const std::unique_ptr<mbgen::Model> base_model = derive_model(base.model);
     enum class Kind { Spectral, Records };
-    const auto screening_fit = [&](const mbgen::Model& evaluator, bool is_base, Kind kind) {
+    const auto screening_fit = [&](const mbgen::Model& evaluator, const Extension* ext, Kind kind) {
+      const bool is_base = ext == nullptr;
       FitOptions fo = options_.fit;
       fo.values.clear();
       const ModelInfo& info = evaluator.info();
@@ -776,6 +780,7 @@ class Diagnoser {
         if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
       }
       fo.also_start_at.clear();
+      fo.further_starts_at.clear();
       fo.threads = 1;
       fo.progress = nullptr;
       if (kind == Kind::Records) {
@@ -787,8 +792,11 @@ class Diagnoser {
       // Converged local fits: cut to 40 or 100 iterations, or stopped after the log-ratio search, the compliant
       // base of the spindle's base-mode data ranked below the six kept (screening delta BIC +359 against -15103).
       fo.starts = is_base ? 1 : 2;
-      if (!is_base)
+      if (!is_base) {
         for (const ParameterInfo& p : info.parameters) fo.also_start_at[p.name] = p.value;
+        fo.further_starts_at = ext->alternative_starts;
+        fo.starts += static_cast<int>(fo.further_starts_at.size());
+      }
       fo.frf_weighting.averages = std::max(fo.frf_weighting.averages, screen_averages_);
       return fit(evaluator, screen_data_, fo);
     };
@@ -796,7 +804,7 @@ class Diagnoser {
                                                  : std::vector<Kind>{Kind::Spectral};
     std::vector<double> base_bic;
     for (Kind kind : kinds)
-      base_bic.push_back(kind == Kind::Spectral && !has_records_ ? base.fit.bic : screening_fit(*base_model, true, kind).bic);
+      base_bic.push_back(kind == Kind::Spectral && !has_records_ ? base.fit.bic : screening_fit(*base_model, nullptr, kind).bic);
     const std::size_t n = extensions.size();
     std::vector<std::vector<double>> bic(kinds.size(), std::vector<double>(n, std::numeric_limits<double>::infinity()));
     const int workers = std::max(1, std::min(options_.fit.threads, static_cast<int>(fitted.size())));
@@ -806,7 +814,7 @@ class Diagnoser {
           const std::size_t k = fitted[i];
           for (std::size_t t = 0; t < kinds.size(); ++t) {
             try {
-              FitResult r = screening_fit(*evaluators[k], false, kinds[t]);
+              FitResult r = screening_fit(*evaluators[k], &extensions[k], kinds[t]);
               bic[t][k] = r.bic;
               if (t > 0) continue;
               ModelState& s = states[k];
@@ -934,16 +942,19 @@ class Diagnoser {
   // wins. With time records one search starts from both (also_start_at): each search ends in simulation-based
   // refinements of its best start and of its centre, which cost most of a candidate's time, so the priors get a
   // start of the search rather than a search of their own. `held`: new parameters kept at their start values.
+  // Each search also starts from the candidate's alternative starts (its new mode at the next peaks).
   ModelState search(const Extension& ext, const mbgen::Model& evaluator, const ModelState& base, int threads,
                     const std::vector<std::string>& held) const {
     if (has_records_) {
       std::map<std::string, double> priors;
       for (const ParameterInfo& p : evaluator.info().parameters) priors[p.name] = p.value;
       return assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts + 1, threads, priors,
-                    held);
+                    held, ext.alternative_starts);
     }
-    ModelState s = assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, threads, {}, held);
-    ModelState from_priors = assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, threads, {}, held);
+    ModelState s = assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, threads, {}, held,
+                          ext.alternative_starts);
+    ModelState from_priors = assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, threads, {}, held,
+                                    ext.alternative_starts);
     if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);
     return s;
   }

@@ -52,7 +52,8 @@ struct FitOptions {
   // Parameter values overriding the model's defaults (the command line's --set); they are also the priors.
   std::map<std::string, double> values;
 
-  // Global search: `starts` local fits (start 0 at the prior, the others (but see also_start_at) drawn log-uniformly within a factor
+  // Global search: `starts` local fits (start 0 at the prior, the others (but see also_start_at and
+  // further_starts_at) drawn log-uniformly within a factor
   // `spread` of the prior, clipped to the bounds) from a std::mt19937_64 seeded with `seed`; the best final cost
   // wins, ties to the lower start index, so the result does not depend on thread timing.
   int starts = 16;
@@ -60,6 +61,10 @@ struct FitOptions {
   // the random ones, when `starts` > 1. E.g. a diagnosis candidate searched around the current estimate and
   // also from the model's defaults, in one search.
   std::map<std::string, double> also_start_at;
+  // More starts of one's choosing, in this order after also_start_at and before the random ones, each while
+  // `starts` allows (named values; the others at the prior). E.g. a diagnosis candidate's new mode started at
+  // each of the data's unexplained peaks, not only at the strongest.
+  std::vector<std::map<std::string, double>> further_starts_at;
   double spread = 3.0;
   unsigned long long seed = 1;
   // The search ends early once `agree` of its starts, counted in index order, have ended within a relative 1e-6 of

@@ -152,20 +152,24 @@ double screen_at_prior(const FitContext& ctx, FitState& state) {
   return r0.squaredNorm();
 }
 
-// Starting points in internal coordinates: the prior, FitOptions::also_start_at, then uniform within
-// +-log(spread) of the prior (fit_setup.hpp).
+// Starting points in internal coordinates: the prior, FitOptions::also_start_at and further_starts_at, then
+// uniform within +-log(spread) of the prior (fit_setup.hpp).
 std::vector<Eigen::VectorXd> starting_points(const FitContext& ctx, const std::vector<int>& free) {
   const FitOptions& options = ctx.options;
-  Eigen::VectorXd chosen_start = ctx.setup.prior;
-  for (const auto& [name, value] : options.also_start_at) {
-    const int idx = ctx.info.parameter_index(name);
-    if (idx < 0) throw FitError("fit: a start value for " + name + ": the model has no parameter " + name);
-    chosen_start[idx] = value;
-  }
-  return estimation::start_points(
-      ctx.estimator.internal(free, ctx.setup.prior), free, ctx.setup.transforms, options,
-      options.also_start_at.empty() ? std::nullopt
-                                    : std::optional<Eigen::VectorXd>(ctx.estimator.internal(free, chosen_start)));
+  const auto chosen_start = [&](const std::map<std::string, double>& named) {
+    Eigen::VectorXd values = ctx.setup.prior;
+    for (const auto& [name, value] : named) {
+      const int idx = ctx.info.parameter_index(name);
+      if (idx < 0) throw FitError("fit: a start value for " + name + ": the model has no parameter " + name);
+      values[idx] = value;
+    }
+    return ctx.estimator.internal(free, values);
+  };
+  std::vector<Eigen::VectorXd> chosen;
+  if (!options.also_start_at.empty()) chosen.push_back(chosen_start(options.also_start_at));
+  for (const auto& named : options.further_starts_at) chosen.push_back(chosen_start(named));
+  return estimation::start_points(ctx.estimator.internal(free, ctx.setup.prior), free, ctx.setup.transforms, options,
+                                  chosen);
 }
 
 // Where the multi-start search runs: on the data themselves, or, for time records, on FRFs estimated from them

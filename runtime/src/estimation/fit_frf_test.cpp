@@ -123,6 +123,41 @@ TEST_CASE("also_start_at is start 1 of the search", "[fit][frf][global]") {
   CHECK_THROWS_AS(fit(model, {DataSet(data)}, o), FitError);
 }
 
+TEST_CASE("further_starts_at follow also_start_at, before the random starts", "[fit][frf][global]") {
+  const test::Mdof2Values truth;
+  std::mt19937 rng(8);
+  const FrfData data = test::mdof2_frf_data(truth, frequencies(), 0.01, rng);
+  FitOptions o;
+  o.max_iterations = 0;  // each start's cost is the cost where it starts
+  o.agree = 0;           // every start runs (two of them start at the truth)
+  o.starts = 1;
+  test::Mdof2Values half_k = truth;
+  half_k.k11 *= 0.5;
+  const double cost_at_truth = fit(test::mdof2_model(truth), {DataSet(data)}, o).start_costs.at(0);
+  const double cost_at_half_k = fit(test::mdof2_model(half_k), {DataSet(data)}, o).start_costs.at(0);
+  test::Mdof2Values prior = truth;
+  prior.k11 *= 2;
+  const test::LinearModel model = test::mdof2_model(prior);
+  o.starts = 5;
+  const FitResult random = fit(model, {DataSet(data)}, o);
+  o.also_start_at = {{"k11", truth.k11}};
+  o.further_starts_at = {{{"k11", half_k.k11}}, {{"k11", truth.k11}}};
+  const FitResult r = fit(model, {DataSet(data)}, o);
+  REQUIRE(r.start_costs.size() == 5);
+  CHECK(r.start_costs[0] == random.start_costs[0]);
+  CHECK(r.start_costs[1] == Approx(cost_at_truth).epsilon(1e-12));
+  CHECK(r.start_costs[2] == Approx(cost_at_half_k).epsilon(1e-12));
+  CHECK(r.start_costs[3] == Approx(cost_at_truth).epsilon(1e-12));
+  CHECK(r.start_costs[4] == random.start_costs[1]);  // the random starts follow, drawn as before
+  o.also_start_at.clear();  // without it, the further starts come first
+  const FitResult without = fit(model, {DataSet(data)}, o);
+  CHECK(without.start_costs[1] == Approx(cost_at_half_k).epsilon(1e-12));
+  o.starts = 2;  // `starts` bounds them
+  CHECK(fit(model, {DataSet(data)}, o).start_costs.size() == 2);
+  o.further_starts_at = {{{"no_such_parameter", 1.0}}};
+  CHECK_THROWS_AS(fit(model, {DataSet(data)}, o), FitError);
+}
+
 TEST_CASE("a parameter the data pull beyond its bound is reported at the bound, without a std", "[fit][frf][bounds]") {
   // The truth's k11 lies above the bound: the optimum presses k11 against it. (The spindle demo reported such a
   // mount stiffness as 1e10 +- 3e10, "identifiable".)

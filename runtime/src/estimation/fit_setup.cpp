@@ -44,15 +44,15 @@ Eigen::VectorXd internal_values(const std::vector<int>& free, const std::vector<
 
 std::vector<Eigen::VectorXd> start_points(const Eigen::VectorXd& theta0, const std::vector<int>& free,
                                           const std::vector<ParameterTransform>& transforms, const FitOptions& options,
-                                          const std::optional<Eigen::VectorXd>& second) {
+                                          const std::vector<Eigen::VectorXd>& chosen) {
   const int starts = std::max(1, options.starts);
   std::vector<Eigen::VectorXd> out;
   StartSampler sampler(options.seed);
   const double half_width = std::log(std::max(options.spread, 1.0));
   for (int s = 0; s < starts; ++s) {
     Eigen::VectorXd theta = theta0;
-    if (s == 1 && second) {
-      out.push_back(*second);
+    if (s >= 1 && static_cast<std::size_t>(s) <= chosen.size()) {
+      out.push_back(chosen[static_cast<std::size_t>(s - 1)]);
       continue;
     }
     if (s > 0)

@@ -4,8 +4,8 @@
 // the data (value_checks.hpp), the candidate parameters (FitOptions::estimate, else those of role Estimate) and
 // their bounded transforms (parameterization.hpp). Throws FitError.
 //
-// start_points: the multi-start's starting points in internal coordinates: theta0 first, then (or after `second`,
-// when given) points drawn from StartSampler(options.seed) uniformly within +-log(spread) of theta0 (multiplicatively
+// start_points: the multi-start's starting points in internal coordinates: theta0 first, then `chosen` (starts of
+// the caller's choosing), then points drawn from StartSampler(options.seed) uniformly within +-log(spread) of theta0 (multiplicatively
 // for an unbounded parameter), so that a seed gives the same starts in every estimator.
 #pragma once
 
@@ -14,7 +14,6 @@
 
 #include <Eigen/Core>
 
-#include <optional>
 #include <vector>
 
 namespace mbgen::estimation {
@@ -35,6 +34,6 @@ Eigen::VectorXd internal_values(const std::vector<int>& free, const std::vector<
 
 std::vector<Eigen::VectorXd> start_points(const Eigen::VectorXd& theta0, const std::vector<int>& free,
                                           const std::vector<ParameterTransform>& transforms, const FitOptions& options,
-                                          const std::optional<Eigen::VectorXd>& second = std::nullopt);
+                                          const std::vector<Eigen::VectorXd>& chosen = {});
 
 }  // namespace mbgen::estimation
