@@ -63,6 +63,7 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
       break;
     }
     bool accepted = false;
+    double growth = options.damping == LmDamping::Nielsen ? 2 : 10;  // lambda's factor after a rejected trial
     while (lambda < 1e16) {
       Eigen::MatrixXd A(k + k, k);
       A.topRows(k) = R;
@@ -78,6 +79,10 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
       const double cost_new = ok ? r_new.squaredNorm() : std::numeric_limits<double>::infinity();
       if (ok && cost_new < res.cost) {
         const double decrease = (res.cost - cost_new) / res.cost;
+        // Gain ratio: the actual decrease over the one the linearised model ||r + J dx||^2 predicts, which is
+        // ||Q^T r||^2 - ||Q^T r + R dx||^2 (the part of r outside J's range does not change).
+        const double predicted = qtr.squaredNorm() - (qtr + R * dx).squaredNorm();
+        const double rho = predicted > 0 ? (res.cost - cost_new) / predicted : 0;
         const double step = (dx.array() * Ds.array()).matrix().norm() / Ds.norm();
         res.x = x_new;
         r.swap(r_new);
@@ -87,7 +92,10 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
         res.history.push_back(cost_new);
         ++res.iterations;
         if (on_iteration) on_iteration(res.iterations, cost_new);
-        lambda = std::max(lambda / 3, 1e-15);
+        const double shrink = options.damping == LmDamping::Nielsen
+                                  ? std::max(1.0 / 3, 1 - std::pow(2 * std::min(rho, 1.0) - 1, 3))
+                                  : 1.0 / 3;
+        lambda = std::max(lambda * shrink, 1e-15);
         accepted = true;
         if (decrease < options.cost_tolerance) {
           res.converged = true;
@@ -98,7 +106,8 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
         }
         break;
       }
-      lambda *= 10;
+      lambda *= growth;
+      if (options.damping == LmDamping::Nielsen) growth *= 2;
     }
     if (!accepted) {
       res.converged = true;  // no descent direction left at machine precision: a (local) minimum
