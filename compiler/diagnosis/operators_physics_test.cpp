@@ -146,6 +146,24 @@ TEST_CASE("compliant_ground:base on feet: a six-coordinate block below the mount
   const ir::Parameter* rx = x.model.find_parameter("r_basex");
   REQUIRE(rx);
   CHECK(rx->role == ir::Role::Known);
+  // Its start from the simple variant's estimate: the same mass; the simple base's support shared by the four feet
+  // along x (the axis the force turns the base about, so its translation there is the simple base's), ten times
+  // stiffer across as the operator's own start has it; each foot a quarter of the damping.
+  const Extension::VariantStart& from = x.start_from_variant;
+  CHECK(from.variant == "simple");
+  const auto simple = std::find_if(xs.begin(), xs.end(), [](const Extension& e) { return e.variant == "simple"; });
+  REQUIRE(simple != xs.end());
+  std::vector<std::string> simple_new;
+  for (const NewParameter& np : simple->new_parameters) simple_new.push_back(np.name);
+  REQUIRE(simple_new == std::vector<std::string>{"m_base", "k_base", "c_base"});
+  using Source = std::pair<std::string, double>;
+  CHECK(from.from == std::map<std::string, Source>{{"m_base", {"m_base", 1.0}},
+                                                   {"k_basex", {"k_base", 0.25}},
+                                                   {"k_basey", {"k_base", 2.5}},
+                                                   {"k_basez", {"k_base", 2.5}},
+                                                   {"c_basex", {"c_base", 0.25}},
+                                                   {"c_basey", {"c_base", 0.25}},
+                                                   {"c_basez", {"c_base", 0.25}}});
 }
 
 TEST_CASE("added_mass changes the mass by exactly ma and the moments about the origin as a point mass does",

@@ -751,6 +751,51 @@ class Diagnoser {
           for (std::size_t k = fitted[i] + 1; k < end; ++k) settle(k);
           say_done_up_to(end);
         });
+    for (std::size_t k : fitted)
+      if (refit_from_sibling(extensions, evaluators, base, round, k, outcomes, states))
+        for (std::size_t t = k + 1; t < n; ++t)
+          if (twin[t] == static_cast<int>(k)) settle(t);
+  }
+
+  // Extension::start_from_variant: candidate k and the sibling variant it names both fully fitted; k is searched
+  // once more around where the sibling ended (two starts; with records searched on their H1 estimates and refined
+  // on the records, as every search; the parameters it holds held as before), and takes that fit if its cost is
+  // lower. True when it did.
+  bool refit_from_sibling(const std::vector<Extension>& extensions,
+                          const std::vector<std::unique_ptr<mbgen::Model>>& evaluators, const ModelState& base,
+                          int round, std::size_t k, std::vector<CandidateOutcome>& outcomes,
+                          std::vector<ModelState>& states) const {
+    const Extension& ext = extensions[k];
+    const Extension::VariantStart& from = ext.start_from_variant;
+    if (from.variant.empty() || !outcomes[k].fully_fitted || !outcomes[k].error.empty()) return false;
+    std::size_t j = extensions.size();
+    for (std::size_t i = 0; i < extensions.size(); ++i)
+      if (i != k && extensions[i].id == ext.id && extensions[i].variant == from.variant) j = i;
+    if (j == extensions.size() || !outcomes[j].fully_fitted || !outcomes[j].error.empty()) return false;
+    std::map<std::string, double> start;
+    const ModelInfo& info = evaluators[k]->info();
+    for (const auto& [name, v] : states[j].values)
+      if (info.parameter_index(name) >= 0) start[name] = v;
+    for (const auto& [mine, theirs] : from.from) {
+      const auto it = states[j].values.find(theirs.first);
+      if (it != states[j].values.end()) start[mine] = theirs.second * it->second;
+    }
+    ModelState state;
+    try {
+      state = assess(*evaluators[k], ext.model, ext.mdl_text, start, 2, options_.fit.threads, {}, states[k].held);
+    } catch (const std::exception&) {
+      return false;  // not fitted from there: the candidate's own fit stands
+    }
+    if (!(state.fit.cost < states[k].fit.cost)) return false;
+    CandidateOutcome o = judge(ext, state, base, round);
+    o.screen_delta_bic = outcomes[k].screen_delta_bic;
+    o.screen_records_delta_bic = outcomes[k].screen_records_delta_bic;
+    say(label(ext) + ": started from the " + from.variant + " variant's estimate it fits better: " +
+        format("delta BIC %.1f, validation %.4g", o.delta_bic, o.validation_nrmse) + (o.qualifies ? "  (qualifies)" : "") +
+        doubts_text(o));
+    outcomes[k] = std::move(o);
+    states[k] = std::move(state);
+    return true;
   }
 
   // Screening (DiagnoseOptions::full_fits): cheaper fits of every candidate, ranked by BIC against the current
@@ -945,16 +990,17 @@ class Diagnoser {
   // Each search also starts from the candidate's alternative starts (its new mode at the next peaks).
   ModelState search(const Extension& ext, const mbgen::Model& evaluator, const ModelState& base, int threads,
                     const std::vector<std::string>& held) const {
+    const std::vector<std::map<std::string, double>>& further = ext.alternative_starts;
     if (has_records_) {
       std::map<std::string, double> priors;
       for (const ParameterInfo& p : evaluator.info().parameters) priors[p.name] = p.value;
       return assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts + 1, threads, priors,
-                    held, ext.alternative_starts);
+                    held, further);
     }
-    ModelState s = assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, threads, {}, held,
-                          ext.alternative_starts);
-    ModelState from_priors = assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, threads, {}, held,
-                                    ext.alternative_starts);
+    ModelState s =
+        assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, threads, {}, held, further);
+    ModelState from_priors =
+        assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, threads, {}, held, further);
     if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);
     return s;
   }

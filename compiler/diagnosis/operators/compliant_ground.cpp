@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "diagnosis/expr_build.hpp"
 #include "frontend/model_writer.hpp"
@@ -225,7 +226,9 @@ ir::Vec3 offset_point(const std::array<double, 3>& p, const std::array<double, 3
   return out;
 }
 
-Extension on_feet(const OperatorInput& in, const ir::Ground& ground, const Attachments& at) {
+// `simple`: the simple variant of the same ground, whose estimate gives the on-feet base a start of its own
+// (Extension::start_from_variant): the same mass, its support stiffness and damping shared among the feet.
+Extension on_feet(const OperatorInput& in, const ir::Ground& ground, const Attachments& at, const Extension& simple) {
   Draft d(in, "compliant_ground", ground.name);
   d.set_variant("on feet");
   const Start st = start_values(in);
@@ -266,6 +269,10 @@ Extension on_feet(const OperatorInput& in, const ir::Ground& ground, const Attac
                              "radius of gyration of " + g + " about " + axis + " (its inertia is m r^2)",
                              turned ? ir::Role::Estimate : ir::Role::Known);
   }
+  // The simple variant's new parameters, in the order it declares them: mass, stiffness, damping.
+  const std::vector<NewParameter>& sp = simple.new_parameters;
+  if (sp.size() != 3) throw std::logic_error("compliant_ground: the simple variant has not 3 new parameters");
+  Extension::VariantStart from_simple{simple.variant, {{m_g, {sp[0].name, 1.0}}}};
   std::vector<ir::Expr> k, c;
   std::string k_names, c_names;
   for (std::size_t a = 0; a < 3; ++a) {
@@ -279,6 +286,8 @@ Extension on_feet(const OperatorInput& in, const ir::Ground& ground, const Attac
     const double c_start = light_damping(k_axis, st.mass / feet);
     const std::string cn = d.add_parameter("c_" + g + axis, c_start, "N s/m", 0.0, 100 * c_start,
                                            std::string("damping of each foot of ") + g + " along " + axis);
+    from_simple.from[kn] = {sp[1].name, (excited[a] ? 1 : 10) / feet};
+    from_simple.from[cn] = {sp[2].name, 1 / feet};
     k.push_back(sym(kn));
     c.push_back(sym(cn));
     k_names += (k_names.empty() ? "" : ", ") + kn;
@@ -301,6 +310,7 @@ Extension on_feet(const OperatorInput& in, const ir::Ground& ground, const Attac
                                         "meet it)"
                                       : "";
   const std::string feet_where = has_depth ? "2*" + d_g + " below those points" : "where the model's elements meet it";
+  d.set_start_from_variant(std::move(from_simple));
   return d.finish("ground " + g + " is a rigid body of mass " + m_g + where + " standing on " +
                   std::to_string(at.distinct.size()) + " feet " + feet_where + ", each with stiffnesses " + k_names +
                   " and dampings " + c_names + " along x, y, z: it translates and rocks");
@@ -318,7 +328,7 @@ std::vector<Extension> compliant_ground(const OperatorInput& in) {
     const Attachments at = attachments_of(in, g.name);
     const bool feet = at.distinct.size() >= 3 && spans_a_plane(at.distinct);
     out.push_back(simple(in, g, at, feet));
-    if (feet) out.push_back(on_feet(in, g, at));
+    if (feet) out.push_back(on_feet(in, g, at, out.back()));
   }
   return out;
 }

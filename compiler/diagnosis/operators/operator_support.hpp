@@ -43,6 +43,7 @@ class Draft {
   void add_filter(ir::Filter f);
   void free_parameter(const std::string& name) { ext_.freed_parameters.push_back(name); }
   void set_variant(const std::string& variant) { ext_.variant = variant; }
+  void set_start_from_variant(Extension::VariantStart start) { ext_.start_from_variant = std::move(start); }
 
   Extension finish(const std::string& description);
 
