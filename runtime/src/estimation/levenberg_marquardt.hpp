@@ -25,7 +25,8 @@ using ResidualFunction = std::function<bool(const Eigen::VectorXd& x, Eigen::Vec
 //  - Nielsen (H. B. Nielsen, "Damping parameter in Marquardt's method", IMM-REP-1999-05): after an accepted step
 //    lambda is scaled by max(1/3, 1 - (2 rho - 1)^3), rho the gain ratio (actual over predicted decrease), so a
 //    step the linear model predicted well shrinks it by 3 and a poor one keeps it; after a rejected trial it grows
-//    by 2, 4, 8, ... . Fewer rejected trials in curved valleys (the spindle's fits: 30 % fewer trials).
+//    by 2, 4, 8, ... . Fewer rejected trials in curved valleys (the spindle's fits: 30 % fewer trials), but the
+//    fits then reach other local optima, some worse; no estimator uses it (bench/README.md, "The CI pass").
 enum class LmDamping { Classic, Nielsen };
 
 struct LmOptions {
