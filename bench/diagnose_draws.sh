@@ -28,6 +28,7 @@ cases=(
   "mdof2 sensor_delay frf sensor_dynamics:d2"
   "mdof2 nominal time -"
   "mdof2 compliant_ground time compliant_ground:wall"
+  "mdof2 outside_maxwell time not_extended"
   "mdof2 sensor_lowpass time sensor_dynamics:d2"
   "spindle nominal frf -"
   "spindle compliant_ground frf compliant_ground:base"

@@ -436,6 +436,18 @@ class Diagnoser {
       return reject("the extended model still shows the nominal model's strongest finding: it does not explain it; "
                     "not extending",
                     {strongest});
+    // Nor may it move a mode the nominal model had right (thresholds::kNewShiftDistance): a shift where the nominal
+    // model showed nothing is the extension's own error, a sign that it mimics an effect it does not model.
+    for (const Discrepancy& d : current.residual.discrepancies) {
+      if (d.kind != "frequency_shift") continue;
+      const bool nominal_there = std::any_of(
+          result.nominal.residual.discrepancies.begin(), result.nominal.residual.discrepancies.end(),
+          [&](const Discrepancy& n) { return n.f_hz > 0 && std::abs(n.f_hz - d.f_hz) <= thresholds::kNewShiftDistance * d.f_hz; });
+      if (!nominal_there)
+        return reject("the extended model moves a mode the nominal model had right (" + d.text +
+                          "): it mimics what it does not model; not extending",
+                      {});
+    }
     if (static_cast<double>(kept.size()) > options_.max_remaining_findings * static_cast<double>(before_findings))
       reject(format("the extended model still shows %.0f of the nominal model's %.0f findings: it does not explain "
                     "them; not extending",
