@@ -1,5 +1,4 @@
 #include <algorithm>
-#include <cmath>
 #include <set>
 #include <stdexcept>
 
@@ -49,20 +48,12 @@ void add_alternative_starts(std::vector<Extension>& out, const ir::ModelIr& loca
         return a.id == e.id && a.variant == e.variant && a.new_parameters.size() == e.new_parameters.size();
       });
       if (same == again.end()) continue;
-      std::map<std::string, double> start;
-      try {
-        start = new_parameter_starts(*same);
-      } catch (const std::invalid_argument&) {
-        continue;  // named otherwise: not the same candidate
-      }
-      bool elsewhere = false;
-      for (const auto& [name, v] : start) {
-        const auto it = own[i].find(name);
-        if (it == own[i].end()) { elsewhere = false; break; }
-        if (std::abs(v - it->second) > 1e-9 * std::max(std::abs(v), std::abs(it->second))) elsewhere = true;
-      }
-      if (elsewhere && std::find(e.alternative_starts.begin(), e.alternative_starts.end(), start) ==
-                           e.alternative_starts.end())
+      // The operators write start values as literals, so a start that does not depend on the peak is equal.
+      std::map<std::string, double> start = new_parameter_starts(*same);
+      const bool same_names = std::equal(start.begin(), start.end(), own[i].begin(), own[i].end(),
+                                         [](const auto& a, const auto& b) { return a.first == b.first; });
+      if (same_names && start != own[i] &&
+          std::find(e.alternative_starts.begin(), e.alternative_starts.end(), start) == e.alternative_starts.end())
         e.alternative_starts.push_back(std::move(start));
     }
   }

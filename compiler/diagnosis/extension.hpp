@@ -38,10 +38,10 @@ struct Extension {
   // peak may be one the fit accounts for by moving a mode; the one the model misses comes later). Empty for a
   // candidate whose start does not depend on the peaks.
   std::vector<std::map<std::string, double>> alternative_starts;
-  // A start from a sibling variant's estimate (empty `variant`: none). A richer variant whose fit ends above the
-  // cost of a simpler sibling, which it represents nearly, has not found its optimum: it is fitted again, also
-  // started where the sibling ended (the sibling's values of the parameters both have, and each new parameter
-  // named in `from` at factor times the sibling's parameter named there).
+  // A start from a sibling variant's estimate (empty `variant`: none). A richer variant that nearly contains a
+  // simpler sibling may miss its optimum where the sibling finds one: when both are fully fitted, it is searched
+  // again from where the sibling ended (the sibling's values of the parameters both have, and each new parameter
+  // named in `from` at factor times the sibling's parameter named there) and keeps the better fit.
   struct VariantStart {
     std::string variant;
     std::map<std::string, std::pair<std::string, double>> from;  // new parameter -> (sibling's parameter, factor)

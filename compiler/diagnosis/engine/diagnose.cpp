@@ -719,8 +719,7 @@ class Diagnoser {
             !o.error.empty()   ? "failed: " + o.error
             : !o.fully_fitted  ? format("screened out (screening delta BIC %.1f", o.screen_delta_bic) +
                                     (has_records_ ? format(", on the records %.1f)", o.screen_records_delta_bic) : ")")
-                               : format("delta BIC %.1f, validation %.4g", o.delta_bic, o.validation_nrmse) +
-                                    (o.qualifies ? "  (qualifies)" : "") + doubts_text(o);
+                               : fitted_text(o);
         say(format("[%.0f/%.0f] ", static_cast<double>(said + 1), static_cast<double>(n)) + label(ext) + ": " + result +
             as);
       }
@@ -802,9 +801,7 @@ class Diagnoser {
     CandidateOutcome o = judge(ext, state, base, round);
     o.screen_delta_bic = outcomes[k].screen_delta_bic;
     o.screen_records_delta_bic = outcomes[k].screen_records_delta_bic;
-    say(label(ext) + ": started from the " + from.variant + " variant's estimate it fits better: " +
-        format("delta BIC %.1f, validation %.4g", o.delta_bic, o.validation_nrmse) + (o.qualifies ? "  (qualifies)" : "") +
-        doubts_text(o));
+    say(label(ext) + ": started from the " + from.variant + " variant's estimate it fits better: " + fitted_text(o));
     outcomes[k] = std::move(o);
     states[k] = std::move(state);
     return true;
@@ -915,6 +912,12 @@ class Diagnoser {
                                 static_cast<double>(options_.full_fits)));
       outcomes[k] = std::move(o);
     }
+  }
+
+  // A fully fitted candidate's result on its progress line.
+  static std::string fitted_text(const CandidateOutcome& o) {
+    return format("delta BIC %.1f, validation %.4g", o.delta_bic, o.validation_nrmse) +
+           (o.qualifies ? "  (qualifies)" : "") + doubts_text(o);
   }
 
   // Why a fully fitted candidate is not plausible, for its progress line.
