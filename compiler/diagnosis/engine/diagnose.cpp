@@ -204,18 +204,26 @@ class Diagnoser {
     screen_data_ = split_.fit;
   }
 
+  // Where a fit runs: on `threads` workers of its own, or (`cores` set) on its caller's thread and the free cores of
+  // a budget it shares with the fits beside it (a round's candidates: the core that finished the short ones joins
+  // the starts of the long one).
+  struct Workers {
+    int threads = 1;
+    std::shared_ptr<ThreadBudget> cores;
+  };
+
   // Fits `model` (parameters started at `start` where named) and judges it.
   ModelState assess(const ir::ModelIr& model, const std::string& text, const std::map<std::string, double>& start,
                     int starts) const {
-    return assess(*derive_model(model), model, text, start, starts, options_.fit.threads);
+    return assess(*derive_model(model), model, text, start, starts, Workers{options_.fit.threads, nullptr});
   }
 
-  // The same with `model` already derived (`evaluator`), the fit on `threads` workers. Uses no GiNaC: safe on a
-  // worker thread.
+  // The same with `model` already derived (`evaluator`), the fit on `workers`. Uses no GiNaC: safe on a worker
+  // thread.
   // `held`: parameters with role estimate that this fit keeps at their values (the others are estimated).
   // `further_starts_at`: starts of the fit's search in addition to its `starts` (FitOptions::further_starts_at).
   ModelState assess(const mbgen::Model& evaluator, const ir::ModelIr& model, const std::string& text,
-                    const std::map<std::string, double>& start, int starts, int threads,
+                    const std::map<std::string, double>& start, int starts, const Workers& workers,
                     const std::map<std::string, double>& also_start_at = {},
                     const std::vector<std::string>& held = {},
                     const std::vector<std::map<std::string, double>>& further_starts_at = {}) const {
@@ -234,7 +242,8 @@ class Diagnoser {
       if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
     }
     fo.starts = starts + static_cast<int>(further_starts_at.size());
-    fo.threads = threads;
+    fo.threads = workers.threads;
+    fo.cores = workers.cores;
     // Two fits may run at once (candidates on worker threads): their progress reaches the caller one at a time.
     if (options_.fit.progress)
       fo.progress = [this](const FitProgress& p) {
@@ -706,9 +715,9 @@ class Diagnoser {
     screen(extensions, evaluators, base, round, fitted, outcomes, states, screened_out);
     fitted.erase(std::remove_if(fitted.begin(), fitted.end(), [&](std::size_t k) { return screened_out[k] != 0; }),
                  fitted.end());
-    // Candidates two at a time (each fit on one thread) keep both cores busy through a fit's serial stretches.
-    const int workers = std::max(1, std::min(options_.fit.threads, static_cast<int>(fitted.size())));
-    const int fit_threads = std::max(1, options_.fit.threads / workers);
+    // Candidates side by side (each fit on one thread) keep the cores busy through a fit's serial stretches; a core
+    // that finds no candidate left joins the starts of the fits still running.
+    const Workers workers{1, std::make_shared<ThreadBudget>(options_.fit.threads)};
     std::size_t said = 0;
     const auto say_done_up_to = [&](std::size_t end) {
       for (; said < end; ++said) {
@@ -749,11 +758,11 @@ class Diagnoser {
     for (std::size_t k = 0; k < first_fitted; ++k) settle(k);
     say_done_up_to(first_fitted);
     ordered_parallel(
-        fitted.size(), workers,
+        fitted.size(), *workers.cores,
         [&](std::size_t i) {
           const std::size_t k = fitted[i];
           const double screened = outcomes[k].screen_delta_bic, on_records = outcomes[k].screen_records_delta_bic;
-          outcomes[k] = score(extensions[k], *evaluators[k], base, round, fit_threads, states[k]);
+          outcomes[k] = score(extensions[k], *evaluators[k], base, round, workers, states[k]);
           outcomes[k].screen_delta_bic = screened;
           outcomes[k].screen_records_delta_bic = on_records;
         },
@@ -793,7 +802,8 @@ class Diagnoser {
     }
     ModelState state;
     try {
-      state = assess(*evaluators[k], ext.model, ext.mdl_text, start, 2, options_.fit.threads, {}, states[k].held);
+      state = assess(*evaluators[k], ext.model, ext.mdl_text, start, 2, Workers{options_.fit.threads, nullptr}, {},
+                     states[k].held);
     } catch (const std::exception&) {
       return false;  // not fitted from there: the candidate's own fit stands
     }
@@ -823,6 +833,7 @@ class Diagnoser {
               std::vector<char>& screened_out) const {
     if (options_.full_fits <= 0 || static_cast<int>(fitted.size()) <= options_.full_fits) return;
     const std::unique_ptr<mbgen::Model> base_model = derive_model(base.model);
+    const auto cores = std::make_shared<ThreadBudget>(options_.fit.threads);
     enum class Kind { Spectral, Records };
     const auto screening_fit = [&](const mbgen::Model& evaluator, const Extension* ext, Kind kind) {
       const bool is_base = ext == nullptr;
@@ -836,6 +847,7 @@ class Diagnoser {
       fo.also_start_at.clear();
       fo.further_starts_at.clear();
       fo.threads = 1;
+      fo.cores = cores;
       fo.progress = nullptr;
       if (kind == Kind::Records) {
         fo.starts = 1;
@@ -861,9 +873,8 @@ class Diagnoser {
       base_bic.push_back(kind == Kind::Spectral && !has_records_ ? base.fit.bic : screening_fit(*base_model, nullptr, kind).bic);
     const std::size_t n = extensions.size();
     std::vector<std::vector<double>> bic(kinds.size(), std::vector<double>(n, std::numeric_limits<double>::infinity()));
-    const int workers = std::max(1, std::min(options_.fit.threads, static_cast<int>(fitted.size())));
     ordered_parallel(
-        fitted.size(), workers,
+        fitted.size(), *cores,
         [&](std::size_t i) {
           const std::size_t k = fitted[i];
           for (std::size_t t = 0; t < kinds.size(); ++t) {
@@ -972,9 +983,9 @@ class Diagnoser {
   }
 
   CandidateOutcome score(const Extension& ext, const mbgen::Model& evaluator, const ModelState& base, int round,
-                         int threads, ModelState& state) const {
+                         const Workers& workers, ModelState& state) const {
     try {
-      state = search(ext, evaluator, base, threads, {});
+      state = search(ext, evaluator, base, workers, {});
       // New parameters the data cannot determine are held at their start values and the rest fitted again: on a
       // base on feet whose rocking about one axis the x-direction data barely see, that rocking's inertia ran to a
       // bound and took the base's depth and two foot constants with it ("not identifiable"), though the fit was
@@ -986,7 +997,7 @@ class Diagnoser {
         if (more.empty() || held.size() + more.size() >= ext.new_parameters.size()) break;
         held.insert(held.end(), more.begin(), more.end());
         try {
-          state = search(ext, evaluator, base, threads, held);
+          state = search(ext, evaluator, base, workers, held);
         } catch (const std::exception&) {
           break;  // the reduced model could not be fitted or judged: the last fit stands
         }
@@ -1003,19 +1014,19 @@ class Diagnoser {
   // refinements of its best start and of its centre, which cost most of a candidate's time, so the priors get a
   // start of the search rather than a search of their own. `held`: new parameters kept at their start values.
   // Each search also starts from the candidate's alternative starts (its new mode at the next peaks).
-  ModelState search(const Extension& ext, const mbgen::Model& evaluator, const ModelState& base, int threads,
-                    const std::vector<std::string>& held) const {
+  ModelState search(const Extension& ext, const mbgen::Model& evaluator, const ModelState& base,
+                    const Workers& workers, const std::vector<std::string>& held) const {
     const std::vector<std::map<std::string, double>>& further = ext.alternative_starts;
     if (has_records_) {
       std::map<std::string, double> priors;
       for (const ParameterInfo& p : evaluator.info().parameters) priors[p.name] = p.value;
-      return assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts + 1, threads, priors,
+      return assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts + 1, workers, priors,
                     held, further);
     }
     ModelState s =
-        assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, threads, {}, held, further);
+        assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, workers, {}, held, further);
     ModelState from_priors =
-        assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, threads, {}, held, further);
+        assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, workers, {}, held, further);
     if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);
     return s;
   }

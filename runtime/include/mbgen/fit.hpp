@@ -19,12 +19,14 @@
 #include "mbgen/frf_sigma.hpp"  // FrfWeighting: the FRF residuals' standard deviation
 #include "mbgen/modal.hpp"
 #include "mbgen/model.hpp"
+#include "mbgen/parallel.hpp"
 #include "mbgen/time_record.hpp"
 
 #include <Eigen/Core>
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -76,6 +78,9 @@ struct FitOptions {
   // 0: every start runs.
   int agree = 3;
   int threads = 2;
+  // When set, the starts run on the caller's thread and on whatever cores of this budget are free, shared with
+  // other fits (`threads` is then not used): a diagnosis fits its candidates side by side on one budget.
+  std::shared_ptr<ThreadBudget> cores;
   // FRF data: the starts are first fitted on log-ratio residuals log(H_model / H_measured), whose cost stays
   // informative when a lightly damped model peak misses the measured one; the best is then refined on the
   // statistically weighted complex residuals.

@@ -9,16 +9,37 @@
 #include <vector>
 
 namespace mbgen {
+namespace {
 
-void ordered_parallel(std::size_t count, int threads, const std::function<void(std::size_t)>& task,
-                      const std::function<void(std::size_t)>& done) {
+// The loop of both ordered_parallel forms: `threads` workers from the start, and with `cores` one more whenever a
+// core is free as a worker claims a task and another task is left for it.
+void run_ordered(std::size_t count, int threads, ThreadBudget* cores, const std::function<void(std::size_t)>& task,
+                 const std::function<void(std::size_t)>& done) {
   std::atomic<std::size_t> next{0};
   std::mutex mutex;  // guards finished, errors, reported and the done() calls
   std::vector<char> finished(count, 0);
   std::vector<std::exception_ptr> errors(count);
   std::size_t reported = 0;
-  auto work = [&] {
-    for (std::size_t i = next++; i < count; i = next++) {
+  std::mutex pool_mutex;  // guards pool: workers may start workers
+  std::vector<std::thread> pool;
+  std::function<void()> work;
+  const auto start_worker = [&](bool borrowed) {
+    std::lock_guard<std::mutex> lock(pool_mutex);
+    try {
+      pool.emplace_back([&work, cores, borrowed] {
+        work();
+        if (borrowed) cores->give_back();
+      });
+    } catch (const std::system_error&) {
+      if (borrowed) cores->give_back();  // no more threads to be had: the workers there are share the tasks
+    }
+  };
+  work = [&] {
+    for (;;) {
+      // A task for this worker and at least one more left: a free core takes it.
+      if (cores && next.load() + 1 < count && cores->try_take()) start_worker(true);
+      const std::size_t i = next++;
+      if (i >= count) return;
       std::exception_ptr error;
       try {
         task(i);
@@ -41,18 +62,40 @@ void ordered_parallel(std::size_t count, int threads, const std::function<void(s
     }
   };
   const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count);
-  std::vector<std::thread> pool;
-  for (std::size_t w = 1; w < workers; ++w) {
-    try {
-      pool.emplace_back(work);
-    } catch (const std::system_error&) {
-      break;  // no more threads to be had: the workers there are share the tasks
-    }
-  }
+  for (std::size_t w = 1; w < workers; ++w) start_worker(false);
   work();
-  for (std::thread& t : pool) t.join();
+  // Waiting for workers, the caller lends its core (to the workers' nested loops, say).
+  bool lent = false;
+  if (cores) {
+    std::lock_guard<std::mutex> lock(pool_mutex);
+    lent = !pool.empty();
+  }
+  if (lent) cores->give_back();
+  // Workers may have started workers: join until the pool stops growing (a worker adds to it before it ends).
+  for (std::size_t j = 0;; ++j) {
+    std::thread t;
+    {
+      std::lock_guard<std::mutex> lock(pool_mutex);
+      if (j >= pool.size()) break;
+      t = std::move(pool[j]);
+    }
+    t.join();
+  }
+  if (lent) cores->take_back();
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
+}
+
+}  // namespace
+
+void ordered_parallel(std::size_t count, int threads, const std::function<void(std::size_t)>& task,
+                      const std::function<void(std::size_t)>& done) {
+  run_ordered(count, threads, nullptr, task, done);
+}
+
+void ordered_parallel(std::size_t count, ThreadBudget& cores, const std::function<void(std::size_t)>& task,
+                      const std::function<void(std::size_t)>& done) {
+  run_ordered(count, 1, &cores, task, done);
 }
 
 void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& task) {

@@ -3,7 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <algorithm>
 #include <chrono>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -49,6 +52,87 @@ TEST_CASE("ordered_parallel: no tasks, one worker") {
   ordered_parallel(0, 2, [&](std::size_t) { ++calls; }, [&](std::size_t) { ++calls; });
   ordered_parallel(3, 1, [&](std::size_t) { ++calls; }, [&](std::size_t) { ++calls; });
   CHECK(calls == 6);
+}
+
+TEST_CASE("ordered_parallel on a budget: every task once, in index order, and every core given back") {
+  ThreadBudget cores(3);
+  const std::size_t n = 12;
+  std::vector<std::atomic<int>> runs(n);
+  std::vector<std::size_t> reported;
+  ordered_parallel(
+      n, cores,
+      [&](std::size_t i) {
+        if (i % 3 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(3));
+        ++runs[i];
+      },
+      [&](std::size_t i) { reported.push_back(i); });
+  for (std::size_t i = 0; i < n; ++i) CHECK(runs[i] == 1);
+  CHECK(reported.size() == n);
+  CHECK(std::is_sorted(reported.begin(), reported.end()));
+  CHECK(cores.free_cores() == 2);
+}
+
+TEST_CASE("ordered_parallel on a budget: a core that finds no task left joins a nested loop, never more than the "
+          "budget's cores at once") {
+  ThreadBudget cores(2);
+  std::mutex mutex;
+  std::set<std::thread::id> inner_threads;
+  std::atomic<int> busy{0}, most_busy{0};
+  const auto enter = [&] {
+    const int now = ++busy;
+    int seen = most_busy.load();
+    while (now > seen && !most_busy.compare_exchange_weak(seen, now)) {
+    }
+  };
+  // Outer task 0 is short; outer task 1 runs six inner tasks one after the other unless a core joins it.
+  ordered_parallel(
+      2, cores,
+      [&](std::size_t outer) {
+        if (outer == 0) return;
+        ordered_parallel(
+            6, cores,
+            [&](std::size_t) {
+              enter();
+              {
+                std::lock_guard<std::mutex> lock(mutex);
+                inner_threads.insert(std::this_thread::get_id());
+              }
+              std::this_thread::sleep_for(std::chrono::milliseconds(20));
+              --busy;
+            },
+            [](std::size_t) {});
+      },
+      [](std::size_t) {});
+  CHECK(inner_threads.size() >= 2);
+  CHECK(most_busy.load() <= 2);
+  CHECK(cores.free_cores() == 1);
+}
+
+TEST_CASE("ordered_parallel on a budget: the lowest failing index's exception, cores given back") {
+  ThreadBudget cores(2);
+  std::vector<std::size_t> reported;
+  const auto run = [&] {
+    ordered_parallel(
+        6, cores,
+        [](std::size_t i) {
+          if (i == 4) throw std::runtime_error("task 4");
+          if (i == 2) throw std::runtime_error("task 2");
+        },
+        [&](std::size_t i) { reported.push_back(i); });
+  };
+  CHECK_THROWS_WITH(run(), "task 2");
+  CHECK(reported == std::vector<std::size_t>{0, 1});
+  CHECK(cores.free_cores() == 1);
+}
+
+TEST_CASE("ThreadBudget: a single core has none to lend; a loop on it runs on its caller alone") {
+  ThreadBudget cores(1);
+  CHECK_FALSE(cores.try_take());
+  std::set<std::thread::id> threads;
+  ordered_parallel(
+      4, cores, [&](std::size_t) { threads.insert(std::this_thread::get_id()); }, [](std::size_t) {});
+  CHECK(threads == std::set<std::thread::id>{std::this_thread::get_id()});
+  CHECK(cores.free_cores() == 0);
 }
 
 }  // namespace

@@ -244,7 +244,8 @@ std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem
         if (search.log_ratio_first())
           theta = estimation::levenberg_marquardt(log_ratio, theta, search_here, ctx.progress(s, starts, "search")).x;
         return estimation::levenberg_marquardt(weighted, theta, refine_here, ctx.progress(s, starts, "refine"));
-      });
+      },
+      ctx.options.cores.get());
 }
 
 // After a search on the spectral companion: its best start refined on the records, and the prior too, so that an H1
@@ -257,7 +258,7 @@ LmResult refine_on_records(const FitContext& ctx, const std::vector<int>& free, 
   const std::vector<LmResult> refined = estimation::run_starts(2, ctx.options.threads, [&](int s) {
     return estimation::levenberg_marquardt(weighted, refine_from[static_cast<std::size_t>(s)], ctx.lm,
                                            ctx.progress(s == 0 ? best_start : 0, starts, "refine records"));
-  });
+  }, ctx.options.cores.get());
   const int winner = estimation::best_start(refined);
   if (winner == 1) best_start = 0;
   return refined[static_cast<std::size_t>(winner)];

@@ -77,7 +77,8 @@ TEST_CASE("slow: global search from 20 random priors within a factor 3 of the tr
   }
 }
 
-TEST_CASE("slow: the multi-start result does not depend on the number of threads", "[fit][frf][global][slow]") {
+TEST_CASE("slow: the multi-start result does not depend on the number of threads, nor on sharing a budget of cores",
+          "[fit][frf][global][slow]") {
   const test::Mdof2Values truth;
   std::mt19937 rng(8);
   const FrfData data = test::mdof2_frf_data(truth, frequencies(), 0.01, rng);
@@ -94,6 +95,13 @@ TEST_CASE("slow: the multi-start result does not depend on the number of threads
   CHECK(a.start_costs == b.start_costs);
   CHECK(a.best_start == b.best_start);
   CHECK(a.values == b.values);
+  FitOptions shared = one;
+  shared.cores = std::make_shared<ThreadBudget>(3);
+  const FitResult c = fit(test::mdof2_model(prior), {DataSet(data)}, shared);
+  CHECK(a.start_costs == c.start_costs);
+  CHECK(a.best_start == c.best_start);
+  CHECK(a.values == c.values);
+  CHECK(shared.cores->free_cores() == 2);
 }
 
 TEST_CASE("also_start_at is start 1 of the search", "[fit][frf][global]") {

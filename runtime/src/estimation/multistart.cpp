@@ -16,9 +16,22 @@ double StartSampler::symmetric_unit() {
   return 2 * unit - 1;
 }
 
-std::vector<LmResult> run_starts(int count, int threads, const std::function<LmResult(int)>& local) {
+namespace {
+
+void run_ordered(std::size_t count, int threads, ThreadBudget* cores, const std::function<void(std::size_t)>& task,
+                 const std::function<void(std::size_t)>& done) {
+  if (cores) ordered_parallel(count, *cores, task, done);
+  else ordered_parallel(count, threads, task, done);
+}
+
+}  // namespace
+
+std::vector<LmResult> run_starts(int count, int threads, const std::function<LmResult(int)>& local,
+                                 ThreadBudget* cores) {
   std::vector<LmResult> results(static_cast<std::size_t>(std::max(count, 0)));
-  parallel_for(results.size(), threads, [&](std::size_t i) { results[i] = local(static_cast<int>(i)); });
+  run_ordered(
+      results.size(), threads, cores, [&](std::size_t i) { results[i] = local(static_cast<int>(i)); },
+      [](std::size_t) {});
   return results;
 }
 
@@ -34,13 +47,13 @@ bool starts_agree(const std::vector<LmResult>& results, std::size_t n, const Agr
 }
 
 std::vector<LmResult> run_starts_until_agreed(int count, int threads, const AgreementRule& rule,
-                                              const AbandonableStart& local) {
+                                              const AbandonableStart& local, ThreadBudget* cores) {
   const std::size_t n = static_cast<std::size_t>(std::max(count, 0));
   std::vector<LmResult> results(n);
   // The last start that counts; lowered (once, in index order) when the starts up to it agree.
   std::atomic<std::size_t> last{n == 0 ? 0 : n - 1};
-  ordered_parallel(
-      n, threads,
+  run_ordered(
+      n, threads, cores,
       [&](std::size_t i) {
         if (i > last.load()) return;
         try {

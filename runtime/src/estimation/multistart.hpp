@@ -2,6 +2,7 @@
 #pragma once
 
 #include "levenberg_marquardt.hpp"
+#include "mbgen/parallel.hpp"
 
 #include <Eigen/Core>
 
@@ -14,6 +15,8 @@
 
 namespace mbgen::estimation {
 
+using mbgen::ThreadBudget;
+
 // Uniform numbers in [-1, 1) from a std::mt19937_64, with the conversion written out (53 bits), so that the
 // starts are identical on every standard library (std::uniform_real_distribution is implementation-defined).
 class StartSampler {
@@ -25,9 +28,11 @@ class StartSampler {
   std::mt19937_64 engine_;
 };
 
-// Runs `local(i)` for i = 0..count-1 on `threads` workers; returns the results by index. The first exception
-// (lowest index) is rethrown after all workers have finished.
-std::vector<LmResult> run_starts(int count, int threads, const std::function<LmResult(int)>& local);
+// Runs `local(i)` for i = 0..count-1 on `threads` workers, or with `cores` on the caller's thread and the budget's
+// free cores (ThreadBudget); returns the results by index. The first exception (lowest index) is rethrown after all
+// workers have finished.
+std::vector<LmResult> run_starts(int count, int threads, const std::function<LmResult(int)>& local,
+                                 ThreadBudget* cores = nullptr);
 
 // When a multi-start may stop before its last start: once `agree` of the starts run so far, counted in index order,
 // ended within a relative `tolerance` of the lowest cost among them (the best optimum found again and again; the
@@ -48,11 +53,11 @@ bool starts_agree(const std::vector<LmResult>& results, std::size_t n, const Agr
 // A local fit of start i that should give up as soon as `abandoned()` returns true (its result is then discarded).
 using AbandonableStart = std::function<LmResult(int i, const std::function<bool()>& abandoned)>;
 
-// Runs `local(i)` for i = 0, 1, ... on `threads` workers until the results of starts 0..i meet `rule` (or all `count`
+// Runs `local(i)` for i = 0, 1, ... on `threads` workers (or on `cores`, as run_starts) until the results of starts 0..i meet `rule` (or all `count`
 // have run) and returns those, by index. Which starts are returned depends only on their results, never on thread
 // timing: a later start already running when the rule is met is abandoned and dropped. Exceptions as run_starts.
 std::vector<LmResult> run_starts_until_agreed(int count, int threads, const AgreementRule& rule,
-                                              const AbandonableStart& local);
+                                              const AbandonableStart& local, ThreadBudget* cores = nullptr);
 
 // Index of the lowest cost, ties to the lower index.
 int best_start(const std::vector<LmResult>& results);
