@@ -47,6 +47,10 @@ struct Extension {
     std::map<std::string, std::pair<std::string, double>> from;  // new parameter -> (sibling's parameter, factor)
   };
   VariantStart start_from_variant;
+  // New bodies whose own resonance the candidate puts forward as the explanation (a compliant ground's base, a
+  // resonator's mass): the data must show one of their modes (docs/diagnosis.md, step 6). Empty for candidates
+  // that claim no resonance of their own (a sensor's mounting may resonate far above the band).
+  std::vector<std::string> resonating_bodies;
 };
 
 struct ExtensionContext {

@@ -75,6 +75,8 @@ TEST_CASE("compliant_ground:wall on mdof2 gives the hand-assembled three-mass ch
   const double f = std::sqrt(v.of_parameter("k_wall") / v.of_parameter("m_wall")) / (2 * M_PI);
   CHECK(f == Approx(190).epsilon(1e-5));
   CHECK(v.of_parameter("m_wall") == Approx(3 * (1.39 + 1.09)).epsilon(1e-5));
+  // Its explanation is the wall's own resonance: the data must show it (docs/diagnosis.md, step 6).
+  CHECK(x.resonating_bodies == std::vector<std::string>{"wall"});
 }
 
 TEST_CASE("compliant_ground:base on the spindle: the base is a translating body on one isotropic support",
@@ -110,6 +112,7 @@ TEST_CASE("compliant_ground:base on feet: a six-coordinate block below the mount
   const ir::Body* base = x.model.find_body("base");
   REQUIRE(base);
   CHECK(base->dofs.size() == 6);
+  CHECK(x.resonating_bodies == std::vector<std::string>{"base"});
   int feet = 0;
   for (const ir::Element& e : x.model.elements) feet += e.name.rfind("base_foot", 0) == 0;
   CHECK(feet == 4);
@@ -268,6 +271,7 @@ TEST_CASE("resonator:mass1 on mdof2: a mass on a spring at mass1, tuned to the p
   const ModelValues v(x.model, {});
   CHECK(v.of_parameter("mr_mass1") == Approx(0.02 * 1.39));
   CHECK(std::sqrt(v.of_parameter("kr_mass1") / v.of_parameter("mr_mass1")) / (2 * M_PI) == Approx(190).epsilon(1e-5));
+  CHECK(x.resonating_bodies == std::vector<std::string>{"res_mass1"});
 }
 
 TEST_CASE("untie_parameter:k_hbx: one variant per mount, and with its copy at k_hbx the equations are the nominal ones",
@@ -329,6 +333,7 @@ TEST_CASE("sensor_dynamics:d2 on mdof2: d2 reads a mass on a spring-damper at ma
   const std::vector<Extension> xs = enumerate_extensions(ex2.model, ex2.text, ctx);
   CHECK(std::none_of(xs.begin(), xs.end(), [](const Extension& x) { return x.id == "sensor_dynamics:d1"; }));
   const Extension& x = test::find(xs, "sensor_dynamics:d2");
+  CHECK(x.resonating_bodies.empty());  // a sensor's mounting may resonate above the band: only its tail shows
   const symbolic::SymbolicModel sm = test::check_candidate(x);
   REQUIRE(sm.coordinates.size() == 3);
   const int a = coordinate(sm, "mass1.x"), b = coordinate(sm, "mass2.x"), s = coordinate(sm, "sensor_d2.x");

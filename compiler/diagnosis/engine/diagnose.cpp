@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -14,6 +15,7 @@
 #include <mbgen/same_response.hpp>
 #include <mbgen/spectral_companion.hpp>
 
+#include "diagnosis/engine/new_body_modes.hpp"
 #include "diagnosis/engine/thresholds.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
@@ -750,7 +752,7 @@ class Diagnoser {
           states[k] = renamed(states[j], extensions[k], evaluators[k]->info());
         } else {
           states[k] = renamed(states[j], extensions[k], evaluators[k]->info());
-          outcomes[k] = judge(extensions[k], states[k], base, round);
+          outcomes[k] = judge(extensions[k], *evaluators[k], states[k], base, round);
         }
       }
     };
@@ -808,7 +810,7 @@ class Diagnoser {
       return false;  // not fitted from there: the candidate's own fit stands
     }
     if (!(state.fit.cost < states[k].fit.cost)) return false;
-    CandidateOutcome o = judge(ext, state, base, round);
+    CandidateOutcome o = judge(ext, *evaluators[k], state, base, round);
     o.screen_delta_bic = outcomes[k].screen_delta_bic;
     o.screen_records_delta_bic = outcomes[k].screen_records_delta_bic;
     say(label(ext) + ": started from the " + from.variant + " variant's estimate it fits better: " + fitted_text(o));
@@ -1002,7 +1004,7 @@ class Diagnoser {
           break;  // the reduced model could not be fitted or judged: the last fit stands
         }
       }
-      return judge(ext, state, base, round);
+      return judge(ext, evaluator, state, base, round);
     } catch (const std::exception& e) {
       return failed(ext, round, e.what());
     }
@@ -1045,7 +1047,8 @@ class Diagnoser {
   }
 
   // The outcome of a fitted candidate against the current model `base`.
-  CandidateOutcome judge(const Extension& ext, const ModelState& s, const ModelState& base, int round) const {
+  CandidateOutcome judge(const Extension& ext, const mbgen::Model& evaluator, const ModelState& s,
+                         const ModelState& base, int round) const {
     CandidateOutcome o = outline(ext, round);
     o.fit = s.fit;
     o.validation_nrmse = s.validation_nrmse;
@@ -1057,6 +1060,7 @@ class Diagnoser {
                        " start value" + (s.held.size() > 1 ? "s" : "") + ")";
     }
     judge_plausibility(ext, s.info, o);
+    judge_new_body_modes(ext, evaluator, s, o);
     rank_against(base, o);
     return o;
   }
@@ -1089,6 +1093,34 @@ class Diagnoser {
       const std::string side = pressed_bound(p, info.parameters[static_cast<std::size_t>(index)]);
       if (!side.empty()) o.doubts.push_back(name + " sits at its " + side + " bound");
     }
+    o.plausible = o.doubts.empty();
+  }
+
+  // A candidate that explains the data by a new body's resonance (Extension::resonating_bodies) must show one: a
+  // mode of the new bodies that carries at least thresholds::kShownModeShare of a measured channel's response at its
+  // frequency (new_body_modes.hpp). Otherwise the body is not evidenced by the data: a doubt.
+  static void judge_new_body_modes(const Extension& ext, const mbgen::Model& evaluator, const ModelState& s,
+                                   CandidateOutcome& o) {
+    if (ext.resonating_bodies.empty()) return;
+    NewBodyMode mode;
+    try {
+      mode = best_seen_new_body_mode(evaluator, s.fit.values, ext.resonating_bodies, s.channels);
+    } catch (const std::runtime_error&) {
+      return;  // no modes at these values (an overflowing state matrix): the fit's own doubts stand
+    }
+    std::string bodies;
+    for (const std::string& b : ext.resonating_bodies) bodies += (bodies.empty() ? "" : ", ") + b;
+    const std::string none = "no resonance of " + bodies + " shows in the data: ";
+    if (!mode.oscillating)
+      o.doubts.push_back(none + "its modes are overdamped");
+    else if (mode.channel.empty())
+      o.doubts.push_back(none + format("its mode at %.4g Hz lies outside the measured band", mode.f_hz));
+    else if (mode.share < thresholds::kShownModeShare)
+      o.doubts.push_back(none + format("its mode at %.4g Hz, damped at %.0f %% of critical, carries %.2g %% of the "
+                                       "response there",
+                                       mode.f_hz, 100 * mode.zeta, 100 * mode.share) +
+                         " (" + mode.channel + format("; a resonance carries at least %.0f %%)",
+                                                      100 * thresholds::kShownModeShare));
     o.plausible = o.doubts.empty();
   }
 

@@ -52,6 +52,14 @@ inline constexpr double kSamePeak = 0.02;
 // of a nominal finding.)
 inline constexpr double kNewShiftDistance = 0.05;
 
+// A candidate that explains the data by a new body's resonance (a compliant ground, a resonator) must show one:
+// some mode of the new body carries at least this share of a measured channel's response at the mode's frequency
+// (new_body_modes.hpp). A term under a tenth of the response changes it there by under 1 dB: no peak of it shows.
+// (Correct walls, bases and resonators of the test cases carry 0.53-0.99 of some channel's response; the heavy walls,
+// 390-1700 kg damped at 9-68 % of critical, that "explained" an mdof2 support with a Maxwell element carried
+// 0.001-0.02.)
+inline constexpr double kShownModeShare = 0.1;
+
 // Sensor candidates are offered for an output the model misses alone: its mean excess over the noise (mean
 // normalized residual minus 1) above this, and at least kSensorAloneRatio times every other output's. A sensor
 // changes one output; a discrepancy every output shows belongs to the structure.

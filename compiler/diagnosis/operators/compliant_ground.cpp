@@ -171,6 +171,7 @@ Extension simple(const OperatorInput& in, const ir::Ground& ground, const Attach
   body.position = point_expr(at.centre);
   body.dofs = translations_needed(m, g, in.values);
   const std::string fixed = ground_to_body(d, in, ground, body, at.centred);
+  d.add_resonating_body(g);
   d.add_element(spring3(d.names().fresh(g + "_support"), g, fixed, body.position, !at.centred,
                         {sym(k_g), sym(k_g), sym(k_g)}, {sym(c_g), sym(c_g), sym(c_g)}));
   return d.finish("ground " + g + " is not rigid: it becomes a body of mass " + m_g + " held to a fixed " + fixed +
@@ -303,6 +304,7 @@ Extension on_feet(const OperatorInput& in, const ir::Ground& ground, const Attac
   // With the centre of mass below the attachments, an attachment without a point would follow it: every
   // attachment gets its point written.
   const std::string fixed = ground_to_body(d, in, ground, body, at.centred && !has_depth);
+  d.add_resonating_body(g);
   for (std::size_t i = 0; i < at.distinct.size(); ++i)
     d.add_element(spring3(d.names().fresh(g + "_foot" + std::to_string(i + 1)), g, fixed,
                           has_depth ? offset_point(at.distinct[i], down, d_g, 2) : point_expr(at.distinct[i]), true, k, c));

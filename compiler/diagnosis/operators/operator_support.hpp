@@ -44,6 +44,7 @@ class Draft {
   void free_parameter(const std::string& name) { ext_.freed_parameters.push_back(name); }
   void set_variant(const std::string& variant) { ext_.variant = variant; }
   void set_start_from_variant(Extension::VariantStart start) { ext_.start_from_variant = std::move(start); }
+  void add_resonating_body(const std::string& body) { ext_.resonating_bodies.push_back(body); }
 
   Extension finish(const std::string& description);
 

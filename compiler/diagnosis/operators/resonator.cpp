@@ -20,7 +20,7 @@ Extension extend(const OperatorInput& in, const ir::Body& b, const SignalPoint& 
   const std::string kr_b = d.add_parameter("kr_" + b.name, kr, "N/m", 0.0, std::nullopt, "stiffness of the resonator on " + b.name);
   const std::string cr_b = d.add_parameter("cr_" + b.name, light_damping(kr, mr), "N s/m", 0.0, std::nullopt,
                                            "damping of the resonator on " + b.name);
-  add_body_on_axial_spring(d, "res_" + b.name, mr_b, at.at->point, axis, b.name, "_spring", kr_b, cr_b);
+  d.add_resonating_body(add_body_on_axial_spring(d, "res_" + b.name, mr_b, at.at->point, axis, b.name, "_spring", kr_b, cr_b));
 
   char hz[32];
   std::snprintf(hz, sizeof hz, "%.4g", in.ctx.peak_hz.front());

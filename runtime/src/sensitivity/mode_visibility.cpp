@@ -12,9 +12,7 @@ ModeVisibility mode_visibility(const Model& model, const Eigen::VectorXd& p) {
   ModelMatrices m;
   model.evaluate(p, m);
   const StateModes sm = state_modes(m);
-  const Eigen::MatrixXcd CV = sm.ss.C.cast<std::complex<double>>() * sm.right;
-  const Eigen::MatrixXcd WB = sm.left * sm.ss.B.cast<std::complex<double>>();
-  const Eigen::Index outputs = sm.ss.C.rows(), inputs = sm.ss.B.cols(), states = sm.lambda.size();
+  const Eigen::Index outputs = sm.ss.C.rows(), inputs = sm.ss.B.cols();
   std::vector<Eigen::Index> eig;
   for (const Eigen::Index e : sm.modes)
     if (sm.lambda[e].imag() > 0) eig.push_back(e);
@@ -28,17 +26,12 @@ ModeVisibility mode_visibility(const Model& model, const Eigen::VectorXd& p) {
   out.dominance.resize(modes, channels);
   out.peak.resize(modes, channels);
   for (Eigen::Index r = 0; r < modes; ++r) {
-    const Eigen::Index e = eig[static_cast<std::size_t>(r)];
-    const std::complex<double> lambda = sm.lambda[e], s(0, std::abs(lambda.imag()));
+    const ModeTerm t = mode_term(sm, eig[static_cast<std::size_t>(r)]);
     for (Eigen::Index o = 0; o < outputs; ++o)
       for (Eigen::Index i = 0; i < inputs; ++i) {
-        std::complex<double> h = sm.ss.D(o, i);
-        for (Eigen::Index k = 0; k < states; ++k) h += CV(o, k) * WB(k, i) / (s - sm.lambda[k]);
-        const std::complex<double> residue = CV(o, e) * WB(e, i);
-        const double term = std::abs(residue / (s - lambda) + std::conj(residue) / (s - std::conj(lambda)));
         const Eigen::Index c = o * inputs + i;
-        out.peak(r, c) = term;
-        out.dominance(r, c) = std::abs(h) > 0 ? term / std::abs(h) : 0.0;
+        out.peak(r, c) = t.term(o, i);
+        out.dominance(r, c) = t.response(o, i) > 0 ? t.term(o, i) / t.response(o, i) : 0.0;
       }
     Eigen::Index best = 0;
     if (channels > 0) out.dominance.row(r).maxCoeff(&best);
