@@ -64,7 +64,7 @@ TEST_CASE("new body modes: a heavy wall damped at 40 % of critical carries almos
   CHECK(m.share < 0.05);
 }
 
-TEST_CASE("new body modes: an overdamped wall has no resonance; a mode outside the band no channel") {
+TEST_CASE("new body modes: an overdamped wall has no resonance, and a mode outside the band no channel") {
   const auto model = evaluator::make_evaluator(frontend::parse_string(kMachineOnWall, "test.mdl"));
   CHECK_FALSE(best_seen_new_body_mode(*model, wall(400, 146, 1.5), {"wall"}, measured(10, 1000)).oscillating);
   const NewBodyMode above = best_seen_new_body_mode(*model, wall(5, 3000, 0.02), {"wall"}, measured(10, 1000));

@@ -125,7 +125,7 @@ TEST_CASE("ordered_parallel on a budget: the lowest failing index's exception, c
   CHECK(cores.free_cores() == 1);
 }
 
-TEST_CASE("ThreadBudget: a single core has none to lend; a loop on it runs on its caller alone") {
+TEST_CASE("ThreadBudget: a single core has none to lend, and a loop on it runs on its caller alone") {
   ThreadBudget cores(1);
   CHECK_FALSE(cores.try_take());
   std::set<std::thread::id> threads;
