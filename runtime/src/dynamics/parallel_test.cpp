@@ -5,6 +5,7 @@
 #include <atomic>
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -32,19 +33,20 @@ TEST_CASE("ordered_parallel: every task once, reported in index order although t
   CHECK(reported == expected);
 }
 
-TEST_CASE("ordered_parallel: the lowest failing index's exception, nothing reported from it on") {
+// Tasks 2 and 4 throw: `run(task, done)` runs six tasks the way under test.
+void check_lowest_failure_rethrown(
+    const std::function<void(const std::function<void(std::size_t)>&, const std::function<void(std::size_t)>&)>& run) {
   std::vector<std::size_t> reported;
-  const auto run = [&] {
-    ordered_parallel(
-        6, 2,
-        [](std::size_t i) {
-          if (i == 4) throw std::runtime_error("task 4");
-          if (i == 2) throw std::runtime_error("task 2");
-        },
-        [&](std::size_t i) { reported.push_back(i); });
+  const auto failing = [](std::size_t i) {
+    if (i == 4) throw std::runtime_error("task 4");
+    if (i == 2) throw std::runtime_error("task 2");
   };
-  CHECK_THROWS_WITH(run(), "task 2");
+  CHECK_THROWS_WITH(run(failing, [&](std::size_t i) { reported.push_back(i); }), "task 2");
   CHECK(reported == std::vector<std::size_t>{0, 1});
+}
+
+TEST_CASE("ordered_parallel: the lowest failing index's exception, nothing reported from it on") {
+  check_lowest_failure_rethrown([](const auto& task, const auto& done) { ordered_parallel(6, 2, task, done); });
 }
 
 TEST_CASE("ordered_parallel: no tasks, one worker") {
@@ -110,18 +112,7 @@ TEST_CASE("ordered_parallel on a budget: a core that finds no task left joins a 
 
 TEST_CASE("ordered_parallel on a budget: the lowest failing index's exception, cores given back") {
   ThreadBudget cores(2);
-  std::vector<std::size_t> reported;
-  const auto run = [&] {
-    ordered_parallel(
-        6, cores,
-        [](std::size_t i) {
-          if (i == 4) throw std::runtime_error("task 4");
-          if (i == 2) throw std::runtime_error("task 2");
-        },
-        [&](std::size_t i) { reported.push_back(i); });
-  };
-  CHECK_THROWS_WITH(run(), "task 2");
-  CHECK(reported == std::vector<std::size_t>{0, 1});
+  check_lowest_failure_rethrown([&](const auto& task, const auto& done) { ordered_parallel(6, cores, task, done); });
   CHECK(cores.free_cores() == 1);
 }
 
