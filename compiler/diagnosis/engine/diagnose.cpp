@@ -1074,6 +1074,7 @@ class Diagnoser {
     }
     judge_plausibility(ext, s.info, o);
     judge_new_body_modes(ext, evaluator, s, o);
+    o.plausible = o.doubts.empty();
     rank_against(base, o);
     return o;
   }
@@ -1106,7 +1107,6 @@ class Diagnoser {
       const std::string side = pressed_bound(p, info.parameters[static_cast<std::size_t>(index)]);
       if (!side.empty()) o.doubts.push_back(name + " sits at its " + side + " bound");
     }
-    o.plausible = o.doubts.empty();
   }
 
   // A candidate that explains the data by a new body's resonance (Extension::resonating_bodies) must show one: a
@@ -1134,7 +1134,6 @@ class Diagnoser {
                                        mode.f_hz, 100 * mode.zeta, 100 * mode.share) +
                          " (" + mode.channel + format("; a resonance carries at least %.0f %%)",
                                                       100 * thresholds::kShownModeShare));
-    o.plausible = o.doubts.empty();
   }
 
   const std::vector<DataSet>& data_;

@@ -41,13 +41,20 @@ NewBodyMode best_seen_new_body_mode(const Model& model, const Eigen::VectorXd& p
   std::stable_sort(by_share.begin(), by_share.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   by_share.resize(std::min(by_share.size(), own.size()));
+  std::vector<Eigen::Index> oscillating;  // overdamped modes (real eigenvalues) have no resonance
+  for (const auto& entry : by_share)
+    if (sm.lambda[entry.second].imag() > 0) oscillating.push_back(entry.second);
 
   NewBodyMode best;
-  for (const auto& [energy, e] : by_share) {
-    if (sm.lambda[e].imag() <= 0) continue;  // overdamped: no resonance
-    const ModeTerm t = mode_term(sm, e);
+  if (oscillating.empty()) return best;
+  best.oscillating = true;
+  best.f_hz = sm.f_hz(oscillating.front());
+  best.zeta = sm.zeta(oscillating.front());
+  const std::vector<ModeTerm> terms = mode_terms(sm, oscillating);
+  for (std::size_t r = 0; r < oscillating.size(); ++r) {
+    const Eigen::Index e = oscillating[r];
+    const ModeTerm& t = terms[r];
     const double f_hz = t.w / kTwoPi;
-    if (!best.oscillating) best.oscillating = true, best.f_hz = sm.f_hz(e), best.zeta = sm.zeta(e);
     for (const ChannelResidual& c : channels) {
       if (c.f_hz.empty() || f_hz < c.f_hz.front() || f_hz > c.f_hz.back()) continue;
       const std::size_t slash = c.channel.find('/');

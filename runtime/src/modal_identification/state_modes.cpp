@@ -50,25 +50,29 @@ StateModes state_modes(const ModelMatrices& m) {
   return out;
 }
 
-ModeTerm mode_term(const StateModes& sm, Eigen::Index e) {
+std::vector<ModeTerm> mode_terms(const StateModes& sm, const std::vector<Eigen::Index>& eigenvalues) {
   const Eigen::MatrixXcd CV = sm.ss.C.cast<std::complex<double>>() * sm.right;
   const Eigen::MatrixXcd WB = sm.left * sm.ss.B.cast<std::complex<double>>();
   const Eigen::Index outputs = sm.ss.C.rows(), inputs = sm.ss.B.cols(), states = sm.lambda.size();
-  const std::complex<double> lambda = sm.lambda[e];
-  const bool pair = lambda.imag() != 0;
-  ModeTerm out;
-  out.w = pair ? std::abs(lambda.imag()) : std::abs(lambda);
-  const std::complex<double> s(0, out.w);
-  out.term.resize(outputs, inputs);
-  out.response.resize(outputs, inputs);
-  for (Eigen::Index o = 0; o < outputs; ++o)
-    for (Eigen::Index i = 0; i < inputs; ++i) {
-      std::complex<double> h = sm.ss.D(o, i);
-      for (Eigen::Index k = 0; k < states; ++k) h += CV(o, k) * WB(k, i) / (s - sm.lambda[k]);
-      const std::complex<double> residue = CV(o, e) * WB(e, i);
-      out.term(o, i) = std::abs(residue / (s - lambda) + (pair ? std::conj(residue) / (s - std::conj(lambda)) : 0.0));
-      out.response(o, i) = std::abs(h);
-    }
+  std::vector<ModeTerm> out;
+  for (const Eigen::Index e : eigenvalues) {
+    const std::complex<double> lambda = sm.lambda[e];
+    const bool pair = lambda.imag() != 0;
+    ModeTerm t;
+    t.w = pair ? std::abs(lambda.imag()) : std::abs(lambda);
+    const std::complex<double> s(0, t.w);
+    t.term.resize(outputs, inputs);
+    t.response.resize(outputs, inputs);
+    for (Eigen::Index o = 0; o < outputs; ++o)
+      for (Eigen::Index i = 0; i < inputs; ++i) {
+        std::complex<double> h = sm.ss.D(o, i);
+        for (Eigen::Index k = 0; k < states; ++k) h += CV(o, k) * WB(k, i) / (s - sm.lambda[k]);
+        const std::complex<double> residue = CV(o, e) * WB(e, i);
+        t.term(o, i) = std::abs(residue / (s - lambda) + (pair ? std::conj(residue) / (s - std::conj(lambda)) : 0.0));
+        t.response(o, i) = std::abs(h);
+      }
+    out.push_back(std::move(t));
+  }
   return out;
 }
 

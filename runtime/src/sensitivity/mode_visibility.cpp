@@ -25,8 +25,9 @@ ModeVisibility mode_visibility(const Model& model, const Eigen::VectorXd& p) {
   const Eigen::Index modes = static_cast<Eigen::Index>(eig.size()), channels = outputs * inputs;
   out.dominance.resize(modes, channels);
   out.peak.resize(modes, channels);
+  const std::vector<ModeTerm> terms = mode_terms(sm, eig);
   for (Eigen::Index r = 0; r < modes; ++r) {
-    const ModeTerm t = mode_term(sm, eig[static_cast<std::size_t>(r)]);
+    const ModeTerm& t = terms[static_cast<std::size_t>(r)];
     for (Eigen::Index o = 0; o < outputs; ++o)
       for (Eigen::Index i = 0; i < inputs; ++i) {
         const Eigen::Index c = o * inputs + i;
