@@ -208,15 +208,18 @@ class Diagnoser {
   // Where a fit runs: on `threads` workers of its own, or (`cores` set) on its caller's thread and the free cores of
   // a budget it shares with the fits beside it (a round's candidates: the core that finished the short ones joins
   // the starts of the long one).
+  // `memo`: the local fits of this model already run (FitOptions::memo), shared by a candidate's screening and full
+  // fits, which start from the same points.
   struct Workers {
     int threads = 1;
     std::shared_ptr<ThreadBudget> cores;
+    std::shared_ptr<estimation::LocalFitMemo> memo;
   };
 
   // Fits `model` (parameters started at `start` where named) and judges it.
   ModelState assess(const ir::ModelIr& model, const std::string& text, const std::map<std::string, double>& start,
                     int starts) const {
-    return assess(*derive_model(model), model, text, start, starts, Workers{options_.fit.threads, nullptr});
+    return assess(*derive_model(model), model, text, start, starts, Workers{options_.fit.threads, nullptr, nullptr});
   }
 
   // The same with `model` already derived (`evaluator`), the fit on `workers`. Uses no GiNaC: safe on a worker
@@ -245,6 +248,7 @@ class Diagnoser {
     fo.starts = starts + static_cast<int>(further_starts_at.size());
     fo.threads = workers.threads;
     fo.cores = workers.cores;
+    fo.memo = workers.memo;
     // Two fits may run at once (candidates on worker threads): their progress reaches the caller one at a time.
     if (options_.fit.progress)
       fo.progress = [this](const FitProgress& p) {
@@ -710,15 +714,17 @@ class Diagnoser {
     std::vector<std::size_t> fitted;  // the candidates fitted in their own right
     for (std::size_t k = 0; k < n; ++k)
       if (evaluators[k] && twin[k] < 0) fitted.push_back(k);
+    std::vector<std::shared_ptr<estimation::LocalFitMemo>> memos(n);
+    for (std::size_t k : fitted) memos[k] = make_local_fit_memo();
     std::vector<char> screened_out(n, 0);
     outcomes.assign(n, CandidateOutcome{});
     states.assign(n, ModelState{});
-    screen(extensions, evaluators, base, round, fitted, outcomes, states, screened_out);
+    screen(extensions, evaluators, memos, base, round, fitted, outcomes, states, screened_out);
     fitted.erase(std::remove_if(fitted.begin(), fitted.end(), [&](std::size_t k) { return screened_out[k] != 0; }),
                  fitted.end());
     // Candidates side by side (each fit on one thread) keep the cores busy through a fit's serial stretches; a core
     // that finds no candidate left joins the starts of the fits still running.
-    const Workers workers{1, std::make_shared<ThreadBudget>(options_.fit.threads)};
+    const Workers workers{1, std::make_shared<ThreadBudget>(options_.fit.threads), nullptr};
     std::size_t said = 0;
     const auto say_done_up_to = [&](std::size_t end) {
       for (; said < end; ++said) {
@@ -763,7 +769,7 @@ class Diagnoser {
         [&](std::size_t i) {
           const std::size_t k = fitted[i];
           const double screened = outcomes[k].screen_delta_bic, on_records = outcomes[k].screen_records_delta_bic;
-          outcomes[k] = score(extensions[k], *evaluators[k], base, round, workers, states[k]);
+          outcomes[k] = score(extensions[k], *evaluators[k], base, round, Workers{1, workers.cores, memos[k]}, states[k]);
           outcomes[k].screen_delta_bic = screened;
           outcomes[k].screen_records_delta_bic = on_records;
         },
@@ -773,7 +779,7 @@ class Diagnoser {
           say_done_up_to(end);
         });
     for (std::size_t k : fitted)
-      if (refit_from_sibling(extensions, evaluators, base, round, k, outcomes, states))
+      if (refit_from_sibling(extensions, evaluators, memos, base, round, k, outcomes, states))
         for (std::size_t t = k + 1; t < n; ++t)
           if (twin[t] == static_cast<int>(k)) settle(t);
   }
@@ -783,7 +789,8 @@ class Diagnoser {
   // on the records, as every search; the parameters it holds held as before), and takes that fit if its cost is
   // lower. True when it did.
   bool refit_from_sibling(const std::vector<Extension>& extensions,
-                          const std::vector<std::unique_ptr<mbgen::Model>>& evaluators, const ModelState& base,
+                          const std::vector<std::unique_ptr<mbgen::Model>>& evaluators,
+                          const std::vector<std::shared_ptr<estimation::LocalFitMemo>>& memos, const ModelState& base,
                           int round, std::size_t k, std::vector<CandidateOutcome>& outcomes,
                           std::vector<ModelState>& states) const {
     const Extension& ext = extensions[k];
@@ -803,7 +810,7 @@ class Diagnoser {
     }
     ModelState state;
     try {
-      state = assess(*evaluators[k], ext.model, ext.mdl_text, start, 2, Workers{options_.fit.threads, nullptr}, {},
+      state = assess(*evaluators[k], ext.model, ext.mdl_text, start, 2, Workers{options_.fit.threads, nullptr, memos[k]}, {},
                      states[k].held);
     } catch (const std::exception&) {
       return false;  // not fitted from there: the candidate's own fit stands
@@ -829,14 +836,15 @@ class Diagnoser {
   //    300 rev/s, a few Hz under 8 Hz lines: screening delta BIC +17.9 on the H1 estimates, -20681 fitted on the
   //    records) shows in the time-domain cost at once. The kept candidates alternate between the two rankings.
   void screen(const std::vector<Extension>& extensions, const std::vector<std::unique_ptr<mbgen::Model>>& evaluators,
-              const ModelState& base, int round, const std::vector<std::size_t>& fitted,
+              const std::vector<std::shared_ptr<estimation::LocalFitMemo>>& memos, const ModelState& base, int round, const std::vector<std::size_t>& fitted,
               std::vector<CandidateOutcome>& outcomes, std::vector<ModelState>& states,
               std::vector<char>& screened_out) const {
     if (options_.full_fits <= 0 || static_cast<int>(fitted.size()) <= options_.full_fits) return;
     const std::unique_ptr<mbgen::Model> base_model = derive_model(base.model);
     const auto cores = std::make_shared<ThreadBudget>(options_.fit.threads);
     enum class Kind { Spectral, Records };
-    const auto screening_fit = [&](const mbgen::Model& evaluator, const Extension* ext, Kind kind) {
+    const auto screening_fit = [&](const mbgen::Model& evaluator, const Extension* ext, Kind kind,
+                                   const std::shared_ptr<estimation::LocalFitMemo>& memo) {
       const bool is_base = ext == nullptr;
       FitOptions fo = options_.fit;
       fo.values.clear();
@@ -850,6 +858,7 @@ class Diagnoser {
       fo.threads = 1;
       fo.cores = cores;
       fo.progress = nullptr;
+      fo.memo = memo;
       if (kind == Kind::Records) {
         fo.starts = 1;
         fo.spectral_search = false;
@@ -871,7 +880,7 @@ class Diagnoser {
                                                  : std::vector<Kind>{Kind::Spectral};
     std::vector<double> base_bic, base_cost;
     for (Kind kind : kinds) {
-      const FitResult r = kind == Kind::Spectral && !has_records_ ? base.fit : screening_fit(*base_model, nullptr, kind);
+      const FitResult r = kind == Kind::Spectral && !has_records_ ? base.fit : screening_fit(*base_model, nullptr, kind, nullptr);
       base_bic.push_back(r.bic);
       base_cost.push_back(r.cost);
     }
@@ -883,7 +892,7 @@ class Diagnoser {
           const std::size_t k = fitted[i];
           for (std::size_t t = 0; t < kinds.size(); ++t) {
             try {
-              FitResult r = screening_fit(*evaluators[k], &extensions[k], kinds[t]);
+              FitResult r = screening_fit(*evaluators[k], &extensions[k], kinds[t], memos[k]);
               bic[t][k] = r.bic;
               if (t > 0) continue;
               ModelState& s = states[k];

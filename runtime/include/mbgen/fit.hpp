@@ -34,6 +34,13 @@
 
 namespace mbgen {
 
+namespace estimation {
+class LocalFitMemo;
+}
+
+// An empty memo of local fits (FitOptions::memo).
+std::shared_ptr<estimation::LocalFitMemo> make_local_fit_memo();
+
 // Bad fit input (unknown channel or parameter names, empty data, ...). what() names the file where known.
 class FitError : public std::runtime_error {
  public:
@@ -104,6 +111,11 @@ struct FitOptions {
   double rank_tolerance = 1e-7;
 
   FrfWeighting frf_weighting;
+  // Local fits already run (make_local_fit_memo()), shared by later fits of the same model: a search's start met
+  // again takes the earlier result, which is bit-identical to what running it again would give (the key covers
+  // the start, the prior, the bounds, the solver's options and the residuals there: local_fit_memo.hpp). Use one
+  // memo per model. A diagnosis shares one between a candidate's screening fit and its full fits.
+  std::shared_ptr<estimation::LocalFitMemo> memo;
   std::function<void(const FitProgress&)> progress;  // called from worker threads, one call at a time
 };
 

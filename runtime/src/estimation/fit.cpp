@@ -9,6 +9,7 @@
 #include "estimator.hpp"
 #include "fit_setup.hpp"
 #include "levenberg_marquardt.hpp"
+#include "local_fit_memo.hpp"
 #include "multistart.hpp"
 #include "output_error.hpp"
 #include "row_block_qr.hpp"
@@ -21,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -30,8 +32,10 @@
 namespace mbgen {
 
 using estimation::Estimator;
+using estimation::kAbandoned;
 using estimation::LmOptions;
 using estimation::LmResult;
+using estimation::LocalFitMemo;
 using estimation::OutputErrorProblem;
 using estimation::ResidualFunction;
 using estimation::ResidualKind;
@@ -222,6 +226,42 @@ class SearchProblem {
 // start). A model that misses something stands far above it (the spindle with a hidden base mode: 81 times).
 constexpr double kNoiseMargin = 0.1;
 
+// The memo key of a start's local fit (local_fit_memo.hpp); none where the residuals cannot be evaluated there.
+std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const SearchProblem& search,
+                                               const std::vector<int>& free, const Eigen::VectorXd& theta,
+                                               const LmOptions& search_lm, const ResidualFunction& weighted,
+                                               const ResidualFunction& log_ratio) {
+  estimation::Fingerprint f;
+  Eigen::VectorXd held = ctx.setup.prior;  // the estimator takes the parameters not fitted from the prior
+  for (int i : free) held[i] = 0;
+  f.add(held);
+  for (int i : free) {
+    const ParameterTransform& t = ctx.setup.transforms[static_cast<std::size_t>(i)];
+    f.add(static_cast<int>(t.kind));
+    f.add(t.lower), f.add(t.upper), f.add(t.scale);
+  }
+  for (const LmOptions* lm : {&search_lm, &ctx.lm}) {
+    f.add(lm->max_iterations), f.add(static_cast<int>(lm->damping));
+    f.add(lm->cost_tolerance), f.add(lm->step_tolerance), f.add(lm->gradient_tolerance);
+  }
+  f.add(static_cast<int>(search.log_ratio_first()));
+  Eigen::VectorXd r;
+  for (const ResidualFunction* fn : {&weighted, &log_ratio}) {
+    if (fn == &log_ratio && !search.log_ratio_first()) continue;
+    if (!(*fn)(theta, r, nullptr)) return std::nullopt;
+    f.add(r);
+  }
+  LocalFitMemo::Key key;
+  key.free = free;
+  key.fingerprint = f.value();
+  for (Eigen::Index i = 0; i < theta.size(); ++i) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &theta[i], sizeof bits);
+    key.start.push_back(bits);
+  }
+  return key;
+}
+
 // One local fit from every starting point on the search problem: log-ratio search first where it applies, then the
 // weighted refinement. Results by start index.
 std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem& search, const std::vector<int>& free,
@@ -241,9 +281,21 @@ std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem
         LmOptions search_here = search_lm, refine_here = ctx.lm;
         search_here.abandoned = refine_here.abandoned = abandoned;
         Eigen::VectorXd theta = start_points[static_cast<std::size_t>(s)];
-        if (search.log_ratio_first())
-          theta = estimation::levenberg_marquardt(log_ratio, theta, search_here, ctx.progress(s, starts, "search")).x;
-        return estimation::levenberg_marquardt(weighted, theta, refine_here, ctx.progress(s, starts, "refine"));
+        const std::optional<LocalFitMemo::Key> key =
+            ctx.options.memo ? local_fit_key(ctx, search, free, theta, search_lm, weighted, log_ratio)
+                             : std::nullopt;
+        if (key)
+          if (std::optional<LmResult> seen = ctx.options.memo->find(*key)) return *seen;
+        bool whole = true;  // not abandoned part-way: a result worth keeping
+        if (search.log_ratio_first()) {
+          const LmResult searched =
+              estimation::levenberg_marquardt(log_ratio, theta, search_here, ctx.progress(s, starts, "search"));
+          whole = searched.stop_reason != kAbandoned;
+          theta = searched.x;
+        }
+        LmResult refined = estimation::levenberg_marquardt(weighted, theta, refine_here, ctx.progress(s, starts, "refine"));
+        if (key && whole && refined.stop_reason != kAbandoned) ctx.options.memo->store(*key, refined);
+        return refined;
       },
       ctx.options.cores.get());
 }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 using namespace mbgen;
 
@@ -164,6 +165,60 @@ TEST_CASE("further_starts_at follow also_start_at, before the random starts", "[
   CHECK(fit(model, {DataSet(data)}, o).start_costs.size() == 2);
   o.further_starts_at = {{{"no_such_parameter", 1.0}}};
   CHECK_THROWS_AS(fit(model, {DataSet(data)}, o), FitError);
+}
+
+TEST_CASE("a memo of local fits gives a later fit's repeated starts their earlier result, and nothing else",
+          "[fit][frf][global][memo]") {
+  const test::Mdof2Values truth;
+  std::mt19937 rng(8);
+  const FrfData data = test::mdof2_frf_data(truth, frequencies(), 0.01, rng);
+  const FrfData other_noise = test::mdof2_frf_data(truth, frequencies(), 0.01, rng);
+  test::Mdof2Values prior = truth;
+  prior.k11 *= 2;
+  prior.m2 *= 0.5;
+  const test::LinearModel model = test::mdof2_model(prior);
+  std::set<int> ran;  // the starts whose local fits ran (reported progress)
+  FitOptions o;
+  o.agree = 0;
+  o.threads = 1;
+  o.progress = [&](const FitProgress& p) {
+    if (p.stage == "search" || p.stage == "refine") ran.insert(p.start);
+  };
+  const auto fit_with = [&](const FitOptions& options, const FrfData& d) {
+    ran.clear();
+    return fit(model, {DataSet(d)}, options);
+  };
+  o.starts = 4;
+  const FitResult plain = fit_with(o, data);
+  o.memo = make_local_fit_memo();
+  o.starts = 3;
+  const FitResult first = fit_with(o, data);
+  CHECK(ran == std::set<int>{0, 1, 2});
+  o.starts = 4;
+  const FitResult again = fit_with(o, data);
+  CHECK(ran == std::set<int>{3});  // only the start not seen before
+  CHECK(again.start_costs == plain.start_costs);
+  CHECK(again.values == plain.values);
+  CHECK(again.cost == plain.cost);
+  // Other data: no start is taken from the memo.
+  FitOptions no_memo = o;
+  no_memo.memo = nullptr;
+  const FitResult other_plain = fit_with(no_memo, other_noise);
+  const FitResult other = fit_with(o, other_noise);
+  CHECK(ran == std::set<int>{0, 1, 2, 3});
+  CHECK(other.start_costs == other_plain.start_costs);
+  // Another value of a parameter not estimated: the local fits differ, none is taken from the memo.
+  o.estimate = {"m1", "m2", "k11", "k22", "k12", "c11", "c22"};
+  no_memo.estimate = o.estimate;
+  o.values["c12"] = no_memo.values["c12"] = 1.0;
+  fit_with(o, data);
+  fit_with(o, data);
+  CHECK(ran.empty());  // the same fit twice: the second takes every start from the memo
+  o.values["c12"] = 2.0;
+  const FitResult held_other = fit_with(o, data);
+  CHECK(ran == std::set<int>{0, 1, 2, 3});
+  no_memo.values["c12"] = o.values["c12"];
+  CHECK(held_other.start_costs == fit_with(no_memo, data).start_costs);
 }
 
 TEST_CASE("a parameter the data pull beyond its bound is reported at the bound, without a std", "[fit][frf][bounds]") {

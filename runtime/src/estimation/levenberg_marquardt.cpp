@@ -47,7 +47,7 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
   Eigen::VectorXd D = Eigen::VectorXd::Zero(k);
   for (int it = 0; it < options.max_iterations; ++it) {
     if (options.abandoned && options.abandoned()) {
-      res.stop_reason = "abandoned";
+      res.stop_reason = kAbandoned;
       return res;
     }
     // J = Q R: the gradient J^T r = R^T Q^T r and J's column norms are R's.

@@ -40,6 +40,9 @@ struct LmOptions {
   std::function<bool()> abandoned;
 };
 
+// LmResult::stop_reason of a fit stopped by LmOptions::abandoned.
+inline constexpr char kAbandoned[] = "abandoned";
+
 struct LmResult {
   Eigen::VectorXd x;
   double cost = 0;  // ||r||^2
