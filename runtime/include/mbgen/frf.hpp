@@ -21,6 +21,7 @@
 #include <complex>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace mbgen {
@@ -67,6 +68,30 @@ struct FrfWork {
 FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const FrfSink& sink);
 FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
                      const std::vector<double>& freqs_hz, const FrfJacobianSink& sink);
+
+// What an FRF evaluation leaves for a Jacobian evaluated next with the same matrices at the same frequencies (an
+// estimator evaluates the residuals at a trial point and, once the step is accepted, their Jacobian there): P's
+// factors and X = P^-1 B at every frequency. frf() given a cache fills it; frf_jacobian() given one takes the
+// factors and X from it when the matrices and frequencies are exactly those it was filled with (they are compared),
+// so it does only the adjoint solves, with bit-identical results; otherwise it works as without. Kept for dense
+// factors of models up to 32 coordinates (a few MB at most). One cache per thread.
+class FrfFactorCache {
+ public:
+  FrfFactorCache();
+  ~FrfFactorCache();
+  FrfFactorCache(FrfFactorCache&&) noexcept;
+  FrfFactorCache& operator=(FrfFactorCache&&) noexcept;
+
+  struct Impl;  // frf.cpp
+  Impl& impl() { return *impl_; }
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const FrfSink& sink, FrfFactorCache* keep);
+FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
+                     const std::vector<double>& freqs_hz, const FrfJacobianSink& sink, const FrfFactorCache* known);
 
 // Conveniences: evaluate the model (and its derivatives) at parameters p first.
 FrfResult frf(const Model& model, const Eigen::VectorXd& p, const std::vector<double>& freqs_hz);

@@ -40,10 +40,12 @@ struct Workspace {
     H.resize(outputs, inputs);
   }
 
-  // P(jw) = K - w^2 M + jw C, factorised; throws if singular to working precision.
-  void factor(const ModelMatrices& m, double f_hz, const char* where) {
+  // P(jw) = K - w^2 M + jw C, factorised (dense: in `target` when given, else in `lu`); throws if singular to
+  // working precision.
+  void factor(const ModelMatrices& m, double f_hz, const char* where, detail::SmallLu* target = nullptr) {
     const double w = two_pi * f_hz, w2 = w * w;
     double ratio = 0;
+    detail::SmallLu& lu = target ? *target : this->lu;
     if (banded) {
       const detail::Bandwidth& b = band_lu.band();
       for (Eigen::Index c = 0; c < n; ++c)
@@ -90,23 +92,76 @@ void check_frequencies(const std::vector<double>& freqs_hz, const char* where) {
     }
 }
 
+bool same(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() && (a.array() == b.array()).all();
+}
+
+bool same(const ModelMatrices& a, const ModelMatrices& b) {
+  return same(a.M, b.M) && same(a.C, b.C) && same(a.K, b.K) && same(a.B, b.B) && same(a.Cd, b.Cd) &&
+         same(a.Cv, b.Cv) && same(a.Ca, b.Ca);
+}
+
+constexpr Eigen::Index kCachedCoordinates = 32;
+
 }  // namespace
 
-FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const FrfSink& sink) {
+struct FrfFactorCache::Impl {
+  bool valid = false;
+  ModelMatrices m;            // filled with these matrices ...
+  std::vector<double> freqs;  // ... at these frequencies
+  std::vector<detail::SmallLu> lu;
+  std::vector<Eigen::MatrixXcd> X;
+
+  bool holds(const ModelMatrices& other, const std::vector<double>& f) const {
+    return valid && freqs == f && same(m, other);
+  }
+};
+
+FrfFactorCache::FrfFactorCache() : impl_(std::make_unique<Impl>()) {}
+FrfFactorCache::~FrfFactorCache() = default;
+FrfFactorCache::FrfFactorCache(FrfFactorCache&&) noexcept = default;
+FrfFactorCache& FrfFactorCache::operator=(FrfFactorCache&&) noexcept = default;
+
+FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const FrfSink& sink, FrfFactorCache* keep) {
   const char* where = "frf";
   detail::check_matrices(m, where);
   check_frequencies(freqs_hz, where);
   Workspace ws(m);
+  FrfFactorCache::Impl* cache = keep && !ws.banded && ws.n <= kCachedCoordinates ? &keep->impl() : nullptr;
+  if (keep) keep->impl().valid = false;
+  if (cache) {
+    cache->m = m;
+    cache->freqs = freqs_hz;
+    cache->lu.resize(freqs_hz.size());
+    cache->X.resize(freqs_hz.size());
+  }
   FrfWork work;
   for (std::size_t k = 0; k < freqs_hz.size(); ++k) {
-    ws.factor(m, freqs_hz[k], where);
+    detail::SmallLu* target = nullptr;
+    if (cache) {
+      target = &cache->lu[k];
+      target->resize(ws.n);
+    }
+    ws.factor(m, freqs_hz[k], where, target);
     ws.output_matrix(m, two_pi * freqs_hz[k]);
-    ws.response();
+    if (cache) {
+      ws.X = ws.B;
+      target->solve(ws.X);
+      ws.H.noalias() = ws.Cout * ws.X;
+      cache->X[k] = ws.X;
+    } else {
+      ws.response();
+    }
     work.lu_factorizations += 1;
     work.solved_columns += static_cast<std::size_t>(ws.inputs);
     sink(k, ws.H);
   }
+  if (cache) cache->valid = true;
   return work;
+}
+
+FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const FrfSink& sink) {
+  return frf(m, freqs_hz, sink, nullptr);
 }
 
 FrfResult frf(const ModelMatrices& m, const std::vector<double>& freqs_hz) {
@@ -119,6 +174,11 @@ FrfResult frf(const ModelMatrices& m, const std::vector<double>& freqs_hz) {
 
 FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
                      const std::vector<double>& freqs_hz, const FrfJacobianSink& sink) {
+  return frf_jacobian(m, d, parameter_count, freqs_hz, sink, nullptr);
+}
+
+FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int parameter_count,
+                     const std::vector<double>& freqs_hz, const FrfJacobianSink& sink, const FrfFactorCache* known) {
   const char* where = "frf_jacobian";
   detail::check_matrices(m, where);
   detail::check_derivatives(m, d, parameter_count, where);
@@ -129,18 +189,26 @@ FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int para
   const Eigen::MatrixXcd& X = ws.X;
   const Eigen::MatrixXcd& Yt = ws.Yt;
   Eigen::MatrixXcd& J = ws.J;
+  const FrfFactorCache::Impl* cache = known && known->impl().holds(m, freqs_hz) ? &known->impl() : nullptr;
   FrfWork work;
   for (std::size_t k = 0; k < freqs_hz.size(); ++k) {
     const double w = two_pi * freqs_hz[k];
     const cd s(0, w), s2 = s * s;
-    ws.factor(m, freqs_hz[k], where);
     ws.output_matrix(m, w);
-    ws.response();
     // Adjoint solve P^T Y^T = Cout^T; Yt = Y^T (n x outputs) is used directly: Y(o, r) = Yt(r, o).
     ws.Yt = ws.Cout.transpose();
-    ws.solve_transposed(ws.Yt);
-    work.lu_factorizations += 1;
-    work.solved_columns += static_cast<std::size_t>(inputs + outputs);
+    if (cache) {  // the factors and X of the evaluation just before, at these matrices
+      ws.X = cache->X[k];
+      ws.H.noalias() = ws.Cout * ws.X;
+      cache->lu[k].solve_transposed(ws.Yt);
+      work.solved_columns += static_cast<std::size_t>(outputs);
+    } else {
+      ws.factor(m, freqs_hz[k], where);
+      ws.response();
+      ws.solve_transposed(ws.Yt);
+      work.lu_factorizations += 1;
+      work.solved_columns += static_cast<std::size_t>(inputs + outputs);
+    }
 
     // Column p of J is vec(dH/dp_p); entry (o, i) lives in row o + i * outputs. Every derivative entry is a
     // rank-one (or row/column) update, written as plain loops: no temporaries.

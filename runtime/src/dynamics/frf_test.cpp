@@ -176,3 +176,52 @@ TEST_CASE("FRF and Jacobian of a 120-coordinate banded model equal a dense refer
     }
   }
 }
+
+// The factors an FRF evaluation leaves (FrfFactorCache) serve a Jacobian at the same matrices: the same H and dH
+// to the bit, no factorisation; at other matrices or frequencies the Jacobian factors afresh.
+TEST_CASE("a Jacobian takes the factors of the FRF just evaluated at the same matrices, and only those") {
+  const mbgen::test::RandomAffineModel model(5, 2, 3, 12, 42);
+  const Eigen::VectorXd p = model.info().default_values();
+  mbgen::ModelMatrices m;
+  mbgen::ModelDerivatives d;
+  model.evaluate(p, m);
+  model.derivatives(p, d);
+  const std::vector<double> freqs = {0.0, 3.0, 7.5, 15.0, 40.0, 100.0};
+  const int count = static_cast<int>(p.size());
+  std::vector<Eigen::MatrixXcd> H, dH;
+  const auto keep = [&](std::size_t, const Eigen::MatrixXcd& h, const Eigen::MatrixXcd& dh) {
+    H.push_back(h);
+    dH.push_back(dh);
+  };
+  const mbgen::FrfJacobianResult reference = mbgen::frf_jacobian(m, d, count, freqs);
+  mbgen::FrfFactorCache cache;
+  std::vector<Eigen::MatrixXcd> plain;
+  mbgen::frf(m, freqs, [&](std::size_t, const Eigen::MatrixXcd& h) { plain.push_back(h); }, &cache);
+  const mbgen::FrfWork cached = mbgen::frf_jacobian(m, d, count, freqs, keep, &cache);
+  CHECK(cached.lu_factorizations == 0);
+  REQUIRE(H.size() == freqs.size());
+  for (std::size_t k = 0; k < freqs.size(); ++k) {
+    CHECK((H[k].array() == reference.H[k].array()).all());
+    CHECK((plain[k].array() == reference.H[k].array()).all());
+    CHECK((dH[k].array() == reference.dH[k].array()).all());
+  }
+  // Other matrices: factored afresh, and right.
+  mbgen::ModelMatrices other = m;
+  other.K(0, 0) *= 1.5;
+  H.clear(), dH.clear();
+  const mbgen::FrfWork fresh = mbgen::frf_jacobian(other, d, count, freqs, keep, &cache);
+  CHECK(fresh.lu_factorizations == freqs.size());
+  const mbgen::FrfJacobianResult other_reference = mbgen::frf_jacobian(other, d, count, freqs);
+  for (std::size_t k = 0; k < freqs.size(); ++k) CHECK((dH[k].array() == other_reference.dH[k].array()).all());
+  // Other frequencies: the same.
+  std::vector<double> shifted = freqs;
+  shifted.back() = 101.0;
+  CHECK(mbgen::frf_jacobian(m, d, count, shifted, [](std::size_t, const auto&, const auto&) {}, &cache)
+            .lu_factorizations == shifted.size());
+  // A failed evaluation leaves nothing to take.
+  mbgen::ModelMatrices singular = m;
+  singular.M.setZero(), singular.C.setZero(), singular.K.setZero();
+  CHECK_THROWS_AS(mbgen::frf(singular, freqs, [](std::size_t, const auto&) {}, &cache), mbgen::DynamicsError);
+  CHECK(mbgen::frf_jacobian(m, d, count, freqs, [](std::size_t, const auto&, const auto&) {}, &cache)
+            .lu_factorizations == freqs.size());
+}

@@ -200,11 +200,19 @@ void OutputErrorProblem::evaluate(const Eigen::VectorXd& values, const std::vect
           }
         }
       };
+      // A Levenberg-Marquardt step evaluates the residuals at its trial point and, once accepted, their Jacobian
+      // there: the Jacobian takes the factors that evaluation left on this thread (frf.hpp, FrfFactorCache).
+      thread_local std::vector<FrfFactorCache> factors;
+      const std::size_t set_index = static_cast<std::size_t>(&s - sets_.data());
+      if (factors.size() <= set_index) factors.resize(set_index + 1);
       if (J)
-        frf_jacobian(red.m, red.d, static_cast<int>(k), s.f_hz,
-                     [&](std::size_t f, const Eigen::MatrixXcd& H, const Eigen::MatrixXcd& dH) { residuals_at(f, H, &dH); });
+        frf_jacobian(
+            red.m, red.d, static_cast<int>(k), s.f_hz,
+            [&](std::size_t f, const Eigen::MatrixXcd& H, const Eigen::MatrixXcd& dH) { residuals_at(f, H, &dH); },
+            &factors[set_index]);
       else
-        frf(red.m, s.f_hz, [&](std::size_t f, const Eigen::MatrixXcd& H) { residuals_at(f, H, nullptr); });
+        frf(red.m, s.f_hz, [&](std::size_t f, const Eigen::MatrixXcd& H) { residuals_at(f, H, nullptr); },
+            &factors[set_index]);
     } else {
       const Eigen::Index N = s.u.rows();
       const InputHold hold = input_hold(s.hold);
