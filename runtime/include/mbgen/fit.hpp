@@ -106,12 +106,6 @@ struct FitOptions {
   double cost_tolerance = 1e-10;  // relative decrease of the cost in an accepted step
   double step_tolerance = 1e-10;  // norm of the step in internal coordinates
   double gradient_tolerance = 1e-12;
-  // A local fit that crawls stops: when its last `stall_window` steps together lowered n ln(cost) (n residuals: the
-  // measure BIC compares models by) by less than `stall_gain`. Such a fit would gain under a tenth of a BIC unit in
-  // the 180 iterations left it; a third of the diagnosis's local fits crawled like that to the iteration limit, along
-  // poorly determined dampings. 0: never.
-  int stall_window = 20;
-  double stall_gain = 0.05;
 
   double zero_tolerance = 1e-10;  // identifiability: see identifiability.hpp
   double rank_tolerance = 1e-7;

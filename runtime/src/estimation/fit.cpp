@@ -71,8 +71,6 @@ LmOptions lm_options(const FitOptions& options) {
   lm.cost_tolerance = options.cost_tolerance;
   lm.step_tolerance = options.step_tolerance;
   lm.gradient_tolerance = options.gradient_tolerance;
-  lm.stall_window = options.stall_window;
-  lm.stall_gain = options.stall_gain;
   return lm;
 }
 
@@ -245,7 +243,6 @@ std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const Sear
   for (const LmOptions* lm : {&search_lm, &ctx.lm}) {
     f.add(lm->max_iterations), f.add(static_cast<int>(lm->damping));
     f.add(lm->cost_tolerance), f.add(lm->step_tolerance), f.add(lm->gradient_tolerance);
-    f.add(lm->stall_window), f.add(lm->stall_gain);
   }
   f.add(static_cast<int>(search.log_ratio_first()));
   Eigen::VectorXd r;

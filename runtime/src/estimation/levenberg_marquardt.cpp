@@ -97,16 +97,9 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
                                   : 1.0 / 3;
         lambda = std::max(lambda * shrink, 1e-15);
         accepted = true;
-        const std::size_t steps = res.history.size() - 1;
-        const std::size_t window = static_cast<std::size_t>(std::max(options.stall_window, 0));
         if (decrease < options.cost_tolerance) {
           res.converged = true;
           res.stop_reason = "relative cost decrease below tolerance";
-        } else if (window > 0 && steps >= window &&
-                   static_cast<double>(r.size()) * std::log(res.history[steps - window] / cost_new) <
-                       options.stall_gain) {
-          res.converged = true;
-          res.stop_reason = "stalled: the last steps lowered the cost by less than the stall gain";
         } else if (dx.norm() < options.step_tolerance || step < options.step_tolerance) {
           res.converged = true;
           res.stop_reason = "step below tolerance";

@@ -35,10 +35,6 @@ struct LmOptions {
   double cost_tolerance = 1e-10;
   double step_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
-  // A crawl stops: when the last `stall_window` accepted steps together lowered n ln(cost) (n residuals; BIC's
-  // measure of fit) by less than `stall_gain`. 0: never.
-  int stall_window = 0;
-  double stall_gain = 0;
   // Checked before every iteration: true stops the fit where it stands ("abandoned"; a multi-start's later start
   // whose result is no longer wanted, multistart.hpp).
   std::function<bool()> abandoned;
