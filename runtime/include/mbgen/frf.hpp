@@ -74,7 +74,7 @@ FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int para
 // factors and X = P^-1 B at every frequency. frf() given a cache fills it; frf_jacobian() given one takes the
 // factors and X from it when the matrices and frequencies are exactly those it was filled with (they are compared),
 // so it does only the adjoint solves, with bit-identical results; otherwise it works as without. Kept for dense
-// factors of models up to 32 coordinates (a few MB at most). One cache per thread.
+// factors of up to 2^18 entries over all lines (4 MiB: 1151 lines of a 15-coordinate P). One cache per thread.
 class FrfFactorCache {
  public:
   FrfFactorCache();

@@ -101,7 +101,9 @@ bool same(const ModelMatrices& a, const ModelMatrices& b) {
          same(a.Cv, b.Cv) && same(a.Ca, b.Ca);
 }
 
-constexpr Eigen::Index kCachedCoordinates = 32;
+// The factors kept at most (complex entries of P over all lines: 4 MiB), so a large model on many lines is not
+// copied around for a small gain.
+constexpr double kCachedEntries = 262144;
 
 }  // namespace
 
@@ -127,7 +129,8 @@ FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const F
   detail::check_matrices(m, where);
   check_frequencies(freqs_hz, where);
   Workspace ws(m);
-  FrfFactorCache::Impl* cache = keep && !ws.banded && ws.n <= kCachedCoordinates ? &keep->impl() : nullptr;
+  const double entries = static_cast<double>(ws.n) * static_cast<double>(ws.n) * static_cast<double>(freqs_hz.size());
+  FrfFactorCache::Impl* cache = keep && !ws.banded && entries <= kCachedEntries ? &keep->impl() : nullptr;
   if (keep) keep->impl().valid = false;
   if (cache) {
     cache->m = m;
