@@ -106,6 +106,11 @@ struct FitOptions {
   double cost_tolerance = 1e-10;  // relative decrease of the cost in an accepted step
   double step_tolerance = 1e-10;  // norm of the step in internal coordinates
   double gradient_tolerance = 1e-12;
+  // A local fit still descending at max_iterations goes on while its last 50 accepted steps together lowered
+  // n ln(cost) (n residuals: the measure BIC compares models by) by more than `continue_gain`, up to
+  // `iteration_cap` iterations. 0: every fit stops at max_iterations.
+  double continue_gain = 10;
+  int iteration_cap = 1000;
 
   double zero_tolerance = 1e-10;  // identifiability: see identifiability.hpp
   double rank_tolerance = 1e-7;

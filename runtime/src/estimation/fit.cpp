@@ -71,6 +71,8 @@ LmOptions lm_options(const FitOptions& options) {
   lm.cost_tolerance = options.cost_tolerance;
   lm.step_tolerance = options.step_tolerance;
   lm.gradient_tolerance = options.gradient_tolerance;
+  lm.continue_gain = options.continue_gain;
+  lm.iteration_cap = options.iteration_cap;
   return lm;
 }
 
@@ -243,6 +245,7 @@ std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const Sear
   for (const LmOptions* lm : {&search_lm, &ctx.lm}) {
     f.add(lm->max_iterations), f.add(static_cast<int>(lm->damping));
     f.add(lm->cost_tolerance), f.add(lm->step_tolerance), f.add(lm->gradient_tolerance);
+    f.add(lm->continue_gain), f.add(lm->continue_window), f.add(lm->iteration_cap);
   }
   f.add(static_cast<int>(search.log_ratio_first()));
   Eigen::VectorXd r;

@@ -45,7 +45,13 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
   }
   double lambda = 1e-3;
   Eigen::VectorXd D = Eigen::VectorXd::Zero(k);
-  for (int it = 0; it < options.max_iterations; ++it) {
+  // Past max_iterations: whether the last continue_window steps gained more than continue_gain.
+  const auto still_descending = [&](int it) {
+    const std::size_t steps = res.history.size() - 1, window = static_cast<std::size_t>(options.continue_window);
+    return options.continue_gain > 0 && it < options.iteration_cap && window > 0 && steps >= window &&
+           static_cast<double>(r.size()) * std::log(res.history[steps - window] / res.cost) > options.continue_gain;
+  };
+  for (int it = 0; it < options.max_iterations || still_descending(it); ++it) {
     if (options.abandoned && options.abandoned()) {
       res.stop_reason = kAbandoned;
       return res;

@@ -35,6 +35,12 @@ struct LmOptions {
   double cost_tolerance = 1e-10;
   double step_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
+  // A fit still descending at max_iterations goes on, while its last `continue_window` accepted steps together
+  // lowered n ln(cost) (n residuals: BIC's measure of fit) by more than `continue_gain`, up to `iteration_cap`
+  // iterations in all. continue_gain 0: it stops at max_iterations.
+  double continue_gain = 0;
+  int continue_window = 50;
+  int iteration_cap = 0;
   // Checked before every iteration: true stops the fit where it stands ("abandoned"; a multi-start's later start
   // whose result is no longer wanted, multistart.hpp).
   std::function<bool()> abandoned;

@@ -80,3 +80,46 @@ TEST_CASE("a point where the residuals cannot be evaluated is a failed trial", "
     CHECK(r.x[0] <= 1.05);
   }
 }
+
+// r = (1, exp(-x)): each Gauss-Newton step adds 1 to x, and the cost 1 + exp(-2x) falls by ever less; r = exp(-x)
+// alone: the cost falls at every step, towards its infimum 0 at x -> infinity.
+TEST_CASE("a fit still descending at the iteration limit goes on while a window of steps gains enough",
+          "[estimation][lm]") {
+  const ResidualFunction steady = [](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    r = Eigen::VectorXd::Constant(1, std::exp(-x[0]));
+    if (J) *J = Eigen::MatrixXd::Constant(1, 1, -std::exp(-x[0]));
+    return true;
+  };
+  const ResidualFunction fading = [](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    r.resize(2);
+    r << 1, std::exp(-x[0]);
+    if (J) {
+      J->resize(2, 1);
+      *J << 0, -std::exp(-x[0]);
+    }
+    return true;
+  };
+  LmOptions o;
+  o.cost_tolerance = 0;
+  o.step_tolerance = 0;
+  o.gradient_tolerance = 0;
+  o.max_iterations = 10;
+  o.continue_window = 5;
+  o.iteration_cap = 30;
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(1);
+  CHECK(levenberg_marquardt(steady, x0, o).iterations == 10);  // continue_gain 0: no continuing
+  o.continue_gain = 1e-300;  // every accepted step gains something: on to the cap
+  const LmResult capped = levenberg_marquardt(steady, x0, o);
+  CHECK(capped.iterations == 30);
+  CHECK(capped.stop_reason == "iteration limit reached");
+  o.continue_gain = 1e9;  // no window gains that much
+  CHECK(levenberg_marquardt(steady, x0, o).iterations == 10);
+  o.continue_gain = 1e-6;
+  const LmResult faded = levenberg_marquardt(fading, x0, o);
+  REQUIRE(faded.iterations > 10);
+  CHECK(faded.iterations < 30);
+  const auto gain = [&](std::size_t end) { return 2 * std::log(faded.history[end - 5] / faded.history[end]); };
+  const std::size_t last = faded.history.size() - 1;
+  CHECK(gain(last) <= 1e-6);     // it stopped once the window gained too little ...
+  CHECK(gain(last - 1) > 1e-6);  // ... and not before
+}
