@@ -769,7 +769,8 @@ class Diagnoser {
         [&](std::size_t i) {
           const std::size_t k = fitted[i];
           const double screened = outcomes[k].screen_delta_bic, on_records = outcomes[k].screen_records_delta_bic;
-          outcomes[k] = score(extensions[k], *evaluators[k], base, round, Workers{1, workers.cores, memos[k]}, states[k]);
+          outcomes[k] =
+              score(extensions[k], *evaluators[k], base, round, Workers{1, workers.cores, memos[k]}, states[k]);
           outcomes[k].screen_delta_bic = screened;
           outcomes[k].screen_records_delta_bic = on_records;
         },
@@ -810,8 +811,8 @@ class Diagnoser {
     }
     ModelState state;
     try {
-      state = assess(*evaluators[k], ext.model, ext.mdl_text, start, 2, Workers{options_.fit.threads, nullptr, memos[k]}, {},
-                     states[k].held);
+      state = assess(*evaluators[k], ext.model, ext.mdl_text, start, 2,
+                     Workers{options_.fit.threads, nullptr, memos[k]}, {}, states[k].held);
     } catch (const std::exception&) {
       return false;  // not fitted from there: the candidate's own fit stands
     }
@@ -836,7 +837,8 @@ class Diagnoser {
   //    300 rev/s, a few Hz under 8 Hz lines: screening delta BIC +17.9 on the H1 estimates, -20681 fitted on the
   //    records) shows in the time-domain cost at once. The kept candidates alternate between the two rankings.
   void screen(const std::vector<Extension>& extensions, const std::vector<std::unique_ptr<mbgen::Model>>& evaluators,
-              const std::vector<std::shared_ptr<estimation::LocalFitMemo>>& memos, const ModelState& base, int round, const std::vector<std::size_t>& fitted,
+              const std::vector<std::shared_ptr<estimation::LocalFitMemo>>& memos, const ModelState& base, int round,
+              const std::vector<std::size_t>& fitted,
               std::vector<CandidateOutcome>& outcomes, std::vector<ModelState>& states,
               std::vector<char>& screened_out) const {
     if (options_.full_fits <= 0 || static_cast<int>(fitted.size()) <= options_.full_fits) return;
@@ -880,7 +882,8 @@ class Diagnoser {
                                                  : std::vector<Kind>{Kind::Spectral};
     std::vector<double> base_bic, base_cost;
     for (Kind kind : kinds) {
-      const FitResult r = kind == Kind::Spectral && !has_records_ ? base.fit : screening_fit(*base_model, nullptr, kind, nullptr);
+      const FitResult r =
+          kind == Kind::Spectral && !has_records_ ? base.fit : screening_fit(*base_model, nullptr, kind, nullptr);
       base_bic.push_back(r.bic);
       base_cost.push_back(r.cost);
     }

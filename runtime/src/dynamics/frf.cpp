@@ -75,10 +75,13 @@ struct Workspace {
   void solve(Eigen::MatrixXcd& x) const { banded ? band_lu.solve(x) : lu.solve(x); }
   void solve_transposed(Eigen::MatrixXcd& x) const { banded ? band_lu.solve_transposed(x) : lu.solve_transposed(x); }
 
-  // X = P^-1 B, H = Cout X.
-  void response() {
+  // X = P^-1 B, H = Cout X; with the dense factors `factors` when given (a cache's), else the workspace's.
+  void response(const detail::SmallLu* factors = nullptr) {
     X = B;
-    solve(X);
+    if (factors)
+      factors->solve(X);
+    else
+      solve(X);
     H.noalias() = Cout * X;
   }
 };
@@ -147,14 +150,8 @@ FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const F
     }
     ws.factor(m, freqs_hz[k], where, target);
     ws.output_matrix(m, two_pi * freqs_hz[k]);
-    if (cache) {
-      ws.X = ws.B;
-      target->solve(ws.X);
-      ws.H.noalias() = ws.Cout * ws.X;
-      cache->X[k] = ws.X;
-    } else {
-      ws.response();
-    }
+    ws.response(target);
+    if (cache) cache->X[k] = ws.X;
     work.lu_factorizations += 1;
     work.solved_columns += static_cast<std::size_t>(ws.inputs);
     sink(k, ws.H);

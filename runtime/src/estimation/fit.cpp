@@ -296,7 +296,8 @@ std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem
           whole = searched.stop_reason != kAbandoned;
           theta = searched.x;
         }
-        LmResult refined = estimation::levenberg_marquardt(weighted, theta, refine_here, ctx.progress(s, starts, "refine"));
+        LmResult refined =
+            estimation::levenberg_marquardt(weighted, theta, refine_here, ctx.progress(s, starts, "refine"));
         if (key && whole && refined.stop_reason != kAbandoned) ctx.options.memo->store(*key, refined);
         return refined;
       },
