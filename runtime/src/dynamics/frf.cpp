@@ -104,6 +104,28 @@ bool same(const ModelMatrices& a, const ModelMatrices& b) {
          same(a.Cv, b.Cv) && same(a.Ca, b.Ca);
 }
 
+// A matrix's derivative entries ordered by (parameter, row), and the ranges of entries that share both.
+struct EntryGroup {
+  int param = 0, row = 0;
+  std::size_t first = 0, last = 0;
+};
+
+struct GroupedEntries {
+  std::vector<DerivativeEntry> entries;
+  std::vector<EntryGroup> groups;
+
+  explicit GroupedEntries(const std::vector<DerivativeEntry>& unordered) : entries(unordered) {
+    std::stable_sort(entries.begin(), entries.end(), [](const DerivativeEntry& a, const DerivativeEntry& b) {
+      return a.param != b.param ? a.param < b.param : a.row < b.row;
+    });
+    for (std::size_t e = 0; e < entries.size(); ++e)
+      if (groups.empty() || groups.back().param != entries[e].param || groups.back().row != entries[e].row)
+        groups.push_back({entries[e].param, entries[e].row, e, e + 1});
+      else
+        groups.back().last = e + 1;
+  }
+};
+
 // The factors kept at most (complex entries of P over all lines: 4 MiB), so a large model on many lines is not
 // copied around for a small gain.
 constexpr double kCachedEntries = 262144;
@@ -190,6 +212,7 @@ FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int para
   const Eigen::MatrixXcd& Yt = ws.Yt;
   Eigen::MatrixXcd& J = ws.J;
   const FrfFactorCache::Impl* cache = known && known->impl().holds(m, freqs_hz) ? &known->impl() : nullptr;
+  const GroupedEntries dK(d.K), dC(d.C), dM(d.M);
   FrfWork work;
   for (std::size_t k = 0; k < freqs_hz.size(); ++k) {
     const double w = two_pi * freqs_hz[k];
@@ -210,22 +233,26 @@ FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int para
       work.solved_columns += static_cast<std::size_t>(inputs + outputs);
     }
 
-    // Column p of J is vec(dH/dp_p); entry (o, i) lives in row o + i * outputs. Every derivative entry is a
-    // rank-one (or row/column) update, written as plain loops: no temporaries.
+    // Column p of J is vec(dH/dp_p); entry (o, i) lives in row o + i * outputs. Every derivative term is a sum of
+    // row/column updates, written as plain loops: no temporaries.
     J.setZero();
-    // -Y dP X: each entry (r, c) of dP contributes -factor * Y(:, r) X(c, :).
-    auto stiffness_term = [&](const std::vector<DerivativeEntry>& entries, cd factor) {
-      for (const auto& e : entries) {
-        const cd a = -factor * e.value;
+    // -Y dP X, one (parameter, row) group at a time: z = sum over the group's entries of value * X(col, :), then
+    // -factor * Y(:, row) z. A spring's derivative b b^T has its |b|^2 entries in |b| rows: the products with Y are
+    // made once per row instead of once per entry.
+    auto stiffness_term = [&](const std::vector<DerivativeEntry>& entries, const std::vector<EntryGroup>& groups,
+                              cd factor) {
+      for (const EntryGroup& g : groups) {
         for (Eigen::Index i = 0; i < inputs; ++i) {
-          const cd ax = a * X(e.col, i);
-          for (Eigen::Index o = 0; o < outputs; ++o) J(o + i * outputs, e.param) += ax * Yt(e.row, o);
+          cd z = 0;
+          for (std::size_t e = g.first; e < g.last; ++e) z += entries[e].value * X(entries[e].col, i);
+          const cd a = -factor * z;
+          for (Eigen::Index o = 0; o < outputs; ++o) J(o + i * outputs, g.param) += a * Yt(g.row, o);
         }
       }
     };
-    stiffness_term(d.K, 1.0);
-    stiffness_term(d.C, s);
-    stiffness_term(d.M, s2);
+    stiffness_term(dK.entries, dK.groups, 1.0);
+    stiffness_term(dC.entries, dC.groups, s);
+    stiffness_term(dM.entries, dM.groups, s2);
     // Y dB: entry (r, c) adds value * Y(:, r) to FRF column c.
     for (const auto& e : d.B)
       for (Eigen::Index o = 0; o < outputs; ++o) J(o + e.col * outputs, e.param) += e.value * Yt(e.row, o);

@@ -64,20 +64,32 @@ void SmallLu::solve(Matrix& x) const {
 }
 
 void SmallLu::solve_transposed(Matrix& x) const {
-  // A = P^T L U, so A^T = U^T L^T P: U^T z = b, L^T w = z, x = P^T w (the swaps in reverse order).
-  const Eigen::Index n = lu_.rows();
-  for (Eigen::Index c = 0; c < x.cols(); ++c) {
-    cd* b = &x(0, c);
-    for (Eigen::Index k = 0; k < n; ++k) {  // U^T lower triangular: row k of U^T is column k of U
+  // A = P^T L U, so A^T = U^T L^T P: U^T z = b, L^T w = z, x = P^T w (the swaps in reverse order). The right-hand
+  // sides go through each step together (an FRF's adjoint has one per output), each with the same operations in
+  // the same order as alone.
+  const Eigen::Index n = lu_.rows(), columns = x.cols(), stride = x.outerStride();
+  cd* const x0 = x.data();
+  for (Eigen::Index k = 0; k < n; ++k) {  // U^T lower triangular: row k of U^T is column k of U
+    const cd* u = &lu_(0, k);
+    const cd inverse = inverse_[static_cast<std::size_t>(k)];
+    for (Eigen::Index c = 0; c < columns; ++c) {
+      cd* b = x0 + c * stride;
       cd s = b[k];
-      for (Eigen::Index i = 0; i < k; ++i) s -= lu_(i, k) * b[i];
-      b[k] = s * inverse_[static_cast<std::size_t>(k)];
+      for (Eigen::Index i = 0; i < k; ++i) s -= u[i] * b[i];
+      b[k] = s * inverse;
     }
-    for (Eigen::Index k = n - 1; k >= 0; --k) {  // L^T upper triangular, unit diagonal
+  }
+  for (Eigen::Index k = n - 1; k >= 0; --k) {  // L^T upper triangular, unit diagonal
+    const cd* l = &lu_(0, k);
+    for (Eigen::Index c = 0; c < columns; ++c) {
+      cd* b = x0 + c * stride;
       cd s = b[k];
-      for (Eigen::Index i = k + 1; i < n; ++i) s -= lu_(i, k) * b[i];
+      for (Eigen::Index i = k + 1; i < n; ++i) s -= l[i] * b[i];
       b[k] = s;
     }
+  }
+  for (Eigen::Index c = 0; c < columns; ++c) {
+    cd* b = x0 + c * stride;
     for (Eigen::Index k = n - 1; k >= 0; --k) std::swap(b[k], b[pivot_[static_cast<std::size_t>(k)]]);
   }
 }

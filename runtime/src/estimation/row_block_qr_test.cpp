@@ -52,7 +52,7 @@ void check_against_eigen(const Eigen::MatrixXd& J, const Eigen::VectorXd& r) {
 
 TEST_CASE("row-block QR: R and Q^T r of tall and short matrices like Eigen's HouseholderQR", "[estimation][qr]") {
   std::mt19937 rng(17);
-  for (Eigen::Index rows : {1, 3, 9, 63, 64, 65, 200, 4097})
+  for (Eigen::Index rows : {1, 3, 9, 63, 64, 65, 200, 511, 512, 513, 1500, 4097})
     for (Eigen::Index cols : {1, 4, 9}) {
       const Eigen::MatrixXd J = random_matrix(rows, cols, rng);
       check_against_eigen(J, random_matrix(rows, 1, rng).col(0));
