@@ -19,6 +19,8 @@ void SmallLu::resize(Eigen::Index n) {
 
 double SmallLu::factor() {
   const Eigen::Index n = lu_.rows();
+  // The pivots' extremes are kept as |pivot|^2 and their square roots taken once at the end (a root is monotonic
+  // and correctly rounded: the same ratio as from the roots of every pivot, without n roots on the critical path).
   double smallest = std::numeric_limits<double>::infinity(), largest = 0;
   bool singular = false;
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -28,9 +30,8 @@ double SmallLu::factor() {
       if (norm2(lu_(i, k)) > best) best = norm2(lu_(i, k)), p = i;
     pivot_[static_cast<std::size_t>(k)] = p;
     if (p != k) lu_.row(k).swap(lu_.row(p));
-    const double magnitude = std::sqrt(best);
-    smallest = std::min(smallest, magnitude);
-    largest = std::max(largest, magnitude);
+    smallest = std::min(smallest, best);
+    largest = std::max(largest, best);
     if (best == 0 || !std::isfinite(best)) {
       singular = true;
       inverse_[static_cast<std::size_t>(k)] = 0;
@@ -46,7 +47,7 @@ double SmallLu::factor() {
     }
   }
   if (n == 0) return 1;
-  return singular ? 0 : smallest / largest;
+  return singular ? 0 : std::sqrt(smallest) / std::sqrt(largest);
 }
 
 void SmallLu::solve(Matrix& x) const {
