@@ -9,7 +9,9 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <limits>
+#include <random>
 #include <tuple>
 
 #include <cmath>
@@ -173,6 +175,60 @@ TEST_CASE("FRF and Jacobian of a 120-coordinate banded model equal a dense refer
       for (const auto& e : d.M) if (e.param == j) dP(e.row, e.col) += s * s * e.value;
       const Eigen::MatrixXcd dH = -(Cout * lu.solve(dP * X));
       CHECK((r.derivative(k, j) - dH).norm() <= 1e-9 * dH.norm());
+    }
+  }
+}
+
+// frf_jacobian sums the derivative entries of one parameter and row together (frf.cpp): entries listed in any order,
+// parameters interleaved, the same (parameter, row, col) listed twice and one parameter in K, C and M at once must
+// give what a dense dP, assembled here entry by entry, gives.
+TEST_CASE("FRF Jacobian from derivative entries in any order and repeated equals a dense reference") {
+  const Eigen::Index n = 6;
+  const int params = 4;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  mbgen::ModelMatrices m;
+  m.M = Eigen::MatrixXd::Identity(n, n) * 2.0;
+  m.K = Eigen::MatrixXd::Zero(n, n);
+  m.C = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    m.K(i, i) = 3e4 * (1.0 + 0.2 * static_cast<double>(i));
+    m.C(i, i) = 5.0;
+    if (i + 1 < n) m.K(i, i + 1) = m.K(i + 1, i) = -1e4, m.C(i, i + 1) = m.C(i + 1, i) = -1.0;
+  }
+  m.B = Eigen::MatrixXd::Zero(n, 2);
+  m.B(0, 0) = 1, m.B(4, 1) = 1;
+  m.Cd = Eigen::MatrixXd::Zero(3, n);
+  m.Cv = m.Cd, m.Ca = m.Cd;
+  m.Cd(0, 1) = 1, m.Cv(1, 3) = 1, m.Ca(2, 5) = 1;
+  mbgen::ModelDerivatives d;
+  std::uniform_int_distribution<int> index(0, static_cast<int>(n) - 1), parameter(0, params - 1);
+  for (auto* entries : {&d.K, &d.C, &d.M})
+    for (int e = 0; e < 25; ++e) entries->push_back({parameter(rng), index(rng), index(rng), unit(rng) * 1e3});
+  d.K.push_back(d.K[3]);  // the same entry twice: both count
+  d.C.push_back(d.C[0]);
+  std::shuffle(d.K.begin(), d.K.end(), rng);
+  d.B.push_back({2, 3, 1, 0.5});
+  d.Cd.push_back({1, 0, 2, 0.25});
+  const std::vector<double> freqs = {1.0, 12.0, 19.0, 60.0};
+  const mbgen::FrfJacobianResult r = mbgen::frf_jacobian(m, d, params, freqs);
+  for (std::size_t k = 0; k < freqs.size(); ++k) {
+    const cd s(0, 2 * pi * freqs[k]);
+    const Eigen::MatrixXcd P = m.K.cast<cd>() + s * m.C.cast<cd>() + s * s * m.M.cast<cd>();
+    const Eigen::MatrixXcd Cout = m.Cd.cast<cd>() + s * m.Cv.cast<cd>() + s * s * m.Ca.cast<cd>();
+    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(P);
+    const Eigen::MatrixXcd X = lu.solve(m.B.cast<cd>());
+    for (int j = 0; j < params; ++j) {
+      Eigen::MatrixXcd dP = Eigen::MatrixXcd::Zero(n, n), dB = Eigen::MatrixXcd::Zero(n, 2),
+                       dCout = Eigen::MatrixXcd::Zero(3, n);
+      for (const auto& e : d.K) if (e.param == j) dP(e.row, e.col) += e.value;
+      for (const auto& e : d.C) if (e.param == j) dP(e.row, e.col) += s * e.value;
+      for (const auto& e : d.M) if (e.param == j) dP(e.row, e.col) += s * s * e.value;
+      for (const auto& e : d.B) if (e.param == j) dB(e.row, e.col) += e.value;
+      for (const auto& e : d.Cd) if (e.param == j) dCout(e.row, e.col) += e.value;
+      const Eigen::MatrixXcd dH = dCout * X + Cout * lu.solve(dB - dP * X);
+      INFO("frequency " << freqs[k] << ", parameter " << j);
+      CHECK((r.derivative(k, j) - dH).norm() <= 1e-10 * dH.norm());
     }
   }
 }
