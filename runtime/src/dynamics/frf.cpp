@@ -239,9 +239,9 @@ FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int para
     // -Y dP X, one (parameter, row) group at a time: z = sum over the group's entries of value * X(col, :), then
     // -factor * Y(:, row) z. A spring's derivative b b^T has its |b|^2 entries in |b| rows: the products with Y are
     // made once per row instead of once per entry.
-    auto stiffness_term = [&](const std::vector<DerivativeEntry>& entries, const std::vector<EntryGroup>& groups,
-                              cd factor) {
-      for (const EntryGroup& g : groups) {
+    auto stiffness_term = [&](const GroupedEntries& grouped, cd factor) {
+      const std::vector<DerivativeEntry>& entries = grouped.entries;
+      for (const EntryGroup& g : grouped.groups) {
         for (Eigen::Index i = 0; i < inputs; ++i) {
           cd z = 0;
           for (std::size_t e = g.first; e < g.last; ++e) z += entries[e].value * X(entries[e].col, i);
@@ -250,9 +250,9 @@ FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int para
         }
       }
     };
-    stiffness_term(dK.entries, dK.groups, 1.0);
-    stiffness_term(dC.entries, dC.groups, s);
-    stiffness_term(dM.entries, dM.groups, s2);
+    stiffness_term(dK, 1.0);
+    stiffness_term(dC, s);
+    stiffness_term(dM, s2);
     // Y dB: entry (r, c) adds value * Y(:, r) to FRF column c.
     for (const auto& e : d.B)
       for (Eigen::Index o = 0; o < outputs; ++o) J(o + e.col * outputs, e.param) += e.value * Yt(e.row, o);
