@@ -112,6 +112,31 @@ long largest_rational_bits(const GiNaC::ex& e) {
   return bits;
 }
 
+// Why zero to the power n has no value ("" when it has one).
+std::string zero_power_fault(const GiNaC::ex& n) {
+  if (!GiNaC::is_a<GiNaC::numeric>(n) || GiNaC::ex_to<GiNaC::numeric>(n).is_positive()) return "";
+  return n.is_zero() ? "0^0 is undefined" : "division by zero";
+}
+
+// Substitutes values bottom-up and stops at a power of zero that has no value, before GiNaC sees it: GiNaC throws
+// there from inside its substitution and leaks the product it was building (found by the fuzzer under ASan).
+struct SubstituteValues : GiNaC::map_function {
+  const GiNaC::exmap& at;
+  std::string fault;
+  explicit SubstituteValues(const GiNaC::exmap& values) : at(values) {}
+  GiNaC::ex operator()(const GiNaC::ex& x) override {
+    if (!fault.empty()) return x;
+    if (GiNaC::is_a<GiNaC::symbol>(x)) {
+      const auto v = at.find(x);
+      return v == at.end() ? x : v->second;
+    }
+    if (!GiNaC::is_a<GiNaC::power>(x)) return x.map(*this);
+    const GiNaC::ex base = (*this)(x.op(0)), exponent = (*this)(x.op(1));
+    if (fault.empty() && base.is_zero()) fault = zero_power_fault(exponent);
+    return fault.empty() ? GiNaC::pow(base, exponent) : x;
+  }
+};
+
 }  // namespace
 
 void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const {
@@ -122,8 +147,12 @@ void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const
   GiNaC::ex b = base, n = exponent;
   if (at_values) {
     const GiNaC::exmap at = values();
-    b = base.subs(at);
-    n = exponent.subs(at);
+    b = value_at(e, base, at);
+    n = value_at(e, exponent, at);
+    // Zero to a power that is not positive has no value (q^(q-1) with q = 0).
+    if (b.is_zero() && !zero_power_fault(n).empty())
+      throw frontend::ModelError(model_.file, e.loc, "`{}` has no value at the parameters' values: {}",
+                                 ir::to_string(e), zero_power_fault(n));
   }
   const GiNaC::ex n_value = GiNaC::is_a<GiNaC::numeric>(n) ? n : GiNaC::evalf(n);
   // A large exponent is computed exactly when the base is a number (2^(2^64) would fill the memory), and gives
@@ -154,6 +183,15 @@ void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const
   if (bits > kMaxNumberBits)
     throw frontend::ModelError(model_.file, e.loc, "`{}` is too large an exact number{}: {}", ir::to_string(e),
                                at_values ? " at the parameters' values" : "", too_large_text());
+}
+
+GiNaC::ex ParameterTable::value_at(const ir::Expr& e, const GiNaC::ex& x, const GiNaC::exmap& at) const {
+  SubstituteValues substitute(at);
+  const GiNaC::ex value = substitute(x);
+  if (!substitute.fault.empty())
+    throw frontend::ModelError(model_.file, e.loc, "`{}` has no value at the parameters' values: {}", ir::to_string(e),
+                               substitute.fault);
+  return value;
 }
 
 GiNaC::ex ParameterTable::bounded(const ir::Expr& e, const GiNaC::ex& value) const {
@@ -223,7 +261,7 @@ ParameterTable::ParameterTable(const ir::ModelIr& model, const std::map<std::str
   for (const FreeParameter& fp : free_) check_bounds(fp, overrides.count(fp.name) ? overrides.at(fp.name) : "", origin, at);
   // Every value, derived ones included, must be a real number at these values (sqrt(-1) as a mass is not).
   for (const ir::Parameter& p : model.parameters) {
-    const GiNaC::ex v = GiNaC::evalf(convert(ir::Expr::symbol(p.name, p.value.loc)).subs(at));
+    const GiNaC::ex v = GiNaC::evalf(value_at(p.value, convert(ir::Expr::symbol(p.name, p.value.loc)), at));
     if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
       throw frontend::ModelError(model.file, p.value.loc, "the value of parameter `{}` is not a real number", p.name);
   }
@@ -248,7 +286,7 @@ void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& se
                                kBeyondDoubles);
   if (!p.lower && !p.upper) return;
   auto value_of = [&](const ir::Expr& bound) {
-    const GiNaC::ex v = GiNaC::evalf(convert(bound).subs(at));
+    const GiNaC::ex v = GiNaC::evalf(value_at(bound, convert(bound), at));
     if (beyond_doubles(v))
       throw frontend::ModelError(model_.file, bound.loc, "the bound `{}` of `{}` is {}; write inf for an open end",
                                  ir::to_string(bound), p.name, kBeyondDoubles);
@@ -346,6 +384,10 @@ GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
     case K::Div: {
       const GiNaC::ex denominator = convert(e.args.at(1));
       if (denominator.is_zero()) return fail(fmt::format("division by zero in `{}`", ir::to_string(e)));
+      // At the parameters' values too: an element's `stiffness 2/q` with q = 0 would fail wherever the model is
+      // evaluated, far from the text that caused it.
+      if (!GiNaC::is_a<GiNaC::numeric>(denominator) && value_at(e, denominator, values()).is_zero())
+        return fail(fmt::format("`{}` has no value at the parameters' values: division by zero", ir::to_string(e)));
       return bounded(e, convert(e.args.at(0)) / denominator);
     }
     case K::Pow: {

@@ -54,6 +54,8 @@ class ParameterTable {
   // Throw ModelError at `e` when a power or an exact number exceeds the limits above.
   void check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const;
   GiNaC::ex bounded(const ir::Expr& e, const GiNaC::ex& value) const;
+  // x at the parameters' values `at`; throws ModelError at `e` when it has none (a division by zero, 0^0).
+  GiNaC::ex value_at(const ir::Expr& e, const GiNaC::ex& x, const GiNaC::exmap& at) const;
   static std::string too_large_text();
 
   const ir::ModelIr& model_;

@@ -20,6 +20,23 @@ expect_run(STATUS 1 STDERR "^wide.mdl:10:12: error: `q\\^150` is too large an ex
 write_model(zero_base "param q = 0" "param t = ((q*10^1000)^1000)^1000")
 expect_run(STATUS 1 STDERR "^zero_base.mdl:10:23: error: `\\(q\\*10\\^1000\\)\\^1000` is too large an exact number: "
   ARGS inspect zero_base.mdl)
+# What has no value at the parameters' values is the model's error, named where it is, not a crash (GiNaC threw from
+# its substitution): q^(q^(q^q)) with q = 0 holds 0^0 (found by the fuzzer); 2/q and q^(q-1) divide by zero.
+write_model(zero_tower "param q = 0" "param t = q^(q^(q^q))")
+expect_run(STATUS 1 STDERR "^zero_tower.mdl:10:18: error: `q\\^q` has no value at the parameters' values: 0\\^0 is undefined"
+  ARGS inspect zero_tower.mdl)
+write_model(zero_negative "param q = 0" "param t = q^(q-1)")
+expect_run(STATUS 1 STDERR "^zero_negative.mdl:10:12: error: `q\\^\\(q - 1\\)` has no value at the parameters' values: division by zero"
+  ARGS inspect zero_negative.mdl)
+write_model(zero_divisor "param q = 0" "param t = 2/q")
+expect_run(STATUS 1 STDERR "^zero_divisor.mdl:10:12: error: `2/q` has no value at the parameters' values: division by zero"
+  ARGS inspect zero_divisor.mdl)
+# The same in an element's field (it was an internal error, exit 3, from wherever the model was first evaluated).
+file(WRITE "${WORK}/zero_element.mdl" "model z\nparam q = 0\nground g\nbody b { mass 2; dof x }\n"
+           "spring s { from g; to b; along x; stiffness 2/q }\ninput F force on b along x\n"
+           "output y displacement of b along x\n")
+expect_run(STATUS 1 STDERR "^zero_element.mdl:5:46: error: `2/q` has no value at the parameters' values: division by zero"
+  ARGS inspect zero_element.mdl)
 write_model(tiny "param t = 1e-400")
 expect_run(STATUS 1 STDERR "^tiny.mdl:9:11: error: the value of `t` is beyond the range of a double" ARGS inspect tiny.mdl)
 write_model(fine "param q = 3" "param t = 2^(q^q)")
