@@ -111,3 +111,21 @@ TEST_CASE("a derived-parameter cycle and an unknown name are located at the IR n
   CHECK(error_of([&] { ParameterTable(bad_function).convert(ir::Expr::symbol("c")); }) ==
         "p.mdl:4:11: error: unknown function `tan`; the functions are sqrt, sin and cos");
 }
+
+TEST_CASE("an expression without a value at the parameters' values is refused where it is written") {
+  // GiNaC throws from inside its substitution here (and leaks what it was building), so the table must find these
+  // before it substitutes: each is a model error at the node that has no value.
+  auto error_for = [](const std::string& value) {
+    return error_of([&] { ParameterTable(frontend::parse_string("model z\nparam q = 0\nparam t = " + value + "\n",
+                                                                "z.mdl")); });
+  };
+  const std::string no_value = " has no value at the parameters' values: ";
+  CHECK(error_for("1/sqrt(q)") == "z.mdl:3:12: error: `1/sqrt(q)`" + no_value + "division by zero");
+  CHECK(error_for("0^q") == "z.mdl:3:12: error: `0^q`" + no_value + "0^0 is undefined");
+  CHECK(error_for("sin(2/(q*q))") == "z.mdl:3:16: error: `2/(q*q)`" + no_value + "division by zero");
+  CHECK(error_for("q^(0-2)") == "z.mdl:3:12: error: `q^(0 - 2)`" + no_value + "division by zero");
+  // With a value, the same expressions are fine.
+  CHECK(error_of([] {
+          ParameterTable(frontend::parse_string("model z\nparam q = 4\nparam t = 1/sqrt(q) + 0^q\n", "z.mdl"));
+        }) == "no error");
+}
