@@ -146,13 +146,13 @@ void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const
   const bool at_values = !GiNaC::is_a<GiNaC::numeric>(base) || !GiNaC::is_a<GiNaC::numeric>(exponent);
   GiNaC::ex b = base, n = exponent;
   if (at_values) {
-    const GiNaC::exmap at = values();
-    b = value_at(e, base, at);
-    n = value_at(e, exponent, at);
+    b = value_at(e, base);
+    n = value_at(e, exponent);
     // Zero to a power that is not positive has no value (q^(q-1) with q = 0).
-    if (b.is_zero() && !zero_power_fault(n).empty())
-      throw frontend::ModelError(model_.file, e.loc, "`{}` has no value at the parameters' values: {}",
-                                 ir::to_string(e), zero_power_fault(n));
+    if (b.is_zero()) {
+      const std::string fault = zero_power_fault(n);
+      if (!fault.empty()) fail_without_value(e, fault);
+    }
   }
   const GiNaC::ex n_value = GiNaC::is_a<GiNaC::numeric>(n) ? n : GiNaC::evalf(n);
   // A large exponent is computed exactly when the base is a number (2^(2^64) would fill the memory), and gives
@@ -185,13 +185,16 @@ void ParameterTable::check_power(const ir::Expr& e, const GiNaC::ex& base, const
                                at_values ? " at the parameters' values" : "", too_large_text());
 }
 
-GiNaC::ex ParameterTable::value_at(const ir::Expr& e, const GiNaC::ex& x, const GiNaC::exmap& at) const {
-  SubstituteValues substitute(at);
+GiNaC::ex ParameterTable::value_at(const ir::Expr& e, const GiNaC::ex& x) const {
+  SubstituteValues substitute(at_);
   const GiNaC::ex value = substitute(x);
-  if (!substitute.fault.empty())
-    throw frontend::ModelError(model_.file, e.loc, "`{}` has no value at the parameters' values: {}", ir::to_string(e),
-                               substitute.fault);
+  if (!substitute.fault.empty()) fail_without_value(e, substitute.fault);
   return value;
+}
+
+void ParameterTable::fail_without_value(const ir::Expr& e, const std::string& why) const {
+  throw frontend::ModelError(model_.file, e.loc, "`{}` has no value at the parameters' values: {}", ir::to_string(e),
+                             why);
 }
 
 GiNaC::ex ParameterTable::bounded(const ir::Expr& e, const GiNaC::ex& value) const {
@@ -256,19 +259,20 @@ ParameterTable::ParameterTable(const ir::ModelIr& model, const std::map<std::str
                                  fp.name, uses.front());
     fp.value = convert(fp.ir->value);
   }
-  // One map of the values for all checks (a map per parameter made a 300-parameter model's table quadratic).
-  const GiNaC::exmap at = values();
-  for (const FreeParameter& fp : free_) check_bounds(fp, overrides.count(fp.name) ? overrides.at(fp.name) : "", origin, at);
+  // One map of the values for all checks and conversions (a map per parameter made a 300-parameter model's table
+  // quadratic). Until here it was empty, and needed not be: the free parameters' values are constants.
+  for (const FreeParameter& fp : free_) at_[fp.sym] = fp.value;
+  for (const FreeParameter& fp : free_) check_bounds(fp, overrides.count(fp.name) ? overrides.at(fp.name) : "", origin);
   // Every value, derived ones included, must be a real number at these values (sqrt(-1) as a mass is not).
   for (const ir::Parameter& p : model.parameters) {
-    const GiNaC::ex v = GiNaC::evalf(value_at(p.value, convert(ir::Expr::symbol(p.name, p.value.loc)), at));
+    const GiNaC::ex v = GiNaC::evalf(value_at(p.value, convert(ir::Expr::symbol(p.name, p.value.loc))));
     if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
       throw frontend::ModelError(model.file, p.value.loc, "the value of parameter `{}` is not a real number", p.name);
   }
 }
 
-void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& set_text, const std::string& origin,
-                                  const GiNaC::exmap& at) const {
+void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& set_text,
+                                  const std::string& origin) const {
   const ir::Parameter& p = *fp.ir;
   // Values and bounds become doubles in generated code and fits: beyond the double range they would be infinite,
   // and below its smallest normal number (about 2.2e-308) they would lose their digits or become zero (a mass of
@@ -286,7 +290,7 @@ void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& se
                                kBeyondDoubles);
   if (!p.lower && !p.upper) return;
   auto value_of = [&](const ir::Expr& bound) {
-    const GiNaC::ex v = GiNaC::evalf(value_at(bound, convert(bound), at));
+    const GiNaC::ex v = GiNaC::evalf(value_at(bound, convert(bound)));
     if (beyond_doubles(v))
       throw frontend::ModelError(model_.file, bound.loc, "the bound `{}` of `{}` is {}; write inf for an open end",
                                  ir::to_string(bound), p.name, kBeyondDoubles);
@@ -310,12 +314,6 @@ void ParameterTable::check_bounds(const FreeParameter& fp, const std::string& se
     throw frontend::ModelError(model_.file, p.value.loc, "the value of parameter `{}` lies outside its bounds {}",
                                p.name, range);
   }
-}
-
-GiNaC::exmap ParameterTable::values() const {
-  GiNaC::exmap m;
-  for (const FreeParameter& fp : free_) m[fp.sym] = fp.value;
-  return m;
 }
 
 GiNaC::ex ParameterTable::derived_value(const ir::Parameter& p) const {
@@ -386,8 +384,8 @@ GiNaC::ex ParameterTable::convert(const ir::Expr& e) const {
       if (denominator.is_zero()) return fail(fmt::format("division by zero in `{}`", ir::to_string(e)));
       // At the parameters' values too: an element's `stiffness 2/q` with q = 0 would fail wherever the model is
       // evaluated, far from the text that caused it.
-      if (!GiNaC::is_a<GiNaC::numeric>(denominator) && value_at(e, denominator, values()).is_zero())
-        return fail(fmt::format("`{}` has no value at the parameters' values: division by zero", ir::to_string(e)));
+      if (!GiNaC::is_a<GiNaC::numeric>(denominator) && value_at(e, denominator).is_zero())
+        fail_without_value(e, "division by zero");
       return bounded(e, convert(e.args.at(0)) / denominator);
     }
     case K::Pow: {

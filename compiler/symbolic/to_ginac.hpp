@@ -43,24 +43,25 @@ class ParameterTable {
 
   const std::vector<FreeParameter>& free_parameters() const { return free_; }
   const ir::ModelIr& model() const { return model_; }
-  GiNaC::exmap values() const;  // free symbol -> exact value
+  const GiNaC::exmap& values() const { return at_; }  // free symbol -> exact value
 
  private:
   GiNaC::ex derived_value(const ir::Parameter& p) const;
   // Throws ModelError when a free parameter's value (`set_text`: as given by `origin`, else empty) lies outside its
   // declared bounds, or the bounds are reversed.
-  void check_bounds(const FreeParameter& fp, const std::string& set_text, const std::string& origin,
-                    const GiNaC::exmap& at) const;
+  void check_bounds(const FreeParameter& fp, const std::string& set_text, const std::string& origin) const;
   // Throw ModelError at `e` when a power or an exact number exceeds the limits above.
   void check_power(const ir::Expr& e, const GiNaC::ex& base, const GiNaC::ex& exponent) const;
   GiNaC::ex bounded(const ir::Expr& e, const GiNaC::ex& value) const;
-  // x at the parameters' values `at`; throws ModelError at `e` when it has none (a division by zero, 0^0).
-  GiNaC::ex value_at(const ir::Expr& e, const GiNaC::ex& x, const GiNaC::exmap& at) const;
+  // x at the parameters' values; throws ModelError at `e` when it has none (a division by zero, 0^0).
+  GiNaC::ex value_at(const ir::Expr& e, const GiNaC::ex& x) const;
+  [[noreturn]] void fail_without_value(const ir::Expr& e, const std::string& why) const;
   static std::string too_large_text();
 
   const ir::ModelIr& model_;
   std::vector<FreeParameter> free_;
   std::map<std::string, GiNaC::ex> symbol_of_;  // free parameter name -> symbol
+  GiNaC::exmap at_;  // free symbol -> exact value, filled once all are known
   mutable std::map<std::string, GiNaC::ex> derived_;  // derived parameter name -> expression (memo)
   mutable std::vector<const ir::Parameter*> expanding_;  // derived parameters being expanded (cycle check)
 };
