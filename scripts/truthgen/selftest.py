@@ -22,7 +22,8 @@
    included. A delayed record from rest equals a record simulated 4 times finer and shifted. Then Welch H1 of
    long noisy records agrees with the sampled-system FRF within the predicted random error.
 5. Noise: FRF noise has the defined sigma, also averaged; coherence as defined; same seed, same data; the CLI
-   writes files in the documented formats.
+   writes files in the documented formats. The measurement chain (--gain, --input-gain, --force-sign, --swap,
+   --unit, --frf-form): each file against the one without the option, read back from the CSVs.
 """
 import hashlib
 import json
@@ -31,6 +32,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from truthlib.bootstrap import ensure_numpy  # noqa: E402
@@ -42,7 +44,7 @@ import scipy.linalg  # noqa: E402
 import scipy.signal  # noqa: E402
 
 import truthgen  # noqa: E402
-from truthlib import cases, effects, generate, models, response  # noqa: E402
+from truthlib import cases, chain, effects, generate, models, response  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.normpath(os.path.join(HERE, "..", ".."))
@@ -327,6 +329,14 @@ EXISTING_OUTPUTS = [
             "--snr-db 30", "564092e3e6d7de3c"),
     ("x03", "--example mdof2 --case nominal --kind frf --seed 7 --f-min 20 --f-max 200 --df 0.5 --set m1=1.5",
      "5e9829d9950ccba0"),
+    # recorded with the code before the measurement-chain options (commit 18d913a): --draw, --averages,
+    # --no-coherence, frame3 and the newer cases, which the lines above predate
+    ("e01", "--example spindle --case untie_parameter --kind frf --draw 1", "082c6db6625f7d42"),
+    ("e02", "--example frame3 --case nominal --kind frf --seed 5", "0e36d81918f464c6"),
+    ("e03", "--example spindle --case sensor_delay --kind time --draw 2 --duration 0.5 --seed 9", "d0363b7262311847"),
+    ("e04", "--example mdof2 --case sensor_lowpass --kind frf --averages 4 --no-coherence --draw 7",
+     "5665864056001aa4"),
+    ("e05", "--example spindle --case base_on_feet --kind frf --draw 4 --seed 8", "27d19e6b9dddc796"),
 ]
 
 
@@ -664,6 +674,167 @@ def check_averages_and_options():
             check(bad.returncode == 1 and "truthgen: error" in bad.stderr, "CLI: %s is an error" % what)
 
 
+# ---- 5c. measurement chain ------------------------------------------------------------------------------
+def read_csv(directory, name):
+    """(header, rows of strings) of a written CSV, comment lines skipped."""
+    lines = [ln for ln in open(os.path.join(directory, name + ".csv")).read().splitlines() if not ln.startswith("#")]
+    return lines[0].split(","), [ln.split(",") for ln in lines[1:]]
+
+
+def column(table, name):
+    header, rows = table
+    j = header.index(name)
+    return [row[j] for row in rows]
+
+
+def numbers(table, name):
+    return np.array([float(v) for v in column(table, name)])
+
+
+def complex_column(table, pair):
+    return numbers(table, pair + ".re") + 1j * numbers(table, pair + ".im")
+
+
+def negated(texts):
+    """The written text of -x for each written x (the writer's "%.*g" of -x is "-" and that of x)."""
+    return [t if t == "0" else t[1:] if t.startswith("-") else "-" + t for t in texts]
+
+
+def scaled(got, base, factor, rel):
+    """Written values `got` equal factor times the written `base`, within the rounding of the written digits."""
+    want = factor * base
+    return bool(np.all(np.abs(got - want) <= rel * np.abs(want) + 1e-300))
+
+
+def check_measurement_chain():
+    """Each chain option against the file without it, read back from the CSVs (not through truthlib.chain)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        frf = "--example mdof2 --case nominal --kind frf --seed 11".split()
+        runs = {"base": [], "gain": ["--gain", "d2=0.8"], "reversed": ["--gain", "d1=-1"],
+                "sign": ["--force-sign", "-1"], "swap": ["--swap", "d1,d2"], "mm": ["--unit", "d2=mm"],
+                "mobility": ["--frf-form", "d2=mobility"],
+                "acc_g": ["--frf-form", "d2=accelerance", "--unit", "d2=g"]}
+        for name, extra in runs.items():
+            run_cli(frf + extra + ["-o", name + ".csv"], tmp)
+        t = {name: read_csv(tmp, name) for name in runs}
+        base = t["base"]
+        f = numbers(base, "f_hz")
+        w = 2 * np.pi * f
+        same_header = all(t[name][0] == base[0] for name in runs)
+        sigma = json.load(open(os.path.join(tmp, "base.truth.json")))["noise"]["sigma"]
+
+        h = complex_column(t["gain"], "d2/F1")
+        coh = numbers(t["gain"], "d2/F1.coh")
+        own = np.abs(h) ** 2 / (np.abs(h) ** 2 + (0.8 * sigma["d2/F1"]) ** 2)
+        doc = json.load(open(os.path.join(tmp, "gain.truth.json")))
+        check(same_header and scaled(h, complex_column(base, "d2/F1"), 0.8, 1e-7)
+              and column(t["gain"], "d2/F1.coh") == column(base, "d2/F1.coh") and np.max(np.abs(coh - own)) < 1e-6
+              and all(column(t["gain"], c) == column(base, c) for c in ("d1/F1.re", "d1/F1.im", "d1/F1.coh"))
+              and doc["measurement_chain"] == [{"kind": "gain", "output": "d2", "factor": 0.8,
+                                                "id": "measurement_chain:gain:d2"}]
+              and doc["hidden_effect"]["expected_operator"] == "measurement_chain:gain:d2"
+              and doc["hidden_effect"]["expected_chain"] == ["measurement_chain:gain:d2"]
+              and doc["noise"]["sigma"] == sigma,
+              "--gain d2=0.8 (FRF): d2's columns = 0.8 x the file without it, its coherence unchanged and equal to "
+              "|h|^2/(|h|^2 + (0.8 sigma)^2) (max difference %.1e), d1 untouched; JSON measurement_chain, expected "
+              "operator measurement_chain:gain:d2, noise.sigma the truth's" % np.max(np.abs(coh - own)))
+        check(all(column(t["reversed"], c) == negated(column(base, c)) for c in ("d1/F1.re", "d1/F1.im"))
+              and all(column(t["reversed"], c) == column(base, c) for c in ("d1/F1.coh", "d2/F1.re", "d2/F1.im")),
+              "--gain d1=-1 (FRF): d1's values negated digit for digit, its coherence and d2 unchanged")
+        check(all(column(t["sign"], "%s/F1.%s" % (o, part)) == negated(column(base, "%s/F1.%s" % (o, part)))
+                  for o in ("d1", "d2") for part in ("re", "im"))
+              and all(column(t["sign"], "%s/F1.coh" % o) == column(base, "%s/F1.coh" % o) for o in ("d1", "d2")),
+              "--force-sign -1 (FRF): every column's values negated, coherence unchanged")
+        check(all(column(t["swap"], "d1/F1." + part) == column(base, "d2/F1." + part)
+                  and column(t["swap"], "d2/F1." + part) == column(base, "d1/F1." + part)
+                  for part in ("re", "im", "coh")),
+              "--swap d1,d2 (FRF): the two outputs' columns (values and coherence) exchanged, header kept")
+        check(scaled(complex_column(t["mm"], "d2/F1"), complex_column(base, "d2/F1"), 1000.0, 1e-7)
+              and scaled(complex_column(t["mobility"], "d2/F1"), complex_column(base, "d2/F1"), 1j * w, 2e-7)
+              and scaled(complex_column(t["acc_g"], "d2/F1"), complex_column(base, "d2/F1"), -w ** 2 / 9.80665, 2e-7)
+              and all(column(t[n], "d2/F1.coh") == column(base, "d2/F1.coh") for n in ("mm", "mobility", "acc_g")),
+              "--unit d2=mm: d2 x 1000; --frf-form d2=mobility: x i w; --frf-form d2=accelerance --unit d2=g: "
+              "x -w^2/9.80665; coherence unchanged")
+
+        # frame3 (three inputs): one force transducer's gain divides that input's columns; g on an accelerometer
+        grid = "--example frame3 --case nominal --kind frf --seed 5 --f-min 1 --f-max 40 --df 0.5".split()
+        run_cli(grid + ["-o", "f0.csv"], tmp)
+        run_cli(grid + ["--input-gain", "F2=0.5", "--unit", "a3=g", "-o", "f1.csv"], tmp)
+        f0, f1 = read_csv(tmp, "f0"), read_csv(tmp, "f1")
+        ok = f0[0] == f1[0]
+        for o in (1, 2, 3):
+            for i in (1, 2, 3):
+                pair = "a%d/F%d" % (o, i)
+                factor = (2.0 if i == 2 else 1.0) / (9.80665 if o == 3 else 1.0)
+                if factor == 1.0:
+                    ok = ok and all(column(f1, pair + p) == column(f0, pair + p) for p in (".re", ".im"))
+                else:
+                    ok = ok and scaled(complex_column(f1, pair), complex_column(f0, pair), factor, 1e-7)
+                ok = ok and column(f1, pair + ".coh") == column(f0, pair + ".coh")
+        check(ok, "frame3 --input-gain F2=0.5 --unit a3=g: columns */F2 x 2, a3/* / 9.80665, the rest and every "
+                  "coherence unchanged")
+
+        # time records: the written force column negated while the system was driven by the true force
+        rec = "--example mdof2 --case compliant_ground --kind time --seed 22 --duration 0.25".split()
+        for name, extra in [("t0", []), ("t1", ["--force-sign", "-1"]), ("t2", ["--gain", "d2=-3", "--unit", "d1=mm"]),
+                            ("t3", ["--swap", "d1,d2"])]:
+            run_cli(rec + extra + ["-o", name + ".csv"], tmp)
+        t0, t1, t2, t3 = (read_csv(tmp, n) for n in ("t0", "t1", "t2", "t3"))
+        check(t1[0] == t0[0] and column(t1, "F1") == negated(column(t0, "F1"))
+              and all(column(t1, c) == column(t0, c) for c in ("t", "d1", "d2")),
+              "--force-sign -1 (time): the force column negated, t and the outputs unchanged (the structure was "
+              "driven by the true force)")
+        check(scaled(numbers(t2, "d2"), numbers(t0, "d2"), -3.0, 1.1e-4)
+              and scaled(numbers(t2, "d1"), numbers(t0, "d1"), 1000.0, 1.1e-4)
+              and column(t2, "F1") == column(t0, "F1"),
+              "--gain d2=-3 --unit d1=mm (time): d2 = -3 x, d1 = 1000 x the record without them, noise included "
+              "(same SNR), force unchanged")
+        check(column(t3, "d1") == column(t0, "d2") and column(t3, "d2") == column(t0, "d1") and t3[0] == t0[0],
+              "--swap d1,d2 (time): the output columns exchanged, header kept")
+
+        # --gain OUTPUT=draw: its own generator; the truth's draw untouched
+        drawn = "--example mdof2 --case compliant_ground --kind frf --seed 4 --draw 3".split()
+        run_cli(drawn + ["-o", "d0.csv"], tmp)
+        run_cli(drawn + ["--gain", "d2=draw", "-o", "d1.csv"], tmp)
+        d0, d1 = read_csv(tmp, "d0"), read_csv(tmp, "d1")
+        j0 = json.load(open(os.path.join(tmp, "d0.truth.json")))
+        j1 = json.load(open(os.path.join(tmp, "d1.truth.json")))
+        factor = j1["measurement_chain"][0]["factor"]
+        rng = np.random.default_rng([3, zlib.crc32(b"chain/d2")])
+        low, high = (0.7, 0.9) if rng.uniform() < 0.5 else (1.1, 1.3)
+        independent = float("%.4g" % rng.uniform(low, high))
+        sides = {chain_draw_side(n) for n in range(40)}
+        check(factor == independent and low <= factor <= high and sides == {"low", "high"}
+              and scaled(complex_column(d1, "d2/F1"), complex_column(d0, "d2/F1"), factor, 1e-7)
+              and all(column(d1, c) == column(d0, c) for c in ("d1/F1.re", "d1/F1.im"))
+              and j1["parameters"] == j0["parameters"] and j1["draw"] == j0["draw"]
+              and j1["hidden_effect"]["expected_operator"] == "compliant_ground:wall"
+              and j1["hidden_effect"]["expected_chain"] == ["measurement_chain:gain:d2"],
+              "--draw 3 --gain d2=draw: factor %g from default_rng([3, crc32(\"chain/d2\")]) (in [%g, %g]; draws "
+              "0-39 fall on both sides), d2 = factor x the file without it, the truth's draw unchanged; a structural "
+              "case keeps its expected operator and lists the chain in expected_chain" % (factor, low, high))
+
+        for argv, what in [(["--gain", "zz=2"], "--gain of an unknown output"),
+                           (["--gain", "d2=abc"], "a malformed factor"),
+                           (["--gain", "d2=0"], "a zero factor"),
+                           (["--input-gain", "F1=0"], "a zero input factor"),
+                           (["--swap", "d1,d1"], "--swap of an output with itself"),
+                           (["--unit", "d2=g"], "--unit g on a displacement output"),
+                           (["--gain", "d2=draw"], "--gain OUTPUT=draw without --draw"),
+                           (["--force-sign", "2"], "--force-sign 2"),
+                           (["--kind", "time", "--frf-form", "d2=mobility"], "--frf-form on a time record"),
+                           (["--gain", "d2=1.1", "--gain", "d2=0.9"], "two gains on one output")]:
+            bad = subprocess.run([sys.executable, os.path.join(HERE, "truthgen.py"), "--example", "mdof2", "--case",
+                                  "nominal"] + argv + ["-o", "e.csv"], capture_output=True, text=True, cwd=tmp)
+            check(bad.returncode == 1 and bad.stderr.startswith("truthgen: error: ")
+                  and not os.path.exists(os.path.join(tmp, "e.csv")), "CLI: %s is an error" % what)
+
+
+def chain_draw_side(n):
+    """Which side of 1 --gain OUTPUT=draw falls on for --draw n (through truthlib.chain)."""
+    return "low" if chain.drawn_factor(n, "d2")[0] < 1 else "high"
+
+
 # ---- 6. effect sizes (slow) ----------------------------------------------------------------------------
 def effect_check(c, p, snr_db, label_suffix=""):
     f = generate.frequency_grid(*generate.FRF_GRID[c.example])
@@ -749,6 +920,7 @@ def main():
         check_sensor_records()
         check_noise_and_files()
         check_averages_and_options()
+        check_measurement_chain()
         if "--effects" in args:
             check_effects()
         if "--corners" in args:

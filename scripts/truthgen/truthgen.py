@@ -3,6 +3,7 @@
 
     python3 scripts/truthgen/truthgen.py --example mdof2 --case nominal --kind frf --snr-db 40 --seed 1 -o frf.csv
     python3 scripts/truthgen/truthgen.py --example spindle --case sensor_delay --kind frf --draw 3 -o frf.csv
+    python3 scripts/truthgen/truthgen.py --example spindle --case nominal --kind frf --gain xs_rear=0.8 -o frf.csv
     python3 scripts/truthgen/truthgen.py --list
 
 Writes FILE.csv in the formats of docs/interfaces.md ("Measured data") and FILE.truth.json (truth values, the
@@ -22,7 +23,7 @@ ensure_numpy()
 
 import numpy as np  # noqa: E402
 
-from truthlib import cases, datafiles, generate, models, response  # noqa: E402
+from truthlib import cases, chain, datafiles, generate, models, response  # noqa: E402
 
 SET_PATTERN = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)=([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)$")
 
@@ -57,6 +58,21 @@ def parse_args(argv):
                     help="FRF: the average of N measurements: noise variance sigma^2/N, coherence as for one "
                          "measurement (default 1)")
     ap.add_argument("--no-coherence", action="store_true", help="FRF: write no .coh columns")
+    chain_options = ap.add_argument_group("measurement chain (applied after the noise; docs/truthgen.md)")
+    chain_options.add_argument("--gain", action="append", default=[], metavar="OUTPUT=FACTOR",
+                               help="the output's sensor reads FACTOR times the truth, its noise included (-1: "
+                                    "mounted reversed; FACTOR=draw with --draw N: 0.7-0.9 or 1.1-1.3)")
+    chain_options.add_argument("--input-gain", action="append", default=[], metavar="INPUT=FACTOR",
+                               help="the recorded force is FACTOR times the applied one (FRF columns divided by it)")
+    chain_options.add_argument("--force-sign", metavar="-1",
+                               help="-1: every recorded force is the negative of the applied one")
+    chain_options.add_argument("--swap", action="append", default=[], metavar="OUT_A,OUT_B",
+                               help="the two outputs' columns are exchanged in the file, names kept")
+    chain_options.add_argument("--unit", action="append", default=[], metavar="OUTPUT=mm|g",
+                               help="the channel is written in mm (times 1000) or in g (divided by 9.80665; "
+                                    "acceleration channels only) while the file means SI units")
+    chain_options.add_argument("--frf-form", action="append", default=[], metavar="OUTPUT=mobility|accelerance",
+                               help="FRF: the displacement output's receptance is written times i*omega or -omega^2")
     return ap.parse_args(argv)
 
 
@@ -93,7 +109,7 @@ def list_cases():
                 for s in c.sizes)))
 
 
-def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs):
+def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs, measurement_chain=()):
     freqs, zetas = response.damped_modes(mats)
     doc = {
         "generator": "scripts/truthgen",
@@ -114,6 +130,16 @@ def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs)
     }
     if case.draw is not None:
         doc["draw"] = case.draw
+    if measurement_chain:
+        ids = [e["id"] for e in measurement_chain]
+        hidden = doc["hidden_effect"]
+        hidden["expected_chain"] = ids
+        if case.control:     # no structural effect: the chain is what the diagnosis should name
+            hidden["expected_operator"] = " + ".join(ids)
+        hidden["description"] += "; measurement chain: " + "; ".join(chain.describe(e) for e in measurement_chain)
+        doc["measurement_chain"] = list(measurement_chain)
+        doc["noise"]["definition"] += ("; noise.sigma is each true channel's, before the measurement chain, which "
+                                       "scales a channel's noise with it (same SNR)")
     if case.example == "spindle":
         j_s, j_h = models.spindle_inertias(p)
         doc["derived"] = {"J_sxx": j_s[0, 0], "J_syy": j_s[1, 1], "J_szz": j_s[2, 2],
@@ -168,6 +194,12 @@ def run(argv):
     system = case.build(p)
     mats = system.matrices()
     inputs, outputs = system.input_names(), system.output_names()
+    try:
+        measurement_chain = chain.parse(outputs, inputs, mats["output_orders"], args.kind, gains=args.gain,
+                                        input_gains=args.input_gain, force_sign=args.force_sign, swaps=args.swap,
+                                        units=args.unit, forms=args.frf_form, draw_n=args.draw)
+    except chain.ChainError as error:
+        raise UsageError(error.args[0])
     rng = np.random.default_rng(args.seed)
     if args.kind == "frf":
         f_min, f_max, df = generate.FRF_GRID[case.example]
@@ -177,16 +209,19 @@ def run(argv):
         if f[0] < 0 or len(f) < 1:
             raise UsageError("bad frequency grid")
         data = generate.make_frf(mats, f, snr_db, rng, args.averages)
+        chain.apply_frf(data, measurement_chain, outputs, inputs)
         datafiles.write_frf_csv(args.output, data, outputs, inputs, settings, coherence=not args.no_coherence)
     else:
         fs = args.fs or generate.SAMPLE_RATE[case.example]
         args.amplitude = args.amplitude or generate.AMPLITUDE[case.example]
         data = generate.make_time(mats, fs, args.duration or generate.DURATION[case.example], snr_db, rng,
                                   args.amplitude, args.excitation)
+        chain.apply_time(data, measurement_chain, outputs, inputs)
         datafiles.write_time_csv(args.output, data, outputs, inputs, settings)
     base = args.output[:-4] if args.output.endswith(".csv") else args.output
     datafiles.write_truth_json(base + ".truth.json",
-                               truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs))
+                               truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs,
+                                              measurement_chain))
     return 0
 
 

@@ -43,7 +43,11 @@ def make_frf(mats, f_hz, snr_db, rng, averages=1):
     coh = np.ones(H.shape)
     for o in range(O):
         for i in range(I):
-            sigma[o, i] = noise_sigma(np.sqrt(np.mean(np.abs(H[:, o, i]) ** 2)), snr_db)
+            # |H| of a contiguous copy: numpy's abs of the strided column took its vectorised or its scalar
+            # (hypot) route, whose last bits differ, by the alignment of the arrays, i.e. by what the process had
+            # allocated before; the contiguous copy always takes the vectorised one (the sigma's written digits)
+            magnitude = np.abs(np.ascontiguousarray(H[:, o, i]))
+            sigma[o, i] = noise_sigma(np.sqrt(np.mean(magnitude ** 2)), snr_db)
             if np.isfinite(snr_db):
                 n = rng.standard_normal(F) + 1j * rng.standard_normal(F)
                 scale = sigma[o, i] if averages == 1 else sigma[o, i] / np.sqrt(averages)
