@@ -12,6 +12,7 @@
 #include "frontend/parser.hpp"
 #include "symbolic/derive.hpp"
 #include "symbolic/test_support.hpp"
+#include "mbgen_test/paths.hpp"
 
 namespace mbgen::diagnosis::test {
 
@@ -21,7 +22,7 @@ struct Example {
 };
 
 inline Example load(const std::string& name) {
-  const std::string path = std::string(MBGEN_SOURCE_DIR) + "/examples/" + name + "/" + name + ".mdl";
+  const std::string path = std::string(mbgen_source_dir()) + "/examples/" + name + "/" + name + ".mdl";
   std::ifstream in(path);
   std::ostringstream text;
   text << in.rdbuf();

@@ -18,13 +18,14 @@
 
 #include <cmath>
 #include <random>
+#include "mbgen_test/paths.hpp"
 
 using namespace mbgen;
 
 namespace {
 
 const ir::ModelIr& mdof2_ir() {
-  static const ir::ModelIr model = frontend::parse_file(MBGEN_SOURCE_DIR "/examples/mdof2/mdof2.mdl");
+  static const ir::ModelIr model = frontend::parse_file(std::string(mbgen_source_dir()) + "/examples/mdof2/mdof2.mdl");
   return model;
 }
 

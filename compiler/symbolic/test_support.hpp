@@ -8,11 +8,12 @@
 
 #include "frontend/parser.hpp"
 #include "symbolic/symbolic_model.hpp"
+#include "mbgen_test/paths.hpp"
 
 namespace mbgen::symbolic::test {
 
 inline ir::ModelIr load_example(const std::string& name) {
-  return frontend::parse_file(std::string(MBGEN_SOURCE_DIR) + "/examples/" + name + "/" + name + ".mdl");
+  return frontend::parse_file(std::string(mbgen_source_dir()) + "/examples/" + name + "/" + name + ".mdl");
 }
 
 inline double to_double(const GiNaC::ex& e, const GiNaC::exmap& values = {}) {

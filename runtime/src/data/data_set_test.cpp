@@ -10,6 +10,7 @@
 
 #include "mbgen/data_error.hpp"
 #include "mbgen/data_set.hpp"
+#include "mbgen_test/paths.hpp"
 
 using namespace mbgen;
 namespace fs = std::filesystem;
@@ -24,7 +25,7 @@ std::string write(const std::string& name, const std::string& text) {
   return p.string();
 }
 
-std::string sample(const std::string& name) { return std::string(MBGEN_TEST_DATA_DIR) + "/uff/" + name; }
+std::string sample(const std::string& name) { return std::string(mbgen_test_data_dir()) + "/uff/" + name; }
 
 // Standard input as the reader sees it: no seeking, bytes in pieces of `piece`. Serves `text`, or with an empty text
 // `endless` zero bytes (a pipe from /dev/zero, ended here so that a reader that reads everything still stops), and

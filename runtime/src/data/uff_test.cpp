@@ -11,13 +11,14 @@
 #include "mbgen/data_error.hpp"
 #include "mbgen/data_set.hpp"
 #include "mbgen/uff.hpp"
+#include "mbgen_test/paths.hpp"
 
 using namespace mbgen;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string sample(const std::string& name) { return std::string(MBGEN_TEST_DATA_DIR) + "/uff/" + name; }
+std::string sample(const std::string& name) { return std::string(mbgen_test_data_dir()) + "/uff/" + name; }
 
 std::vector<Uff58Record> read_text(const std::string& text) {
   std::istringstream in(text);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "mbgen_test/paths.hpp"
 
 using namespace mbgen;
 
@@ -75,7 +76,7 @@ TEST_CASE("the fit JSON follows mbgen-fit/1", "[fit][json]") {
 
 TEST_CASE("the report directory has Markdown, data, scripts and (with gnuplot) SVG plots", "[fit][report]") {
   const Fixture f;
-  const std::filesystem::path dir = std::filesystem::path(MBGEN_BINARY_DIR) / "fit_report_test_out";
+  const std::filesystem::path dir = std::filesystem::path(mbgen_binary_dir()) / "fit_report_test_out";
   std::filesystem::remove_all(dir);
   write_fit_report(dir.string(), f.model, f.data, f.result);
   const std::string md = slurp(dir / "report.md");

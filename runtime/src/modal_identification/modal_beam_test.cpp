@@ -10,11 +10,12 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include "mbgen_test/paths.hpp"
 
 namespace mbgen {
 namespace {
 
-const std::string kDir = std::string(MBGEN_SOURCE_DIR) + "/examples/beam/";
+const std::string kDir = std::string(mbgen_source_dir()) + "/examples/beam/";
 const double kPeaks[] = {52, 142, 279, 460, 687, 959};  // the README's peaks, read off the magnitude
 
 ModalIdentification from_csv(FrfQuantity quantity) {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include "mbgen_test/paths.hpp"
 
 using namespace mbgen;
 using namespace mbgen::report;
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 const std::string hostile = "a<script>alert(1)</script>&\"'|`*x*";
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(MBGEN_BINARY_DIR) / "report_document_test" / name;
+  const fs::path dir = fs::path(mbgen_binary_dir()) / "report_document_test" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

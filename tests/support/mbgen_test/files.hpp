@@ -1,6 +1,6 @@
 // The repository's files and a scratch directory, for tests: examples found by name, whole files read, and a
 // directory per test under the build tree. Header-only; include from *_test.cpp files only (they are compiled with
-// MBGEN_SOURCE_DIR and MBGEN_BINARY_DIR, CMakeLists.txt: mbgen_add_tests).
+// mbgen_source_dir() and mbgen_binary_dir(), CMakeLists.txt: mbgen_add_tests).
 #pragma once
 
 #include <filesystem>
@@ -8,11 +8,12 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include "mbgen_test/paths.hpp"
 
 namespace mbgen::test {
 
 // A file of the source tree by its path relative to the root, e.g. "examples/mdof2/data/frf_F1.csv".
-inline std::string source_path(const std::string& relative) { return std::string(MBGEN_SOURCE_DIR) + "/" + relative; }
+inline std::string source_path(const std::string& relative) { return std::string(mbgen_source_dir()) + "/" + relative; }
 
 // examples/NAME/NAME.mdl.
 inline std::string example_model_path(const std::string& name) {
@@ -32,7 +33,7 @@ inline std::string example_model_text(const std::string& name) { return read_tex
 
 // BUILD/test-tmp/NAME, created if missing (its contents are the test's to manage).
 inline std::filesystem::path test_dir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(MBGEN_BINARY_DIR) / "test-tmp" / name;
+  const std::filesystem::path dir = std::filesystem::path(mbgen_binary_dir()) / "test-tmp" / name;
   std::filesystem::create_directories(dir);
   return dir;
 }

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include "mbgen_test/paths.hpp"
 
 namespace mbgen::test {
 
@@ -26,7 +27,7 @@ struct TruthgenData {
 
 // Runs `truthgen.py ARGUMENTS -o BUILD/DIR/STEM.csv` and reads what it wrote.
 inline TruthgenData truthgen_data(const std::string& arguments, const std::string& dir, const std::string& stem) {
-  const std::filesystem::path folder = std::filesystem::path(MBGEN_BINARY_DIR) / dir;
+  const std::filesystem::path folder = std::filesystem::path(mbgen_binary_dir()) / dir;
   std::filesystem::create_directories(folder);
   const std::string path = (folder / stem).string();
   const std::string command =
