@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The diagnosis on hidden effects drawn at random: for each case, DRAWS truths drawn by the independent generator
 # (scripts/truthgen --draw N: parameter offsets and the effect's size within the case's ranges) at 40 dB SNR, each
-# diagnosed, and the outcomes counted: right (the expected extension, or no extension for a control), unexplained,
+# diagnosed, and the outcomes counted: right (the expected extension first, or no extension for a control), unexplained,
 # wrong (another extension: the worst outcome), failed. The statistical sweep behind the single-draw tests in
 # tests/diagnosis (which keep CI short).
 #   bench/diagnose_draws.sh [build-dir] [draws] [case-filter-regex]
@@ -37,6 +37,12 @@ cases=(
   "spindle resonator frf resonator:spindle"
   "spindle sensor_lowpass frf sensor_dynamics:xs_front"
   "spindle outside_maxwell frf not_extended"
+  "spindle nominal frf measurement_chain:gain:xs_rear --gain xs_rear=draw"
+  "spindle nominal frf measurement_chain:gain:xh_front --gain xh_front=-1"
+  "spindle nominal frf measurement_chain:input:Fx --force-sign -1"
+  "spindle nominal frf measurement_chain:swap:xs_front,xs_rear --swap xs_front,xs_rear"
+  "spindle nominal frf measurement_chain:gain:xs_front --unit xs_front=mm"
+  "spindle untie_parameter frf measurement_chain:gain:xs_rear --gain xs_rear=draw"
   "frame3 nominal frf -"
   "frame3 outside_torsion frf not_extended"
 )

@@ -6,7 +6,9 @@
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
+#include "cli/number_checks.hpp"
 #include "cli/run_guarded.hpp"
+#include "cli/seed_option.hpp"
 #include "cli/starts_option.hpp"
 #include "cli/version.hpp"
 #include "diagnosis/engine/diagnose.hpp"
@@ -22,15 +24,30 @@ namespace mbgen::cli {
 
 namespace {
 
+// Findings listed on standard output; a long list goes on in the JSON and the report.
+constexpr std::size_t kSummaryFindings = 8;
+
 std::string summary(const diagnosis::DiagnosisResult& r) {
   std::ostringstream out;
   out << "verdict: " << r.verdict << "\n";
-  for (const std::string& id : r.selected) out << "selected: " << id << "\n";
+  // Each selected extension with what it says (the last qualifying outcome of that id is the one taken).
+  for (const std::string& id : r.selected) {
+    out << "selected: " << id << "\n";
+    for (auto it = r.candidates.rbegin(); it != r.candidates.rend(); ++it)
+      if (it->id == id && it->qualifies) {
+        out << "  " << it->description << "\n";
+        break;
+      }
+  }
   if (!r.nominal.fit.converged)
     out << "warning: the nominal model's fit did not converge (" << r.nominal.fit.stop_reason
         << "): some findings may be the fit's, not the model's\n";
-  if (!r.nominal.residual.discrepancies.empty()) out << "what the nominal model gets wrong:\n";
-  for (const Discrepancy& d : r.nominal.residual.discrepancies) out << "  - " << d.text << "\n";
+  // The strongest findings (they come strongest first); the rest are in the JSON and the report.
+  const std::vector<Discrepancy>& findings = r.nominal.residual.discrepancies;
+  if (!findings.empty()) out << "what the nominal model gets wrong:\n";
+  for (std::size_t k = 0; k < findings.size() && k < kSummaryFindings; ++k) out << "  - " << findings[k].text << "\n";
+  if (findings.size() > kSummaryFindings)
+    out << "  ... and " << findings.size() - kSummaryFindings << " more (--json, --report)\n";
   if (r.verdict == "extended" && !r.final.residual.discrepancies.empty()) {
     out << "still unexplained after extension:\n";
     for (const Discrepancy& d : r.final.residual.discrepancies) out << "  - " << d.text << "\n";
@@ -65,10 +82,10 @@ int run_diagnose(int argc, char** argv) {
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("--starts", options.fit.starts, "starts of the nominal fit's global search (default 16)")
       ->check(starts_range());
-  app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)");
+  app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)")->check(seed_check());
   app.add_option("--full-fits", options.full_fits,
                  "candidates fitted fully after the screening (default 6; 0: every candidate)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_option("--fit-band", fit_band,
                  "fit the models on the FRF lines within LO:HI Hz only (the band the model is meant to represent), "
                  "and judge them over all the data");

@@ -17,7 +17,9 @@
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
+#include "cli/number_checks.hpp"
 #include "cli/run_guarded.hpp"
+#include "cli/seed_option.hpp"
 #include "cli/starts_option.hpp"
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
@@ -102,7 +104,7 @@ int run_fit(int argc, char** argv) {
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("--starts", options.starts, "number of starts of the global search (default 16)")
       ->check(starts_range());
-  app.add_option("--seed", options.seed, "seed of the global search (default 1)");
+  app.add_option("--seed", options.seed, "seed of the global search (default 1)")->check(seed_check());
   app.add_option("--band", band, "fit only the FRF lines within LO:HI Hz (the band the model is meant to represent)");
   TwoStepOptions two_step;
   std::string two_step_route = "auto";
@@ -119,7 +121,7 @@ int run_fit(int argc, char** argv) {
       ->check(CLI::IsMember({"normalised", "covariance"}));
   EkfOptions ekf;
   app.add_option("--ekf-drift", ekf.drift, "ekf: each parameter's random walk, its relative std over the whole data "
-                 "(default 0.05; 0: constant parameters)")->check(CLI::NonNegativeNumber);
+                 "(default 0.05; 0: constant parameters)")->check(non_negative_number());
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     symbolic::DeriveOptions derive;
@@ -157,6 +159,7 @@ int run_fit(int argc, char** argv) {
     else result = fit(*evaluator, data, options);
     progress_done();
     result.model = model_path;
+    result.seed = options.seed;
 
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, fit_result_json(result));

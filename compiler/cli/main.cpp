@@ -1,14 +1,39 @@
 // mbgen: compile a model to C++ (`mbgen MODEL.mdl -o OUT.cpp`), or inspect, fit, diagnose, monitor it.
 // Exit status: 0 success, 1 bad input (model, data, an output that must not be written), 2 bad usage, 3 internal
 // error (docs/cli.md). Nothing is written on failure.
+#include <cerrno>
 #include <cstring>
 #include <iostream>
 #include <string>
 
+#include <fcntl.h>
+
 #include "cli/commands.hpp"
+#include "cli/output_files.hpp"
 #include "cli/version.hpp"
 
 namespace {
+
+// A standard stream the caller closed (`mbgen ... >&-`) is opened on /dev/null the wrong way round, so that using
+// it fails (and is reported) instead of the first file mbgen opens taking its descriptor and receiving its output.
+void guard_standard_streams() {
+  for (int fd = 0; fd <= 2; ++fd)
+    if (::fcntl(fd, F_GETFD) == -1 && errno == EBADF) ::open("/dev/null", fd == 0 ? O_WRONLY : O_RDONLY);
+}
+
+// A command that succeeded but whose standard output was lost (a full disk, a closed stream) did not succeed.
+int finish(int status) {
+  if (status != 0) return status;  // its error is reported already
+  try {
+    mbgen::cli::require_standard_output_written();
+  } catch (const mbgen::cli::OutputError& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+  return status;
+}
+
+int dispatch(int argc, char** argv);
 
 void print_usage() {
   std::cout << mbgen::cli::version_text() << ": a symbolic-to-numeric model compiler for mechanical systems\n\n"
@@ -30,6 +55,13 @@ void print_usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  guard_standard_streams();
+  return finish(dispatch(argc, argv));
+}
+
+namespace {
+
+int dispatch(int argc, char** argv) {
   if (argc < 2) {
     print_usage();
     return 2;
@@ -51,3 +83,5 @@ int main(int argc, char** argv) {
   if (first == "monitor") return mbgen::cli::run_monitor(argc - 1, argv + 1);
   return mbgen::cli::run_compile(argc, argv);
 }
+
+}  // namespace

@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
+#include "cli/number_checks.hpp"
 #include "cli/run_guarded.hpp"
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
@@ -38,11 +39,11 @@ int run_modal(int argc, char** argv) {
                  "write a report directory (Markdown with the stabilization diagram, MAC, FRFs)");
   app.add_option("--max-order", options.lscf.max_order,
                  "highest model order (default: from the data, about 64 / references)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_option("--select", options.select_hz,
                  "use the poles nearest these frequencies [Hz] instead of the automatic choice")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   bool no_refine = false;
   app.add_flag("--no-refine", no_refine, "keep the LSCF poles (cluster medians) instead of refining them");
   app.add_option("--quantity", quantity_text,
@@ -112,7 +113,7 @@ int run_modal(int argc, char** argv) {
       result = identify_modes(data, options);
     } catch (const std::invalid_argument& e) {  // an order or a selected frequency the data cannot serve
       progress_done();
-      throw CLI::ValidationError(e.what());
+      throw DataError(data_paths.front(), 0, 0, e.what());
     }
     progress_done();
     if (comparison) comparison->pairing = pair_modes(result.modes, comparison->modes);

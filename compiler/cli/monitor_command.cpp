@@ -20,6 +20,7 @@
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
+#include "cli/seed_option.hpp"
 #include "cli/starts_option.hpp"
 #include "cli/version.hpp"
 #include <mbgen/channel_residuals.hpp>
@@ -231,7 +232,7 @@ int run_monitor(int argc, char** argv) {
   app.add_option("--warm-starts", options.warm_starts,
                  "starts of each later, warm-started fit (default 4: the previous estimate, the priors, 2 random; at most --starts)")
       ->check(starts_range());
-  app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)");
+  app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)")->check(seed_check());
   app.add_flag("--no-diagnosis", settings.no_diagnosis, "report a structural change without running the diagnosis on it");
   app.add_option("--manifest", manifest_path,
                  "a fleet: CSV `machine,model,data` (docs/fleets.md); each machine is an item written to OUT/MACHINE");

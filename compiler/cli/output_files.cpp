@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cerrno>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "frontend/message.hpp"
@@ -43,6 +45,24 @@ fs::path resolved(const fs::path& p) {
 }
 
 bool same_path(const fs::path& a, const fs::path& b) { return resolved(a) == resolved(b); }
+
+// Whether `path` (following symbolic links) is the file standard input reads: the same device and inode. Standard
+// input is an input like any other (`mbgen fit m.mdl --data - --json data.csv < data.csv` would replace the data).
+bool is_standard_input(const fs::path& path) {
+  struct stat in {}, out {};
+  if (::fstat(STDIN_FILENO, &in) != 0 || !S_ISREG(in.st_mode)) return false;
+  return ::stat(path.c_str(), &out) == 0 && in.st_dev == out.st_dev && in.st_ino == out.st_ino;
+}
+
+// The regular file standard input reads, as a path (Linux: /proc/self/fd/0), or "" when it is none (a pipe, a
+// terminal): for the check that a report directory does not hold it.
+fs::path standard_input_file() {
+  struct stat in {};
+  if (::fstat(STDIN_FILENO, &in) != 0 || !S_ISREG(in.st_mode)) return {};
+  std::error_code ec;
+  const fs::path target = fs::read_symlink("/proc/self/fd/0", ec);
+  return ec || !target.is_absolute() ? fs::path() : target;
+}
 
 // True if `p` is `dir` or lies below it.
 bool within(const fs::path& p, const fs::path& dir) {
@@ -220,9 +240,13 @@ void OutputPlan::check() const {
       if (same_path(path, written[k].second))
         throw CLI::ValidationError(option, path.string() + " is also the output of " + written[k].first +
                                                "; give each output its own name");
-    for (const std::string& input : inputs)
+    for (const std::string& input : inputs) {
       if (input != "-" && same_path(path, clean(input)))
         throw CLI::ValidationError(option, path.string() + " is an input of this command; writing it would destroy it");
+      if (input == "-" && is_standard_input(path))
+        throw CLI::ValidationError(option, path.string() + " is the file standard input (-) reads, an input of this "
+                                                           "command; writing it would destroy it");
+    }
     if (!report_dir.empty() && within(path, clean(report_dir)))
       throw CLI::ValidationError(option, path.string() + " lies inside the report directory " + report_dir +
                                              ", which is written whole; write it elsewhere");
@@ -242,9 +266,12 @@ void OutputPlan::check() const {
     throw CLI::ValidationError("--report", "- (standard output) cannot hold a report directory; name a directory");
   const fs::path dir = clean(report_dir);
   report_target(dir);
-  for (const std::string& input : inputs)
-    if (input != "-" && within(clean(input), dir))
-      fail(dir, "cannot write a report here: it holds the input " + input + ", which replacing it would delete");
+  for (const std::string& input : inputs) {
+    const fs::path file = input == "-" ? standard_input_file() : clean(input);
+    if (!file.empty() && within(file, dir))
+      fail(dir, "cannot write a report here: it holds the input " + (input == "-" ? file.string() + " (standard input)" : input) +
+                    ", which replacing it would delete");
+  }
 }
 
 OutputFiles::~OutputFiles() {
@@ -356,9 +383,25 @@ void OutputFiles::commit() {
     std::error_code ec;
     if (!d.aside.empty()) fs::remove_all(d.aside, ec);
   }
+  for (const std::string& path : removed_) {
+    std::error_code ec;
+    if (!fs::remove(path, ec) && ec) fail(path, "cannot remove this stale output: " + ec.message());
+  }
   for (const std::string& chunk : stdout_chunks_) std::cout << chunk;
   std::cout.flush();
   committed_ = true;
+  if (!stdout_chunks_.empty()) require_standard_output_written();
+}
+
+void require_standard_output_written() {
+  errno = 0;
+  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+  if (!failed) return;
+  const int error = errno;
+  std::cout.clear();
+  throw OutputError("mbgen: error: writing to standard output failed" +
+                    (error != 0 ? std::string(": ") + std::strerror(error) : std::string()) +
+                    "; what was written there is incomplete");
 }
 
 }  // namespace mbgen::cli

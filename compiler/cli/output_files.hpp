@@ -55,6 +55,9 @@ class OutputFiles {
   // Stages a report directory that the caller fills: returns the temporary path to write into (it already holds
   // the marker file).
   std::string stage_directory(const std::string& dir);
+  // Removes `path` at commit, once every output is in place (a stale output of an earlier run, such as a part file
+  // a smaller --parts no longer writes).
+  void remove(const std::string& path) { removed_.push_back(path); }
   // Renames every staged file into place (a report directory replaces the empty or mbgen-written directory there,
   // checked again now); throws OutputError on failure, having put back every destination it had already replaced.
   void commit();
@@ -70,7 +73,12 @@ class OutputFiles {
   };
   std::vector<Through> through_;  // destinations written through at commit (symbolic links, devices, pipes)
   std::vector<std::string> stdout_chunks_;
+  std::vector<std::string> removed_;
   bool committed_ = false;
 };
+
+// Throws OutputError when something written to standard output did not reach it (a full disk, a closed stream,
+// /dev/full): a command must not report success for output that was lost. Flushes first.
+void require_standard_output_written();
 
 }  // namespace mbgen::cli

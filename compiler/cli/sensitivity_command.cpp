@@ -13,6 +13,7 @@
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
+#include "cli/seed_option.hpp"
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
@@ -105,7 +106,7 @@ int run_sensitivity(int argc, char** argv) {
   app.add_flag("--global", global, "Sobol first-order and total indices (Saltelli/Jansen) over the parameters' ranges");
   app.add_option("--samples", sobol.samples, "--global: base samples N; N (k + 2) modal analyses (default 1024)")
       ->check(CLI::Range(16, 1 << 22));
-  app.add_option("--seed", sobol.seed, "--global: seed of the samples (default 1)");
+  app.add_option("--seed", sobol.seed, "--global: seed of the samples (default 1)")->check(seed_check());
   app.add_option("--spread", spread,
                  "--global: each estimate parameter over value * [1 - S, 1 + S] within its bounds (default 0.2)")
       ->check(CLI::Range(1e-9, 10.0));

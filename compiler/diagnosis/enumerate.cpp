@@ -15,9 +15,14 @@ namespace {
 std::vector<Extension> candidates(const ir::ModelIr& located, const std::string& text, const ExtensionContext& ctx) {
   const OperatorInput in{located, text, ctx, ModelValues(located, ctx.values)};
   std::vector<Extension> out;
-  for (auto op : {compliant_ground, gyroscopic, free_parameter, untie_parameter, moment_stiffness, added_mass,
-                  resonator, sensor_dynamics, connection}) {
-    std::vector<Extension> found = op(in);
+  for (auto op : {measurement_chain, compliant_ground, gyroscopic, free_parameter, untie_parameter, moment_stiffness,
+                  added_mass, resonator, sensor_dynamics, connection}) {
+    std::vector<Extension> found;
+    try {
+      found = op(in);
+    } catch (const UnusableStart&) {
+      continue;  // its start values have no value at the current estimate: no candidate of this operator
+    }
     for (Extension& e : found) out.push_back(std::move(e));
   }
   return out;

@@ -10,13 +10,13 @@ using Catch::Matchers::Equals;
 TEST_CASE("mdof2: the candidates come from its structure", "[diagnosis]") {
   const test::Example ex = test::load("mdof2");
   const std::vector<Extension> plain = enumerate_extensions(ex.model, ex.text, {});
-  CHECK_THAT(test::ids_of(plain), Equals(std::vector<std::string>{
+  CHECK_THAT(test::structural_ids_of(plain), Equals(std::vector<std::string>{
                                       "compliant_ground:wall", "free_parameter:c12", "added_mass:mass1",
                                       "added_mass:mass2"}));
   ExtensionContext peaks;
   peaks.peak_hz = {190};
   const std::vector<Extension> with_peak = enumerate_extensions(ex.model, ex.text, peaks);
-  CHECK_THAT(test::ids_of(with_peak), Equals(std::vector<std::string>{
+  CHECK_THAT(test::structural_ids_of(with_peak), Equals(std::vector<std::string>{
                                           "compliant_ground:wall", "free_parameter:c12", "added_mass:mass1",
                                           "added_mass:mass2", "resonator:mass1", "resonator:mass2"}));
   for (const Extension& x : with_peak) test::check_candidate(x);
@@ -71,7 +71,7 @@ TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {
     expected.insert(expected.end(), common_tail.begin(), common_tail.end());
     expected.push_back("connection:base-spindle");
     const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, {});
-    CHECK_THAT(test::ids_of(xs), Equals(expected));
+    CHECK_THAT(test::structural_ids_of(xs), Equals(expected));
     for (const Extension& x : xs) test::check_candidate(x);
   }
   SECTION("n_sp varies between data sets, and there is a peak to explain") {
@@ -83,7 +83,7 @@ TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {
     expected.insert(expected.end(), common_tail.begin(), common_tail.end());
     for (const char* id : {"resonator:spindle", "resonator:housing", "connection:base-spindle"}) expected.push_back(id);
     const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, ctx);
-    CHECK_THAT(test::ids_of(xs), Equals(expected));
+    CHECK_THAT(test::structural_ids_of(xs), Equals(expected));
     for (const Extension& x : xs) test::check_candidate(x);
   }
   SECTION("an unexplained peak in one output's channels brings that output's sensor candidate") {
@@ -98,7 +98,7 @@ TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {
                            "connection:base-spindle"})
       expected.push_back(id);
     const std::vector<Extension> xs = enumerate_extensions(ex.model, ex.text, ctx);
-    CHECK_THAT(test::ids_of(xs), Equals(expected));
+    CHECK_THAT(test::structural_ids_of(xs), Equals(expected));
     std::vector<std::string> variants;
     for (const Extension& x : xs)
       if (x.id == "sensor_dynamics:xs_front") variants.push_back(x.variant);
@@ -135,8 +135,39 @@ TEST_CASE("a model built in code is written out and extended the same way", "[di
   ir::ModelIr built = ex.model;
   built.file.clear();
   const std::vector<Extension> xs = enumerate_extensions(built, "", {});
-  REQUIRE(xs.size() == 4);
+  REQUIRE(test::structural_ids_of(xs).size() == 4);
   for (const Extension& x : xs) test::check_candidate(x);
+}
+
+TEST_CASE("the measurement chain: a factor per output and on the input, and swapped outputs", "[diagnosis]") {
+  const test::Example ex = test::load("mdof2");
+  std::vector<Extension> chain;
+  for (Extension& x : enumerate_extensions(ex.model, ex.text, {}))
+    if (x.operator_name == "measurement_chain") chain.push_back(std::move(x));
+  CHECK_THAT(test::ids_of(chain),
+             Equals(std::vector<std::string>{"measurement_chain:gain:d1", "measurement_chain:gain:d1",
+                                             "measurement_chain:gain:d2", "measurement_chain:gain:d2",
+                                             "measurement_chain:swap:d1,d2", "measurement_chain:input:F1",
+                                             "measurement_chain:input:F1"}));
+  for (const Extension& x : chain) {
+    INFO(x.id << " " << x.variant);
+    test::check_candidate(x);
+    if (x.target == "swap:d1,d2") {
+      // The two output statements exchange their names: d1 now measures mass2.
+      CHECK(x.new_parameters.empty());
+      CHECK(x.model.outputs[0].name == "d2");
+      CHECK(x.model.outputs[1].name == "d1");
+      continue;
+    }
+    REQUIRE(x.new_parameters.size() == 1);
+    const ir::Parameter* g = x.model.find_parameter(x.new_parameters[0].name);
+    REQUIRE(g);
+    const double start = ModelValues(x.model, {}).of_parameter(g->name);
+    CHECK(start == (x.variant == "polarity" ? -1.0 : 1.0));
+    // A gain filter per output it scales: one for an output, every output for the input.
+    CHECK(x.model.filters.size() == (x.target == "input:F1" ? 2u : 1u));
+    for (const ir::Filter& f : x.model.filters) CHECK(f.kind == ir::FilterKind::Gain);
+  }
 }
 
 TEST_CASE("a text that is not the model's is refused", "[diagnosis]") {

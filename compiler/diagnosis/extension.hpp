@@ -69,8 +69,9 @@ struct ExtensionContext {
 // Peaks beyond the strongest that give a candidate an alternative start (Extension::alternative_starts).
 inline constexpr std::size_t kAlternativePeaks = 2;
 
-// All candidates, in a fixed order: by operator (compliant_ground, gyroscopic, free_parameter, untie_parameter,
-// moment_stiffness, added_mass, resonator, sensor_dynamics, connection), then in the model's declaration order.
+// All candidates, in a fixed order: by operator (measurement_chain, compliant_ground, gyroscopic, free_parameter,
+// untie_parameter, moment_stiffness, added_mass, resonator, sensor_dynamics, connection), then in the model's
+// declaration order.
 // Ids are unique, except that the variants of one candidate (distinct `variant`s) share its id.
 // `nominal_text` is the text `nominal` was parsed from; each candidate's mdl_text parses to its model.
 std::vector<Extension> enumerate_extensions(const ir::ModelIr& nominal, const std::string& nominal_text,

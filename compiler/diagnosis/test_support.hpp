@@ -35,6 +35,15 @@ inline std::vector<std::string> ids_of(const std::vector<Extension>& xs) {
   return out;
 }
 
+// The ids of the structural candidates (the measurement chain's left out: every model gets them, enumerate_test checks
+// them on their own).
+inline std::vector<std::string> structural_ids_of(const std::vector<Extension>& xs) {
+  std::vector<std::string> out;
+  for (const Extension& x : xs)
+    if (x.operator_name != "measurement_chain") out.push_back(x.id);
+  return out;
+}
+
 inline const Extension& find(const std::vector<Extension>& xs, const std::string& id) {
   for (const Extension& x : xs)
     if (x.id == id) return x;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <limits>
@@ -330,6 +331,18 @@ std::vector<std::pair<double, double>> bounds_of(const SymbolicModel& sm) {
   return bounds;
 }
 
+// The header as the source's #include line names it: its path relative to the source's directory, so that
+// `-o src/m.cpp --header include/m.hpp` compiles without an extra include path.
+std::string include_path(const std::string& header, const std::string& source) {
+  namespace fs = std::filesystem;
+  if (header.find('/') == std::string::npos && source.find('/') == std::string::npos) return header;
+  std::error_code ec;
+  const fs::path h = fs::absolute(header, ec).lexically_normal();
+  const fs::path s = fs::absolute(source, ec).lexically_normal();
+  const fs::path relative = h.lexically_relative(s.parent_path());
+  return ec || relative.empty() ? base_name(header) : relative.generic_string();
+}
+
 }  // namespace
 
 const char* mbgen_version() { return MBGEN_VERSION; }
@@ -360,7 +373,8 @@ CppEmitResult emit_cpp(const SymbolicModel& sm, const CppEmitOptions& options) {
   }
   if (const std::string problem = namespace_problem(ns); !problem.empty())
     throw std::invalid_argument("emit_cpp: invalid C++ namespace `" + ns + "`: " + problem);
-  const std::string header_file = base_name(options.header_file), source_file = base_name(options.source_file);
+  const std::string header_file = include_path(options.header_file, options.source_file),
+                    source_file = base_name(options.source_file);
   if (const std::string problem = include_name_problem(header_file); !problem.empty())
     throw std::invalid_argument("emit_cpp: header name `" + header_file + "` cannot be #included: " + problem);
 

@@ -73,7 +73,9 @@ std::string namespace_problem(std::string_view ns) {
   while (true) {
     const std::size_t sep = ns.find("::", start);
     const std::size_t length = sep == std::string_view::npos ? std::string_view::npos : sep - start;
-    if (const std::string problem = ir::cxx_identifier_problem(ns.substr(start, length)); !problem.empty())
+    const std::string_view part = ns.substr(start, length);
+    if (const std::string problem = start == 0 ? ir::cxx_top_namespace_problem(part) : ir::cxx_identifier_problem(part);
+        !problem.empty())
       return problem;
     if (sep == std::string_view::npos) return "";
     start = sep + 2;

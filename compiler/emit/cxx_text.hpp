@@ -20,7 +20,8 @@ std::string cxx_comment_text(std::string_view s);
 std::string include_name_problem(std::string_view name);
 
 // Empty if `ns` (A or A::B::C) is a usable namespace for generated code, else why not: each part passes
-// ir::cxx_identifier_problem (an identifier, not a keyword, macro, reserved name or namespace the code uses).
+// ir::cxx_identifier_problem (an identifier, not a keyword, macro, reserved name or namespace the code uses), and the
+// first, declared at global scope, ir::cxx_top_namespace_problem (not a name the included headers declare there).
 std::string namespace_problem(std::string_view ns);
 
 }  // namespace mbgen::emit

@@ -36,20 +36,41 @@ GiNaC::numeric exact(const GiNaC::numeric& n) {
   return m * GiNaC::pow(GiNaC::numeric(2), GiNaC::numeric(exponent - 53));
 }
 
-Printed number(const GiNaC::numeric& raw) {
+Printed number(const GiNaC::numeric& raw, bool latex) {
   GiNaC::numeric n = exact(raw);
-  if (n.is_negative()) return {"-" + number(-n).text, 1};
+  if (n.is_negative()) return {"-" + number(-n, latex).text, 1};
   if (n.is_integer()) return {integer_text(n), 3};
+  if (latex) return {"\\frac{" + integer_text(n.numer()) + "}{" + integer_text(n.denom()) + "}", 3};
   return {integer_text(n.numer()) + "/" + integer_text(n.denom()), 1};
+}
+
+// A parameter's name in LaTeX math: what follows its first `_` is a subscript set upright, with every further `_`
+// escaped (`m_a_b` is m subscript "a_b"; GiNaC printed `m_a_b`, a double subscript that LaTeX rejects).
+std::string latex_name(const std::string& name) {
+  const auto escaped = [](const std::string& s) {
+    std::string out;
+    for (char c : s) out += c == '_' ? std::string("\\_") : std::string(1, c);
+    return out;
+  };
+  const std::size_t u = name.find('_');
+  if (u == std::string::npos) return name.size() == 1 ? name : "\\mathit{" + name + "}";
+  if (u == 0) return "\\mathit{" + escaped(name) + "}";
+  const std::string head = name.substr(0, u), tail = name.substr(u + 1);
+  return (head.size() == 1 ? head : "\\mathit{" + head + "}") + "_{\\mathrm{" + escaped(tail) + "}}";
 }
 
 class Printer {
  public:
+  explicit Printer(bool latex = false) : latex_(latex) {}
+
   Printed print(const GiNaC::ex& e) const {
-    if (GiNaC::is_a<GiNaC::numeric>(e)) return number(GiNaC::ex_to<GiNaC::numeric>(e));
-    if (GiNaC::is_a<GiNaC::symbol>(e)) return {GiNaC::ex_to<GiNaC::symbol>(e).get_name(), 3};
+    if (GiNaC::is_a<GiNaC::numeric>(e)) return number(GiNaC::ex_to<GiNaC::numeric>(e), latex_);
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      const std::string& name = GiNaC::ex_to<GiNaC::symbol>(e).get_name();
+      return {latex_ ? latex_name(name) : name, 3};
+    }
     if (GiNaC::is_a<GiNaC::constant>(e)) {
-      if (e.is_equal(GiNaC::Pi)) return {"pi", 3};
+      if (e.is_equal(GiNaC::Pi)) return {latex_ ? "\\pi" : "pi", 3};
       throw std::logic_error("infix_text: unsupported constant " + ginac_text(e));
     }
     if (GiNaC::is_a<GiNaC::add>(e)) return add(e);
@@ -59,16 +80,18 @@ class Printer {
       return negative ? Printed{"-" + magnitude.text, 1} : magnitude;
     }
     if (GiNaC::is_a<GiNaC::function>(e)) {
-      std::string s = GiNaC::ex_to<GiNaC::function>(e).get_name() + "(";
+      const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+      std::string s = latex_ ? "\\" + name + "\\left(" : name + "(";
       for (std::size_t i = 0; i < e.nops(); ++i) s += (i ? ", " : "") + print(e.op(i)).text;
-      return {s + ")", 3};
+      return {s + (latex_ ? "\\right)" : ")"), 3};
     }
     throw std::logic_error("infix_text: unsupported expression " + ginac_text(e));
   }
 
  private:
-  static std::string wrap(const Printed& p, int min_prec) {
-    return p.prec < min_prec ? "(" + p.text + ")" : p.text;
+  std::string wrap(const Printed& p, int min_prec) const {
+    if (p.prec >= min_prec) return p.text;
+    return latex_ ? "\\left(" + p.text + "\\right)" : "(" + p.text + ")";
   }
 
   static std::string negated(const std::string& term) { return term[0] == '-' ? term.substr(1) : "-" + term; }
@@ -134,11 +157,13 @@ class Printer {
     if (negative) coeff = -coeff;
     if (!coeff.numer().is_equal(1) || num.empty()) num.insert(num.begin(), integer_text(coeff.numer()));
     if (!coeff.denom().is_equal(1)) den.insert(den.begin(), integer_text(coeff.denom()));
+    const std::string times = latex_ ? " " : "*";
     std::string s;
-    for (std::size_t i = 0; i < num.size(); ++i) s += (i ? "*" : "") + num[i];
+    for (std::size_t i = 0; i < num.size(); ++i) s += (i ? times : "") + num[i];
     if (!den.empty()) {
       std::string d;
-      for (std::size_t i = 0; i < den.size(); ++i) d += (i ? "*" : "") + den[i];
+      for (std::size_t i = 0; i < den.size(); ++i) d += (i ? times : "") + den[i];
+      if (latex_) return {(negative ? "-" : "") + std::string("\\frac{") + s + "}{" + d + "}", negative ? 1 : 3};
       s += "/" + (den.size() == 1 ? d : "(" + d + ")");
     }
     const bool single = !negative && num.size() == 1 && den.empty();
@@ -149,21 +174,28 @@ class Printer {
   Printed power(const GiNaC::ex& e, bool negate_base = false) const {
     const GiNaC::ex& expo = e.op(1);
     const Printed b = base_of(e, negate_base);
-    if (GiNaC::is_a<GiNaC::numeric>(expo) && expo.info(GiNaC::info_flags::negative))
+    if (GiNaC::is_a<GiNaC::numeric>(expo) && expo.info(GiNaC::info_flags::negative)) {
+      if (latex_) return {"\\frac{1}{" + raised(b, -expo).text + "}", 3};
       return {"1/" + wrap(raised(b, -expo), 2), 1};
+    }
     return raised(b, expo);
   }
 
   Printed raised(const Printed& base, const GiNaC::ex& expo) const {
     if (expo.is_equal(1)) return base;
-    return {wrap(base, 3) + "^" + wrap(print(expo), 3), 2};
+    if (!latex_) return {wrap(base, 3) + "^" + wrap(print(expo), 3), 2};
+    if (expo.is_equal(GiNaC::numeric(1, 2))) return {"\\sqrt{" + base.text + "}", 3};
+    return {wrap(base, 3) + "^{" + print(expo).text + "}", 2};
   }
 
+  bool latex_;
   mutable passes::SignFreeKeys keys_;
 };
 
 }  // namespace
 
 std::string infix_text(const GiNaC::ex& e) { return Printer().print(e).text; }
+
+std::string latex_text(const GiNaC::ex& e) { return Printer(true).print(e).text; }
 
 }  // namespace mbgen::emit

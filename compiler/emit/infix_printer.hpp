@@ -13,4 +13,9 @@ namespace mbgen::emit {
 
 std::string infix_text(const GiNaC::ex& e);
 
+// The same expression as LaTeX math (inspect --format latex): operands in the same deterministic order and signs
+// (GiNaC's own LaTeX printer follows hash values, which differ from run to run), ratios as \frac, parameter names
+// with their subscripts escaped.
+std::string latex_text(const GiNaC::ex& e);
+
 }  // namespace mbgen::emit

@@ -1,7 +1,8 @@
-// LaTeX inspection: a standalone document (amsmath), matrices as bmatrix via GiNaC's LaTeX printer.
+// LaTeX inspection: a standalone document (amsmath), matrices as bmatrix, expressions by latex_text (infix_printer.hpp).
 #include <sstream>
 
 #include "emit/inspect.hpp"
+#include "emit/infix_printer.hpp"
 #include "emit/inspect_common.hpp"
 
 namespace mbgen::emit {
@@ -28,11 +29,7 @@ std::string escape_text(const std::string& s) {
 // create fresh symbols, whose hash-based order in sums differs from run to run.
 GiNaC::exmap tex_symbols(const symbolic::SymbolicModel&) { return {}; }
 
-std::string latex(const GiNaC::ex& e) {
-  std::ostringstream os;
-  os << GiNaC::latex << e;
-  return os.str();
-}
+std::string latex(const GiNaC::ex& e) { return latex_text(e); }
 
 void matrix(std::ostringstream& os, const std::string& name, const GiNaC::matrix& m, const GiNaC::exmap& tex) {
   os << "\\[\n" << name << " = \\begin{bmatrix}\n";

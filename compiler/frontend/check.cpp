@@ -174,7 +174,7 @@ class Checker {
     const bool is_output = std::any_of(m_.outputs.begin(), m_.outputs.end(),
                                        [&](const ir::Output& o) { return o.name == f.output; });
     if (!is_output) fail(f.loc, "filter `{}` is on `{}`, which is not an output", f.name, f.output);
-    for (const std::optional<ir::Expr>* e : {&f.cutoff, &f.damping, &f.time})
+    for (const std::optional<ir::Expr>* e : {&f.cutoff, &f.damping, &f.time, &f.factor})
       if (*e) check_expr(**e);
   }
 

@@ -125,6 +125,7 @@ std::string write_filter(const ir::Filter& f) {
   if (f.cutoff) out += " cutoff " + ir::to_string(*f.cutoff);
   if (f.damping) out += " damping " + ir::to_string(*f.damping);
   if (f.time) out += " time " + ir::to_string(*f.time);
+  if (f.factor) out += " factor " + ir::to_string(*f.factor);
   if (f.kind == ir::FilterKind::Delay && f.sections != 1) out += " sections " + std::to_string(f.sections);
   return out + "\n";
 }

@@ -331,7 +331,7 @@ class Parser {
     model_.outputs.push_back(std::move(out));
   }
 
-  // filter NAME on OUTPUT lowpass2|highpass1|highpass2|delay ITEM...   (docs/language.md, "Filters")
+  // filter NAME on OUTPUT lowpass2|highpass1|highpass2|delay|gain ITEM...   (docs/language.md, "Filters")
   void filter_statement() {
     next();
     ir::Filter f;
@@ -340,23 +340,31 @@ class Parser {
     f.loc = name.loc;
     expect_word("on");
     f.output = expect_name("the name of the output it filters").text;
-    const char* kinds = "a filter kind (lowpass2, highpass1, highpass2, delay)";
+    const char* kinds = "a filter kind (lowpass2, highpass1, highpass2, delay, gain)";
     const Token kind = expect_name(kinds);
     if (kind.text == "lowpass2") f.kind = ir::FilterKind::Lowpass2;
     else if (kind.text == "highpass1") f.kind = ir::FilterKind::Highpass1;
     else if (kind.text == "highpass2") f.kind = ir::FilterKind::Highpass2;
     else if (kind.text == "delay") f.kind = ir::FilterKind::Delay;
+    else if (kind.text == "gain") f.kind = ir::FilterKind::Gain;
     else fail(kind, kinds);
     const bool delay = f.kind == ir::FilterKind::Delay;
+    const bool gain = f.kind == ir::FilterKind::Gain;
     const bool second_order = f.kind == ir::FilterKind::Lowpass2 || f.kind == ir::FilterKind::Highpass2;
-    const std::string items = delay ? "`time` or `sections`" : second_order ? "`cutoff` or `damping`" : "`cutoff`";
+    const std::string items = delay          ? "`time` or `sections`"
+                              : gain         ? "`factor`"
+                              : second_order ? "`cutoff` or `damping`"
+                                             : "`cutoff`";
     bool has_sections = false;
     while (peek().kind == TokenKind::Name) {
       const Token item = next();
       const auto once = [&](bool seen) {
         if (seen) fail_at(item.loc, "`" + item.text + "` given twice in filter `" + f.name + "`");
       };
-      if (!delay && item.text == "cutoff") {
+      if (gain && item.text == "factor") {
+        once(f.factor.has_value());
+        f.factor = expr();
+      } else if (!delay && !gain && item.text == "cutoff") {
         once(f.cutoff.has_value());
         f.cutoff = expr();
       } else if (second_order && item.text == "damping") {
@@ -382,6 +390,8 @@ class Parser {
     };
     if (delay) {
       require(f.time, "time");
+    } else if (gain) {
+      require(f.factor, "factor");
     } else {
       require(f.cutoff, "cutoff");
       if (second_order) require(f.damping, "damping");

@@ -1,5 +1,8 @@
 #include "ir/identifier.hpp"
 
+#include <algorithm>
+#include <iterator>
+
 namespace mbgen::ir {
 
 namespace {
@@ -24,6 +27,18 @@ constexpr std::string_view kKeywords[] = {
     "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
     // Macros: predefined in GNU mode (the default of CMake and GCC), or from headers the generated code includes.
     "linux", "unix", "NULL", "EOF", "errno", "assert"};
+
+// Macros of the headers the generated code includes (<cmath>, <limits>, Eigen, the runtime's), listed when mbgen was
+// configured (cmake/HeaderMacros.cmake), sorted: a namespace of such a name is replaced by the preprocessor.
+constexpr std::string_view kHeaderMacros[] = {
+#include "header_macros.inc"
+};
+
+// Names the same headers declare at global scope (the C library's sin, y0, FILE, size_t), listed during the build
+// (compiler/tools/list_global_names.cpp), sorted: a top-level namespace of such a name clashes with the declaration.
+constexpr std::string_view kGlobalNames[] = {
+#include "global_names.inc"
+};
 
 // Namespaces the generated code names without a leading `::`: a namespace of the same name inside the model's
 // would hide them.
@@ -61,11 +76,25 @@ std::string cxx_identifier_problem(std::string_view s) {
   if (!is_identifier(s))
     return s.empty() ? "a part of it is empty" : quoted + " is not an identifier (letters, digits and _)";
   if (among(s, kKeywords)) return quoted + " is a C++ keyword or a predefined macro";
+  if (std::binary_search(std::begin(kHeaderMacros), std::end(kHeaderMacros), s))
+    return quoted + " is a macro of the headers the generated code includes (<cmath>, <limits>, Eigen)";
+  if (s.rfind("MBGEN_", 0) == 0 || s.rfind("EIGEN_", 0) == 0)
+    return quoted + " could be a macro: names starting with MBGEN_ or EIGEN_ are reserved for mbgen's and Eigen's";
+  if (s.size() > 2 && s.substr(s.size() - 2) == "_t")
+    return quoted + " could be a type of the C library: names ending in _t are reserved for types (POSIX; size_t)";
   if (among(s, kUsedNamespaces))
     return quoted + " would hide the namespace " + quoted + " that the generated code uses";
   const bool underscore_capital = s.size() > 1 && s[0] == '_' && s[1] >= 'A' && s[1] <= 'Z';
   if (s.find("__") != std::string_view::npos || underscore_capital)
     return quoted + " is reserved for the C++ implementation (`__`, or `_` and a capital letter)";
+  return "";
+}
+
+std::string cxx_top_namespace_problem(std::string_view s) {
+  if (std::string problem = cxx_identifier_problem(s); !problem.empty()) return problem;
+  if (std::binary_search(std::begin(kGlobalNames), std::end(kGlobalNames), s))
+    return "`" + std::string(s) + "` is declared at global scope by the headers the generated code includes (a C "
+           "library function or type): a top-level namespace of that name clashes with it";
   return "";
 }
 

@@ -28,6 +28,10 @@ bool is_language_word(std::string_view s);
 // (std, Eigen, mbgen, mpfr), which it would hide.
 std::string cxx_identifier_problem(std::string_view s);
 
+// The same for the first part of a namespace, which is declared at global scope: also not a name the headers the
+// generated code includes declare there (sin, y0, FILE, size_t).
+std::string cxx_top_namespace_problem(std::string_view s);
+
 // The C++ variable that holds parameter `name` in generated code.
 std::string cxx_parameter_variable(std::string_view name);
 

@@ -224,6 +224,7 @@ const char* to_string(FilterKind k) {
     case FilterKind::Highpass1: return "highpass1";
     case FilterKind::Highpass2: return "highpass2";
     case FilterKind::Delay: return "delay";
+    case FilterKind::Gain: return "gain";
   }
   return "?";
 }

@@ -166,8 +166,9 @@ enum class FilterKind {
   Highpass1,  // s / (s + wc): AC coupling
   Highpass2,  // s^2 / (s^2 + 2 zeta wc s + wc^2): a charge amplifier's or a second-order AC coupling
   Delay,      // exp(-s tau), as `sections` second-order Pade sections of tau / sections each
+  Gain,       // a constant factor: a sensor's calibration (sensitivity) error, or its polarity (-1)
 };
-const char* to_string(FilterKind k);  // "lowpass2", "highpass1", "highpass2", "delay"
+const char* to_string(FilterKind k);  // "lowpass2", "highpass1", "highpass2", "delay", "gain"
 
 struct Filter {
   std::string name;
@@ -176,6 +177,7 @@ struct Filter {
   std::optional<Expr> cutoff;   // Hz: Lowpass2, Highpass1, Highpass2
   std::optional<Expr> damping;  // damping ratio: Lowpass2, Highpass2
   std::optional<Expr> time;     // s: Delay
+  std::optional<Expr> factor;   // Gain (not zero)
   int sections = 1;             // Delay only
   SourceLoc loc;
 };

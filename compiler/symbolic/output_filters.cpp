@@ -19,10 +19,20 @@ GiNaC::matrix grown(const GiNaC::matrix& m, unsigned rows, unsigned cols) {
 
 std::vector<Section> sections_of(const ir::Filter& f, const ParameterTable& params) {
   if (f.kind == ir::FilterKind::Delay) {
-    const GiNaC::ex t = params.convert(*f.time) / f.sections;
+    // The Pade sections divide by the time: a delay of zero (or less) at the parameters' values has no sections.
+    const GiNaC::ex time = params.convert(*f.time);
+    const GiNaC::ex at = GiNaC::evalf(time.subs(params.values()));
+    if (GiNaC::is_a<GiNaC::numeric>(at) &&
+        !(GiNaC::ex_to<GiNaC::numeric>(at).is_real() && GiNaC::ex_to<GiNaC::numeric>(at).is_positive()))
+      throw frontend::ModelError(params.model().file, f.time->loc,
+                                 "filter `{}`: its delay time is {:.6g} s at the parameters' values; a delay must be "
+                                 "positive (for none, remove the filter)",
+                                 f.name, GiNaC::ex_to<GiNaC::numeric>(at).real().to_double());
+    const GiNaC::ex t = time / f.sections;
     return std::vector<Section>(static_cast<std::size_t>(f.sections),
                                 Section{6 / t, 12 / (t * t), 1, -6 / t, 12 / (t * t)});
   }
+  if (f.kind == ir::FilterKind::Gain) return {};  // no state (add_output_filters scales the output's rows)
   const GiNaC::ex wc = 2 * GiNaC::Pi * params.convert(*f.cutoff);
   switch (f.kind) {
     case ir::FilterKind::Lowpass2:
@@ -32,6 +42,7 @@ std::vector<Section> sections_of(const ir::Filter& f, const ParameterTable& para
     case ir::FilterKind::Highpass1:
       return {Section{3 * wc, 2 * wc * wc, 1, 2 * wc, 0}};
     case ir::FilterKind::Delay:
+    case ir::FilterKind::Gain:
       break;
   }
   return {};
@@ -60,6 +71,20 @@ void add_output_filters(const ParameterTable& params, SymbolicModel& out) {
     while (o < model.outputs.size() && model.outputs[o].name != f.output) ++o;
     if (o == model.outputs.size())
       throw frontend::ModelError(model.file, f.loc, "filter `" + f.name + "`: no output `" + f.output + "`");
+    if (f.kind == ir::FilterKind::Gain) {  // no state: the output's rows scaled (a constant commutes with the rest)
+      const GiNaC::ex g = params.convert(*f.factor);
+      if (GiNaC::evalf(g.subs(params.values())).is_zero())
+        throw frontend::ModelError(model.file, f.factor->loc,
+                                   "filter `{}`: its gain factor is 0 at the parameters' values: the output would read "
+                                   "nothing",
+                                   f.name);
+      for (unsigned i = 0; i < w; ++i) {
+        out.Cd(o, i) = g * out.Cd(o, i);
+        out.Cv(o, i) = g * out.Cv(o, i);
+        out.Ca(o, i) = g * out.Ca(o, i);
+      }
+      continue;
+    }
     for (std::size_t j = 0; j < sections[k].size(); ++j, ++w) {
       const Section& sec = sections[k][j];
       const std::string state = sections[k].size() == 1 ? "w" : "w" + std::to_string(j + 1);

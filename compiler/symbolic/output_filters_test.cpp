@@ -112,6 +112,22 @@ TEST_CASE("output filters: each kind multiplies the output's transfer function b
   }
 }
 
+TEST_CASE("output filters: a gain multiplies the output by its factor, with no state, and may not be zero") {
+  const ir::ModelIr plain_model = frontend::parse_string(mdof2_text(), "mdof2.mdl");
+  const SymbolicModel plain = derive(plain_model);
+  const std::string gain = "param g = -4/5 \"\" estimate in [-10, 10]\nfilter cal on d2 gain factor g\n";
+  const ir::ModelIr model = frontend::parse_string(mdof2_text() + gain, "gain.mdl");  // sm points into it
+  const SymbolicModel sm = derive(model);
+  const GiNaC::ex expected = rename_symbols(ratio(tf_of(plain, "d2"), plain.s), plain, sm) * symbol_of(sm, "g");
+  CHECK(agree(sm, tf_of(sm, "d2"), expected));
+  CHECK(agree(sm, tf_of(sm, "d1"), rename_symbols(ratio(tf_of(plain, "d1"), plain.s), plain, sm)));
+  CHECK(sm.coordinates.size() == 2u);  // no filter state
+  // A gain that is zero at the parameters' values would make the output read nothing.
+  const std::string zero = "param g = 0 \"\" estimate in [-10, 10]\nfilter cal on d2 gain factor g\n";
+  CHECK_THROWS_WITH(derive(frontend::parse_string(mdof2_text() + zero, "zero.mdl")),
+                    Catch::Contains("its gain factor is 0 at the parameters' values"));
+}
+
 TEST_CASE("output filters: filters on one output apply in declaration order, also on an acceleration output") {
   const std::string text = mdof2_text() +
                            "param fa = 300 \"Hz\"\nparam fb = 5 \"Hz\"\n"

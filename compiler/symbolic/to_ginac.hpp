@@ -55,6 +55,9 @@ class ParameterTable {
   GiNaC::ex bounded(const ir::Expr& e, const GiNaC::ex& value) const;
   // x at the parameters' values; throws ModelError at `e` when it has none (a division by zero, 0^0).
   GiNaC::ex value_at(const ir::Expr& e, const GiNaC::ex& x) const;
+  // sin and cos of an argument whose magnitude at the parameters' values is beyond kMaxTrigArgument: a ModelError.
+  void check_trigonometric_argument(const ir::Expr& e, const GiNaC::ex& x) const;
+  static constexpr double kMaxTrigArgument = 1e6;
   [[noreturn]] void fail_without_value(const ir::Expr& e, const std::string& why) const;
   static std::string too_large_text();
 

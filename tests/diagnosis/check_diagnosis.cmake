@@ -1,12 +1,17 @@
 # One hidden-effect test: make data with the independent truth-model generator (scripts/truthgen, numpy; not
 # mbgen's code), run `mbgen diagnose`, and check the verdict and the selected extensions in its JSON.
 #   -DMBGEN=... -DPYTHON=... -DTRUTHGEN=... -DMODEL=... -DWORK_DIR=...
-#   -DDATA="example:case:kind:seed[:NAME=VALUE][:duration=S][:draw=N][:averages=N][:nocoh][:fs=HZ]|..."
-#                                                                     one or more data sets
+#   -DDATA="example:case:kind:seed[:NAME=VALUE][:duration=S][:draw=N][:averages=N][:nocoh][:fs=HZ]
+#           [:gain=OUTPUT=FACTOR][:inputgain=INPUT=FACTOR][:forcesign=-1][:swap=A,B][:unit=OUTPUT=UNIT]|..."
+#                                                                     one or more data sets; gain, inputgain,
+#                                                                     forcesign, swap, unit: errors of the
+#                                                                     measurement chain (docs/truthgen.md)
 #         or "file=PATH|..." for measured data as they are (real data, no generator)
 #   -DDIAGNOSE_ARGS="--fit-band;20:320" (optional): more arguments of `mbgen diagnose`
 #   -DEXPECT_VERDICT=extended|no_extension_justified|unexplained|not_extended
 #   -DEXPECT_SELECTED=id (first selected extension, when extended)
+#   -DEXPECT_ALSO=id (optional: another extension that must be among the selected)
+cmake_policy(SET CMP0057 NEW)  # if(... IN_LIST ...)
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 string(REPLACE "|" ";" sets "${DATA}")
@@ -37,6 +42,16 @@ foreach(set IN LISTS sets)
         list(APPEND extra --no-coherence)  # an FRF file without coherence columns
       elseif(option MATCHES "^fs=(.*)$")
         list(APPEND extra --fs "${CMAKE_MATCH_1}")  # a time record's sample rate, Hz
+      elseif(option MATCHES "^gain=(.*)$")
+        list(APPEND extra --gain "${CMAKE_MATCH_1}")  # an output's calibration or polarity error
+      elseif(option MATCHES "^inputgain=(.*)$")
+        list(APPEND extra --input-gain "${CMAKE_MATCH_1}")  # the force transducer's calibration
+      elseif(option MATCHES "^forcesign=(.*)$")
+        list(APPEND extra --force-sign "${CMAKE_MATCH_1}")  # the recorded force's sign
+      elseif(option MATCHES "^swap=(.*)$")
+        list(APPEND extra --swap "${CMAKE_MATCH_1}")  # two outputs' columns exchanged
+      elseif(option MATCHES "^unit=(.*)$")
+        list(APPEND extra --unit "${CMAKE_MATCH_1}")  # a channel written in another unit
       else()
         list(APPEND extra --set "${option}")
       endif()
@@ -76,6 +91,25 @@ elseif(NOT verdict STREQUAL EXPECT_VERDICT)
 endif()
 if(EXPECT_SELECTED AND NOT selected STREQUAL EXPECT_SELECTED)
   message(FATAL_ERROR "selected '${selected}', expected ${EXPECT_SELECTED}")
+endif()
+set(all_selected "")
+if(n_selected GREATER 0)
+  math(EXPR last "${n_selected} - 1")
+  foreach(i RANGE ${last})
+    string(JSON id GET "${json}" selected ${i})
+    list(APPEND all_selected "${id}")
+  endforeach()
+endif()
+if(EXPECT_ALSO AND NOT EXPECT_ALSO IN_LIST all_selected)
+  message(FATAL_ERROR "selected '${all_selected}', expected ${EXPECT_ALSO} among them")
+endif()
+# An error of the measurement chain alone is never answered with a structural extension as well.
+if(EXPECT_SELECTED MATCHES "^measurement_chain:" AND NOT EXPECT_ALSO)
+  foreach(id IN LISTS all_selected)
+    if(NOT id MATCHES "^measurement_chain:")
+      message(FATAL_ERROR "a structural extension (${id}) beside the chain's error: selected '${all_selected}'")
+    endif()
+  endforeach()
 endif()
 if(verdict STREQUAL "extended" AND NOT EXISTS "${WORK_DIR}/extended.mdl")
   message(FATAL_ERROR "extended, but no extended model was written")

@@ -41,7 +41,7 @@ void convert_all(const mbgen::symbolic::ParameterTable& table, const mbgen::ir::
   for (const mbgen::ir::Input& i : model.inputs) point(i.at), vector(i.direction.vector);
   for (const mbgen::ir::Output& o : model.outputs) point(o.at), vector(o.direction.vector);
   for (const mbgen::ir::Filter& f : model.filters)
-    for (const auto* x : {&f.cutoff, &f.damping, &f.time})
+    for (const auto* x : {&f.cutoff, &f.damping, &f.time, &f.factor})
       if (*x) table.convert(**x);
 }
 

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <set>
 
+#include <mbgen/chain_scores.hpp>
 #include <mbgen/channel_residuals.hpp>
 #include <mbgen/data_split.hpp>
 #include <mbgen/parallel.hpp>
@@ -22,6 +23,12 @@
 namespace mbgen::diagnosis {
 
 namespace {
+
+// The measurement chain's operator (docs/diagnosis.md, "The measurement chain"): its candidates are fitted only where
+// a statistic at the current fit or against the priors supports them (chain_scores.hpp).
+const char* const kChainOperator = "measurement_chain";
+// Chain candidates fitted per round: the best by their statistic.
+constexpr std::size_t kChainFits = 3;
 
 std::string format(const char* pattern, double a, double b = 0, double c = 0) {
   char buffer[256];
@@ -281,12 +288,12 @@ class Diagnoser {
   DiagnosisResult run(const ir::ModelIr& model, const std::string& text) {
     DiagnosisResult result;
     result.model_file = model.file;
+    result.seed = options_.fit.seed;
     for (const DataSet& d : data_) result.data.push_back(d.file());
     result.nominal = assess_nominal(model, text);
     ModelState current = result.nominal;
-    std::set<std::string> promising;  // ids that qualified in the previous round (later rounds re-fit only those)
     for (int round = 1; round <= options_.max_extensions; ++round)
-      if (!extend_once(round, result, current, promising)) break;
+      if (!extend_once(round, result, current)) break;
     keep_only_full_explanations(result, current);
     if (!result.selected.empty()) current.text = with_estimates(current.text, current.values, added_parameters(result));
     result.final = current;
@@ -315,20 +322,26 @@ class Diagnoser {
     return nominal;
   }
 
-  // One round of the greedy forward selection: the candidates on the current model (in later rounds only those
-  // that qualified before), scored; the best qualifying one is taken if it explains the discrepancy. False when
-  // the search ends.
-  bool extend_once(int round, DiagnosisResult& result, ModelState& current, std::set<std::string>& promising) {
+  // One round of the greedy forward selection: every candidate on the current model, scored; the best qualifying one
+  // is taken if it explains the discrepancy. Another round follows while the extended model still shows a finding:
+  // two independent effects (a sensor's calibration and a loose mount) are named one per round, and a candidate that
+  // did not qualify against the nominal model may against the extended one (the loose mount, once the calibration is
+  // right). False when the search ends.
+  bool extend_once(int round, DiagnosisResult& result, ModelState& current) {
     prior_peaks_ = prior_peaks(current.model);
     const ExtensionContext ctx = context(current);
     std::string hints;
     for (double f : ctx.peak_hz) hints += format(" %.1f", f);
     if (!hints.empty()) say("round " + std::to_string(round) + ": peaks to place new modes at (Hz):" + hints);
     std::vector<Extension> extensions = enumerate_extensions(current.model, current.text, ctx);
-    if (round > 1)
-      extensions.erase(std::remove_if(extensions.begin(), extensions.end(),
-                                      [&](const Extension& e) { return !promising.count(e.id); }),
-                       extensions.end());
+    // The measurement chain's candidates come first in the list; only those the data support are fitted.
+    const auto structural = std::stable_partition(extensions.begin(), extensions.end(), [](const Extension& e) {
+      return e.operator_name == kChainOperator;
+    });
+    std::vector<Extension> chain(std::make_move_iterator(extensions.begin()), std::make_move_iterator(structural));
+    chain = chain_candidates_worth_fitting(std::move(chain), current);
+    extensions.erase(extensions.begin(), structural);
+    extensions.insert(extensions.begin(), std::make_move_iterator(chain.begin()), std::make_move_iterator(chain.end()));
     if (extensions.empty()) return false;
     std::vector<CandidateOutcome> outcomes;
     std::vector<ModelState> states;
@@ -336,10 +349,7 @@ class Diagnoser {
     keep_best_variants(outcomes, states);
     result.candidates.insert(result.candidates.end(), outcomes.begin(), outcomes.end());
     const std::size_t first_of_round = result.candidates.size() - outcomes.size();
-    const int best = best_after_refits(round, result, current, outcomes, states, first_of_round);
-    promising.clear();
-    for (const CandidateOutcome& o : outcomes)
-      if (o.qualifies) promising.insert(o.id);
+    const int best = best_after_refits(result, current, outcomes, states, first_of_round);
     if (best < 0) return false;
     if (!predicts_as_well(outcomes, best)) return false;
     ModelState& chosen = states[static_cast<std::size_t>(best)];
@@ -347,18 +357,74 @@ class Diagnoser {
     result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
     for (const std::string& id : equivalents(outcomes, best))
       say("  " + id + " fits exactly as well: the same extension in another place");
-    promising.erase(outcomes[static_cast<std::size_t>(best)].id);
     say("selected " + result.selected.back());
     declare_held_known(chosen);
     current = std::move(chosen);
-    return !promising.empty();
+    return !current.residual.discrepancies.empty();
+  }
+
+  // The chain candidates whose statistic at the current fit says the data would support them (chain_scores.hpp): a
+  // factor on an output's (or an input's) channels whose score statistic exceeds ln(n), the BIC price of the factor
+  // with n residuals, in the variant of the factor's sign only (calibration g > 0, polarity g < 0); two outputs whose
+  // exchanged data lower chi-square by more than ln(n). The kChainFits best by statistic are fitted. The statistics
+  // take milliseconds: where the data's chain is right, no chain candidate is fitted.
+  std::vector<Extension> chain_candidates_worth_fitting(std::vector<Extension> extensions,
+                                                        const ModelState& current) const {
+    const double price = std::log(std::max(2.0, static_cast<double>(current.fit.residual_count)));
+    struct Worth {
+      double statistic;
+      std::size_t index;
+    };
+    std::vector<Worth> worth;
+    for (std::size_t k = 0; k < extensions.size(); ++k) {
+      const Extension& e = extensions[k];
+      const std::string kind = e.target.substr(0, e.target.find(':'));
+      const std::string what = e.target.substr(e.target.find(':') + 1);
+      double statistic = 0;
+      std::string seen;
+      if (kind == "swap") {
+        const std::size_t comma = what.find(',');
+        const std::string a = what.substr(0, comma), b = what.substr(comma + 1);
+        const double at_fit = swap_gain(current.channels, a, b), at_priors = swap_gain(prior_channels_, a, b);
+        statistic = std::max(at_fit, at_priors);
+        seen = format("exchanged, the data fit better by %.1f in chi-square (at the priors %.1f)", at_fit, at_priors);
+      } else {
+        const auto selected = [&](const std::string& channel) {
+          const std::size_t slash = channel.find('/');
+          return kind == "gain" ? channel.substr(0, slash) == what : channel.substr(slash + 1) == what;
+        };
+        // At the fit and at the priors: a fit bends the structure to follow a wrong channel (on a spindle whose
+        // xh_front reads -1 times the truth, the fit put a mode 20 % off and read a factor of +0.76 there), the
+        // priors do not. The stronger of the two chooses the variant, by the factor's sign.
+        const GainScore at_fit = gain_score(current.channels, selected);
+        const GainScore at_priors = gain_score(prior_channels_, selected);
+        const GainScore& s = at_priors.statistic > at_fit.statistic ? at_priors : at_fit;
+        if ((e.variant == "polarity") != (s.factor < 0)) continue;
+        statistic = s.statistic;
+        const auto factor = [&](const GainScore& g) { return kind == "gain" ? g.factor : 1 / g.factor; };
+        seen = format("the data read %.4g times the model (score statistic %.1f; at the priors %.4g, ", factor(at_fit),
+                      at_fit.statistic, factor(at_priors)) +
+               format("%.1f)", at_priors.statistic);
+      }
+      if (!(statistic > price)) continue;
+      say("measurement chain: " + label(e) + ": " + seen);
+      worth.push_back({statistic, k});
+    }
+    // The kChainFits largest statistics are fitted, in enumeration order.
+    std::stable_sort(worth.begin(), worth.end(),
+                     [](const Worth& a, const Worth& b) { return a.statistic > b.statistic; });
+    if (worth.size() > kChainFits) worth.resize(kChainFits);
+    std::sort(worth.begin(), worth.end(), [](const Worth& a, const Worth& b) { return a.index < b.index; });
+    std::vector<Extension> out;
+    for (const Worth& w : worth) out.push_back(std::move(extensions[w.index]));
+    return out;
   }
 
   // The best qualifying candidate of a round, once the current model's own fit has been checked against it. A
   // candidate may win only because its search found a better optimum of the parameters it shares with the
   // current model. Re-fit the current model from the winner's estimates: if that closes the gap, the gain was a
   // better fit, not an effect; the current model improves and the candidates are judged again against it.
-  int best_after_refits(int round, DiagnosisResult& result, ModelState& current,
+  int best_after_refits(DiagnosisResult& result, ModelState& current,
                         std::vector<CandidateOutcome>& outcomes, const std::vector<ModelState>& states,
                         std::size_t first_of_round) {
     int best = best_qualifying(outcomes);
@@ -369,7 +435,7 @@ class Diagnoser {
       say("the current model fits better started from the estimate of " + outcomes[static_cast<std::size_t>(best)].id +
           format(" (BIC %.1f -> %.1f): a better optimum, not an effect; judging the candidates again",
                  current.fit.bic, refit.fit.bic));
-      if (round == 1) result.nominal = refit;
+      if (result.selected.empty()) result.nominal = refit;  // the current model is still the nominal one
       current = std::move(refit);
       for (std::size_t k = 0; k < outcomes.size(); ++k) {
         CandidateOutcome& o = outcomes[k];
@@ -562,8 +628,10 @@ class Diagnoser {
       double f;
     };
     std::map<std::string, std::vector<OutputPeak>> by_output;
-    for (const ChannelResidual& c : channel_residuals(*evaluator, data_, evaluator->info().default_values(),
-                                                      options_.fit.frf_weighting)) {
+    prior_channels_ =
+        channel_residuals(*evaluator, data_, evaluator->info().default_values(), options_.fit.frf_weighting);
+    for (const ChannelResidual& c : prior_channels_) {
+      if (c.measured.size() == 0) continue;  // no line stands out of the noise (a few lines only): nothing to find
       const std::vector<int> model_peaks = magnitude_peaks(c.model);
       const double rms = std::sqrt(c.measured.cwiseAbs2().mean());
       const auto unexplained = [&](double f) {
@@ -1084,11 +1152,42 @@ class Diagnoser {
       o.description += " (the data do not determine " + names + ": held at " + (s.held.size() > 1 ? "their" : "its") +
                        " start value" + (s.held.size() > 1 ? "s" : "") + ")";
     }
+    if (ext.operator_name == kChainOperator) o.description = chain_description(ext, s.fit, o.description);
     judge_plausibility(ext, s.info, o);
     judge_new_body_modes(ext, evaluator, s, o);
     o.plausible = o.doubts.empty();
     rank_against(base, o);
     return o;
+  }
+
+  // A chain candidate's description with its estimate: "xs_rear reads 0.8012 +- 0.0031 times the structure's motion
+  // (...)", naming a unit mix-up when the factor is one (mm read as m, g as m/s^2, and back).
+  static std::string chain_description(const Extension& ext, const FitResult& fit, const std::string& otherwise) {
+    if (ext.new_parameters.size() != 1) return otherwise;
+    const auto it = std::find_if(fit.parameters.begin(), fit.parameters.end(),
+                                 [&](const ParameterEstimate& p) { return p.name == ext.new_parameters[0].name; });
+    if (it == fit.parameters.end()) return otherwise;
+    const double g = it->value, sd = it->identifiable ? it->std : 0.0;
+    const std::string what = ext.target.substr(ext.target.find(':') + 1);
+    const bool input = ext.target.rfind("input:", 0) == 0;
+    std::string text = (input ? "the recorded " + what + " is " : what + " reads ") + format("%.4g", g) +
+                       (sd > 0 ? format(" +- %.2g", sd) : "") +
+                       (input ? " times the force applied" : " times the structure's motion");
+    struct Unit {
+      double factor;
+      const char* name;
+    };
+    static const Unit kUnits[] = {{1e3, "millimetres read as metres"}, {1e-3, "metres read as millimetres"},
+                                  {1 / 9.80665, "m/s^2 read as g"}, {9.80665, "g read as m/s^2"}};
+    for (const Unit& u : kUnits) {
+      const double factor = input ? 1 / u.factor : u.factor;
+      if (std::abs(std::abs(g) - factor) <= std::max(3 * sd, 0.01 * factor))
+        return text + ": a unit mix-up, " + u.name + (g < 0 ? ", and the sign reversed" : "");
+    }
+    if (g < 0)
+      return text + (input ? ": its sign is reversed (a reaction force taken with the wrong sign)"
+                           : ": the sensor is mounted or wired reversed");
+    return text + (input ? ": the force transducer's calibration" : ": its sensor's calibration");
   }
 
   // ΔBIC against the current model `base`, and whether the evidence is strong: BIC, validation and plausibility.
@@ -1158,6 +1257,7 @@ class Diagnoser {
   std::vector<DataSet> screen_data_;  // what candidates are screened on: FRFs, the records' H1 estimates for records
   int screen_averages_ = 1;           // the H1 estimates' segments (their coherence's weighting)
   std::map<std::string, std::vector<double>> prior_output_peaks_;
+  std::vector<ChannelResidual> prior_channels_;  // measured against the current model at its prior values
 };
 
 }  // namespace

@@ -8,7 +8,9 @@
 //   4. Select the best candidate only on strong evidence: BIC lower by more than 10 (Kass & Raftery's "very
 //      strong"), validation error lower, new parameters plausible (identifiable, well determined, off their
 //      bounds), and the discrepancy explained (the excess of the residual over the noise level at least halves).
-//      Repeat on the extended model (greedy forward selection) while a candidate qualifies. The extended model
+//      Repeat with every candidate on the extended model (greedy forward selection) while it still shows a finding.
+//      The measurement chain's candidates (a sensor's calibration or polarity, swapped cables, the force's) take part
+//      in every round, fitted where a cheap statistic supports them (chain_scores.hpp). The extended model
 //      must end near the noise level (mean normalized residual at most 3) and keep at most half of the nominal
 //      model's findings, or nothing is selected.
 //   5. Verdict: `extended`; `no_extension_justified` when nothing beyond noise remains; `unexplained` when a clear
@@ -93,6 +95,7 @@ struct ModelState {
 
 struct DiagnosisResult {
   std::string model_file;
+  unsigned long long seed = 1;  // DiagnoseOptions::fit.seed, the searches' seed
   std::vector<std::string> data;
   ModelState nominal;
   std::vector<CandidateOutcome> candidates;  // every round

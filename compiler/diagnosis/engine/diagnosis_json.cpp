@@ -57,6 +57,7 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
   j["schema"] = "mbgen-diagnosis/1";
   j["model"] = result.model_file;
   j["data"] = result.data;
+  j["seed"] = result.seed;
   ordered_json nominal_params = ordered_json::object();
   for (const ParameterEstimate& p : result.nominal.fit.parameters) nominal_params[p.name] = parameter(p);
   j["nominal"] = {{"parameters", nominal_params},

@@ -19,6 +19,9 @@ Draft::Draft(const OperatorInput& in, const std::string& operator_name, const st
 std::string Draft::add_parameter(const std::string& base, double value, const std::string& unit,
                                  std::optional<double> lower, std::optional<double> upper, const std::string& why,
                                  ir::Role role) {
+  if (!std::isfinite(value) || (lower && !std::isfinite(*lower)) || (upper && !std::isfinite(*upper)))
+    throw UnusableStart(ext_.id + ": the start value or a bound of its parameter " + base +
+                        " is not finite at the current estimate");
   ir::Parameter p;
   p.name = names_.fresh(base);
   p.value = number_expr(value);

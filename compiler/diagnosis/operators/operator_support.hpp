@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,14 @@ struct OperatorInput {
   const std::string& text;
   const ExtensionContext& ctx;
   ModelValues values;  // the model's values, ctx.values overriding
+};
+
+// A candidate whose start values are not finite at the current estimate (a fit that drove a mass or a damping to its
+// bound of zero on a few lines leaves a new mode's frequency, or a ratio, without a value): the operator offers no
+// candidate then (enumerate_extensions skips it) rather than writing `inf` into a model.
+class UnusableStart : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 // One candidate under construction. Declarations added through it go both into the extended model (appended to
@@ -88,6 +97,7 @@ double light_damping(double k, double m);
 constexpr double kTwoPi = 6.283185307179586;
 
 // ---- the operators (one file each; docs/extensions.md) -------------------------------------------------------
+std::vector<Extension> measurement_chain(const OperatorInput& in);
 std::vector<Extension> compliant_ground(const OperatorInput& in);
 std::vector<Extension> gyroscopic(const OperatorInput& in);
 std::vector<Extension> free_parameter(const OperatorInput& in);

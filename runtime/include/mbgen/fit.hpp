@@ -177,6 +177,7 @@ struct FitResult {
   int best_start = 0;
   bool converged = false;
   std::string stop_reason;
+  unsigned long long seed = 1;  // FitOptions::seed of the search (recorded so a run can be repeated)
 };
 
 FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options = {});

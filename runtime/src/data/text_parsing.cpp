@@ -1,6 +1,7 @@
 #include "text_parsing.hpp"
 
 #include <charconv>
+#include <limits>
 #include <cmath>
 
 #include "mbgen/data_error.hpp"
@@ -86,7 +87,18 @@ std::optional<double> parse_number(std::string_view text, bool fortran_exponent)
   double value = 0;
   // from_chars is locale independent, unlike strtod: a German locale must not turn "0.5" into an error.
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  if (end != text.data() + text.size()) return std::nullopt;
+  if (ec == std::errc::result_out_of_range) {
+    // Beyond a double's range. A magnitude under the smallest double is zero, as every reader rounds it (1e-400
+    // was "not a number"); one over the largest is returned as the largest, which the readers reject as too large.
+    const std::size_t e = text.find_first_of("eE");
+    const std::string_view mantissa = text.substr(0, e);
+    const bool tiny = e != std::string_view::npos ? e + 1 < text.size() && text[e + 1] == '-'
+                                                  : mantissa.find_first_not_of("+-0") == mantissa.find('.');
+    const double magnitude = tiny ? 0.0 : std::numeric_limits<double>::max();
+    return text.front() == '-' ? -magnitude : magnitude;
+  }
+  if (ec != std::errc()) return std::nullopt;
   return value;
 }
 

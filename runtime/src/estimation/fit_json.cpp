@@ -53,6 +53,7 @@ std::string fit_result_json(const FitResult& r) {
   f["stop_reason"] = r.stop_reason;
   f["starts"] = r.start_costs.size();
   f["best_start"] = r.best_start;
+  f["seed"] = r.seed;
   j["fit"] = f;
   nlohmann::json corr = nlohmann::json::array();
   for (Eigen::Index i = 0; i < r.correlation.rows(); ++i) {

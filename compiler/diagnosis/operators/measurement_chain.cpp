@@ -1,0 +1,118 @@
+// measurement_chain -- the data are right about the structure but wrong about what they are: a sensor's calibration
+// or polarity, two cables swapped, a force transducer's calibration or sign. These come first in a diagnosis
+// (docs/diagnosis.md, "The measurement chain first"): a structural extension must never stand in for them.
+//
+//   measurement_chain:gain:O     O reads g times the truth (a `filter ... gain` on O). Two variants: "calibration"
+//                                (g > 0, started at 1: a sensitivity error, or a unit mix-up when g is near 1000,
+//                                1/1000, 9.81 or 1/9.81) and "polarity" (g < 0, started at -1: the sensor mounted
+//                                reversed, or its sign wired wrong).
+//   measurement_chain:swap:A,B   the columns of outputs A and B exchanged (two cables swapped): the two output
+//                                statements exchange their names. No new parameter. Offered for outputs of one kind
+//                                (displacement, velocity, acceleration) without filters of their own.
+//   measurement_chain:input:F    the recorded force is g times the applied one. With one input every FRF is divided
+//                                by g: a gain 1/g on every output. Variants "calibration" (g > 0, started at 1) and
+//                                "polarity" (g < 0, started at -1: a reaction mass's force computed with the wrong
+//                                sign). With several inputs, only the polarity: F's direction reversed.
+//
+// None of these is a new body or element; the structure's parameters stay as they are.
+#include <algorithm>
+
+#include "diagnosis/expr_build.hpp"
+#include "diagnosis/operators/operator_support.hpp"
+#include "frontend/model_writer.hpp"
+
+namespace mbgen::diagnosis {
+
+namespace {
+
+struct Sign {
+  const char* variant;
+  double start;
+  std::optional<double> lower, upper;
+};
+const Sign kCalibration{"calibration", 1.0, 0.0, std::nullopt};
+const Sign kPolarity{"polarity", -1.0, std::nullopt, 0.0};
+
+bool has_filter(const ir::ModelIr& model, const std::string& output) {
+  return std::any_of(model.filters.begin(), model.filters.end(),
+                     [&](const ir::Filter& f) { return f.output == output; });
+}
+
+ir::Filter gain_filter(Draft& d, const std::string& output, ir::Expr factor) {
+  ir::Filter f;
+  f.name = d.names().fresh("chain_" + output);
+  f.output = output;
+  f.kind = ir::FilterKind::Gain;
+  f.factor = std::move(factor);
+  return f;
+}
+
+Extension output_gain(const OperatorInput& in, const ir::Output& out, const Sign& sign) {
+  Draft d(in, "measurement_chain", "gain:" + out.name);
+  d.set_variant(sign.variant);
+  const std::string g = d.add_parameter("g_" + out.name, sign.start, "", sign.lower, sign.upper,
+                                        "what " + out.name + " reads per unit of the structure's motion");
+  d.add_filter(gain_filter(d, out.name, sym(g)));
+  return d.finish(out.name + (sign.start > 0 ? " reads a constant factor " : " reads with the opposite sign, times ") +
+                  g + " of the structure's motion: its sensor's " +
+                  (sign.start > 0 ? "calibration (or units)" : "polarity (mounted or wired reversed)"));
+}
+
+Extension swapped(const OperatorInput& in, const ir::Output& a, const ir::Output& b) {
+  Draft d(in, "measurement_chain", "swap:" + a.name + "," + b.name);
+  ir::Output& first = *std::find_if(d.model().outputs.begin(), d.model().outputs.end(),
+                                    [&](const ir::Output& o) { return o.name == a.name; });
+  ir::Output& second = *std::find_if(d.model().outputs.begin(), d.model().outputs.end(),
+                                     [&](const ir::Output& o) { return o.name == b.name; });
+  std::swap(first.name, second.name);
+  d.patch().replace_statement(a.loc, a.name + " and " + b.name + " exchanged: their cables are swapped",
+                              frontend::write_output(first));
+  d.patch().replace_statement(b.loc, b.name + " and " + a.name + " exchanged", frontend::write_output(second));
+  return d.finish("the columns of " + a.name + " and " + b.name + " are exchanged: two cables swapped");
+}
+
+Extension input_gain(const OperatorInput& in, const ir::Input& input, const Sign& sign) {
+  Draft d(in, "measurement_chain", "input:" + input.name);
+  d.set_variant(sign.variant);
+  const std::string g = d.add_parameter("gi_" + input.name, sign.start, "", sign.lower, sign.upper,
+                                        "what the record of " + input.name + " reads per unit of the applied force");
+  for (const ir::Output& out : in.model.outputs) d.add_filter(gain_filter(d, out.name, div(num("1"), sym(g))));
+  return d.finish("the recorded " + input.name + " is " + g + " times the force applied: the force transducer's " +
+                  (sign.start > 0 ? "calibration (or units)" : "sign (a reaction force taken with the wrong sign)"));
+}
+
+Extension reversed_input(const OperatorInput& in, const ir::Input& input) {
+  Draft d(in, "measurement_chain", "input:" + input.name);
+  d.set_variant("polarity");
+  ir::Input& changed = *std::find_if(d.model().inputs.begin(), d.model().inputs.end(),
+                                     [&](const ir::Input& i) { return i.name == input.name; });
+  changed.direction.axis.clear();
+  for (ir::Expr& c : changed.direction.vector)
+    if (!(c.kind == ir::Expr::Kind::Number && c.text == "0")) c = neg(c);
+  changed.direction.loc = {};
+  d.patch().replace_statement(input.loc, input.name + " reversed: the force was recorded with the wrong sign",
+                              frontend::write_input(changed));
+  return d.finish("the recorded " + input.name + " has the opposite sign of the force applied");
+}
+
+}  // namespace
+
+std::vector<Extension> measurement_chain(const OperatorInput& in) {
+  std::vector<Extension> out;
+  for (const ir::Output& o : in.model.outputs)
+    for (const Sign& sign : {kCalibration, kPolarity}) out.push_back(output_gain(in, o, sign));
+  const auto& outputs = in.model.outputs;
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    for (std::size_t j = i + 1; j < outputs.size(); ++j)
+      if (outputs[i].kind == outputs[j].kind && !has_filter(in.model, outputs[i].name) &&
+          !has_filter(in.model, outputs[j].name))
+        out.push_back(swapped(in, outputs[i], outputs[j]));
+  if (in.model.inputs.size() == 1) {
+    for (const Sign& sign : {kCalibration, kPolarity}) out.push_back(input_gain(in, in.model.inputs.front(), sign));
+  } else {
+    for (const ir::Input& input : in.model.inputs) out.push_back(reversed_input(in, input));
+  }
+  return out;
+}
+
+}  // namespace mbgen::diagnosis

@@ -1,0 +1,73 @@
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include <mbgen/chain_scores.hpp>
+
+using namespace mbgen;
+
+namespace {
+
+// A channel whose model is a resonance and whose data are `factor` times it plus complex noise of std sigma.
+ChannelResidual channel(const std::string& name, double factor, double sigma, std::mt19937_64& rng,
+                        double resonance_hz = 100) {
+  ChannelResidual c;
+  c.channel = name;
+  c.data_set = "d.csv";
+  const int n = 400;
+  c.measured.resize(n);
+  c.model.resize(n);
+  c.sigma = Eigen::VectorXd::Constant(n, sigma);
+  std::normal_distribution<double> noise(0, sigma / std::sqrt(2.0));
+  for (int k = 0; k < n; ++k) {
+    const double f = 10 + k;
+    c.f_hz.push_back(f);
+    const std::complex<double> s(0, 2 * M_PI * f);
+    const double w0 = 2 * M_PI * resonance_hz;
+    c.model[k] = 1.0 / (s * s + 0.05 * w0 * s + w0 * w0) * w0 * w0;
+    c.measured[k] = factor * c.model[k] + std::complex<double>(noise(rng), noise(rng));
+  }
+  return c;
+}
+
+bool all(const std::string&) { return true; }
+
+}  // namespace
+
+TEST_CASE("gain_score recovers a channel's factor and sees no error where there is none") {
+  std::mt19937_64 rng(7);
+  const std::vector<ChannelResidual> calibrated{channel("y/F", 0.8, 0.01, rng)};
+  const GainScore off = gain_score(calibrated, all);
+  CHECK(off.lines == 400);
+  CHECK(std::abs(off.factor - 0.8) < 4 * off.factor_std);
+  CHECK(off.factor_std < 0.01);
+  CHECK(off.statistic > 1000);
+
+  const std::vector<ChannelResidual> reversed{channel("y/F", -1.0, 0.01, rng)};
+  CHECK(gain_score(reversed, all).factor == Approx(-1.0).margin(0.01));
+
+  // Without an error the statistic is chi-square with one degree of freedom: over 200 draws its mean is near 1.
+  double sum = 0;
+  for (int draw = 0; draw < 200; ++draw) sum += gain_score({channel("y/F", 1.0, 0.01, rng)}, all).statistic;
+  CHECK(sum / 200 == Approx(1.0).margin(0.3));
+}
+
+TEST_CASE("gain_score takes only the selected channels") {
+  std::mt19937_64 rng(8);
+  const std::vector<ChannelResidual> channels{channel("a/F", 1.0, 0.01, rng), channel("b/F", 1.25, 0.01, rng)};
+  const GainScore a = gain_score(channels, [](const std::string& c) { return c == "a/F"; });
+  const GainScore b = gain_score(channels, [](const std::string& c) { return c == "b/F"; });
+  CHECK(std::abs(a.factor - 1.0) < 4 * a.factor_std);
+  CHECK(std::abs(b.factor - 1.25) < 4 * b.factor_std);
+  CHECK(gain_score(channels, [](const std::string&) { return false; }).lines == 0);
+}
+
+TEST_CASE("swap_gain is large when two outputs' data are exchanged, negative when they are right") {
+  std::mt19937_64 rng(9);
+  ChannelResidual a = channel("a/F", 1.0, 0.01, rng, 100), b = channel("b/F", 1.0, 0.01, rng, 180);
+  CHECK(swap_gain({a, b}, "a", "b") < -100);
+  std::swap(a.measured, b.measured);
+  CHECK(swap_gain({a, b}, "a", "b") > 100);
+  CHECK(swap_gain({a, b}, "b", "a") > 100);
+  CHECK(swap_gain({a, b}, "a", "c") == 0);
+}
