@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/data_checks.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/number_checks.hpp"
@@ -29,6 +30,7 @@ constexpr std::size_t kSummaryFindings = 8;
 
 std::string summary(const diagnosis::DiagnosisResult& r) {
   std::ostringstream out;
+  for (const std::string& w : r.warnings) out << "warning: " << w << "\n";
   out << "verdict: " << r.verdict << "\n";
   // Each selected extension with what it says (the last qualifying outcome of that id is the one taken).
   for (const std::string& id : r.selected) {
@@ -122,8 +124,9 @@ int run_diagnose(int argc, char** argv) {
       progress_line("  fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
                     ", iteration " + std::to_string(p.iteration));
     };
-    const diagnosis::DiagnosisResult result = diagnosis::diagnose(model, text, data, options);
+    diagnosis::DiagnosisResult result = diagnosis::diagnose(model, text, data, options);
     progress_done();
+    result.warnings = passivity_warnings(model, data);
 
     OutputFiles out;
     const bool extended = result.verdict == "extended";

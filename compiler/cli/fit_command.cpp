@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/data_checks.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/number_checks.hpp"
@@ -34,6 +35,14 @@ namespace {
 
 std::string summary(const FitResult& r) {
   std::string out;
+  for (const std::string& w : r.warnings) out += "warning: " + w + "\n";
+  // A fit whose estimates mostly ended at bounds has not found the model in the data: said first, in one line.
+  const auto at_bound = std::count_if(r.parameters.begin(), r.parameters.end(),
+                                      [](const ParameterEstimate& p) { return !p.at_bound.empty(); });
+  if (at_bound >= 2 && 2 * at_bound > static_cast<long>(r.parameters.size()))
+    out += "warning: " + std::to_string(at_bound) + " of the " + std::to_string(r.parameters.size()) +
+           " estimated parameters ended at a bound: the model does not fit these data as it is (a start far from the "
+           "truth, a sign or unit of the data, or a structure the model lacks)\n";
   char line[256];
   std::snprintf(line, sizeof line, "%-12s %14s %14s %12s  %s\n", "parameter", "prior", "estimate", "std", "");
   out += line;
@@ -160,6 +169,7 @@ int run_fit(int argc, char** argv) {
     progress_done();
     result.model = model_path;
     result.seed = options.seed;
+    result.warnings = passivity_warnings(model, data);
 
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, fit_result_json(result));

@@ -23,6 +23,13 @@ inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitInternal = 3;
 
+// A message as the user sees it: those that name a file carry `FILE[:LINE:COLUMN]: error:` already; the others (a
+// method's refusal, "fit: --method arx-two-stage needs the mass matrix known ...") get `mbgen: error:`.
+inline std::string error_message(const std::string& what) {
+  if (what.find(": error: ") != std::string::npos || what.rfind("mbgen: ", 0) == 0) return what;
+  return "mbgen: error: " + (what.rfind("fit: ", 0) == 0 ? what.substr(5) : what);
+}
+
 // Inside a catch block: prints the exception in flight as run_guarded does and returns its exit status.
 inline int report_current_exception() {
   try {
@@ -35,9 +42,9 @@ inline int report_current_exception() {
   } catch (const DataError& e) {
     std::cerr << e.what() << "\n";
   } catch (const FitError& e) {
-    std::cerr << e.what() << "\n";
+    std::cerr << error_message(e.what()) << "\n";
   } catch (const DynamicsError& e) {
-    std::cerr << e.what() << "\n";
+    std::cerr << error_message(e.what()) << "\n";
   } catch (const OutputError& e) {
     std::cerr << e.what() << "\n";
   } catch (const std::bad_alloc&) {

@@ -38,8 +38,10 @@ ModelInfo make_info(const symbolic::SymbolicModel& sym) {
     if (fp.ir) {
       p.role = runtime_role(fp.ir->role);
       p.unit = fp.ir->unit;
-      if (fp.ir->lower) p.lower = to_double(table.convert(*fp.ir->lower).subs(values));
-      if (fp.ir->upper) p.upper = to_double(table.convert(*fp.ir->upper).subs(values));
+      // Without pattern matching, GiNaC looks each symbol up in the map instead of trying every entry at every
+      // node: quadratic in the number of parameters otherwise (cpp_emitter.cpp's bounds_of says the same).
+      if (fp.ir->lower) p.lower = to_double(table.convert(*fp.ir->lower).subs(values, GiNaC::subs_options::no_pattern));
+      if (fp.ir->upper) p.upper = to_double(table.convert(*fp.ir->upper).subs(values, GiNaC::subs_options::no_pattern));
     }
     info.parameters.push_back(p);
   }

@@ -185,3 +185,23 @@ foreach(k RANGE 0 191 8)
 endforeach()
 file(WRITE "${WORK}/every_eighth.csv" "${header}\n${every_eighth}")
 expect_run(STATUS 0 STDOUT "verdict" ARGS diagnose ${MDOF2} --data every_eighth.csv --starts 1)
+
+# --- Many bounded parameters are emitted in about linear time (11: the bounds' substitution tried every parameter at
+# every node, quadratic: 20 000 took over 100 s, 100 000 hours). The run's timeout (60 s) is the check.
+set(many "")
+foreach(i RANGE 1 20000)
+  string(APPEND many "param p${i} = 1 estimate in [0, 10]\n")
+endforeach()
+file(WRITE "${WORK}/many.mdl" "model many\nground g\nbody b { mass 2; dof x }\n"
+           "spring s { from g; to b; along x; stiffness 100 }\ninput F force on b along x\n"
+           "output y displacement of b along x\n${many}")
+expect_run(STATUS 0 ARGS many.mdl -o many.cpp)
+
+# --- A record too short for the part of it a command fits says so, with `error:` and the count (16: diagnose said
+# "needs at least 2 samples" for a record of 2, without `error:`).
+file(WRITE "${WORK}/two.csv" "t,F1,d1,d2\n0,1,0.1,0.2\n0.001,1,0.2,0.1\n")
+expect_run(STATUS 1 STDERR "two.csv: error: a time record needs at least 2 samples for a fit; the part of it fitted here has 1"
+  ARGS diagnose ${MDOF2} --data two.csv --starts 1)
+# A method's refusal without a file says `mbgen: error:` (it began with "fit: ").
+expect_run(STATUS 1 STDERR "^mbgen: error: --method arx-two-stage needs the mass matrix known"
+  ARGS fit ${MDOF2} --data two.csv --method arx-two-stage)

@@ -96,6 +96,7 @@ struct ModelState {
 struct DiagnosisResult {
   std::string model_file;
   unsigned long long seed = 1;  // DiagnoseOptions::fit.seed, the searches' seed
+  std::vector<std::string> warnings;  // the data checks' (the command's: a driving point with the wrong sign)
   std::vector<std::string> data;
   ModelState nominal;
   std::vector<CandidateOutcome> candidates;  // every round

@@ -71,6 +71,7 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
   const bool extended = r.verdict == "extended";
   report::Document doc;
   doc.heading(1, report::Inline("Diagnosis of ") << report::code(r.model_file));
+  for (const std::string& w : r.warnings) doc.paragraph(report::Inline("**Warning:** ") << report::text(w) << ".");
   report::Inline data = "Data: ";
   for (std::size_t i = 0; i < r.data.size(); ++i) data << (i ? ", " : "") << report::code(r.data[i]);
   doc.paragraph(data);
@@ -81,6 +82,15 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
     doc.paragraph(selected << ". Mean normalized residual " << num(r.nominal.residual.mean_z) << " -> "
                            << num(r.final.residual.mean_z) << " (1 is the noise level); validation error "
                            << num(r.nominal.validation_nrmse) << " -> " << num(r.final.validation_nrmse) << ".");
+    // What each selected extension says (the last qualifying outcome of its id is the one taken).
+    std::vector<report::Inline> said;
+    for (const std::string& id : r.selected)
+      for (auto it = r.candidates.rbegin(); it != r.candidates.rend(); ++it)
+        if (it->id == id && it->qualifies) {
+          said.push_back(report::Inline(report::code(id)) << ": " << report::text(it->description));
+          break;
+        }
+    doc.list(std::move(said));
   } else if (r.verdict == "unexplained") {
     doc.paragraph("The model misses the data beyond the noise, and no candidate extension explains it (see the "
                   "findings and the ranking below).");

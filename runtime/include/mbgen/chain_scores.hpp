@@ -27,6 +27,17 @@ struct GainScore {
 GainScore gain_score(const std::vector<ChannelResidual>& channels,
                      const std::function<bool(const std::string& channel)>& selected);
 
+// A driving point (an output at an input's point, along its direction) of a passive structure takes in power at every
+// frequency: with e^{i w t}, Im H <= 0 for a receptance (`derivatives` 0: displacement over force), Re H >= 0 for a
+// mobility (1), Im H >= 0 for an accelerance (2). Over the lines where that part of H stands three standard
+// deviations out of the noise (`sigma`, the complex value's), the share with the sign a passive structure cannot
+// have: near 1 when the force or the sensor is recorded with the wrong sign. No model is needed.
+struct PassivityCheck {
+  long lines = 0;             // lines where the part stands out of the noise
+  double against_share = 0;   // the share of them with the impossible sign
+};
+PassivityCheck driving_point_passivity(const Eigen::VectorXcd& h, const Eigen::VectorXd& sigma, int derivatives);
+
 // How much chi^2 (as above) falls when outputs `a` and `b` exchange their data, the model's parameters held: over
 // the lines both judge, per input and data set. Negative when the data fit better as they are; 0 without common
 // lines.

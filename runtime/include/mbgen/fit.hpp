@@ -178,6 +178,9 @@ struct FitResult {
   bool converged = false;
   std::string stop_reason;
   unsigned long long seed = 1;  // FitOptions::seed of the search (recorded so a run can be repeated)
+  // What a user must know before reading the estimates (the command's data checks, e.g. a driving point with the
+  // wrong sign): the summary and the report open with them, the JSON has them under `warnings`.
+  std::vector<std::string> warnings;
 };
 
 FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options = {});

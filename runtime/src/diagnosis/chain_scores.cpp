@@ -38,6 +38,21 @@ GainScore gain_score(const std::vector<ChannelResidual>& channels,
   return out;
 }
 
+PassivityCheck driving_point_passivity(const Eigen::VectorXcd& h, const Eigen::VectorXd& sigma, int derivatives) {
+  PassivityCheck out;
+  long against = 0;
+  for (Eigen::Index k = 0; k < h.size(); ++k) {
+    // The part that is never negative for a passive driving point.
+    const double power = derivatives == 1 ? h[k].real() : derivatives == 2 ? h[k].imag() : -h[k].imag();
+    const double part_sigma = sigma[k] / std::sqrt(2.0);
+    if (!(std::abs(power) > 3 * part_sigma)) continue;
+    ++out.lines;
+    against += power < 0 ? 1 : 0;
+  }
+  if (out.lines > 0) out.against_share = static_cast<double>(against) / static_cast<double>(out.lines);
+  return out;
+}
+
 double swap_gain(const std::vector<ChannelResidual>& channels, const std::string& a, const std::string& b) {
   // (data set, input, output) -> the channel's lines by frequency
   using Key = std::tuple<std::string, std::string, std::string>;

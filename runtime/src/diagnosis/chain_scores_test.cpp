@@ -62,6 +62,31 @@ TEST_CASE("gain_score takes only the selected channels") {
   CHECK(gain_score(channels, [](const std::string&) { return false; }).lines == 0);
 }
 
+TEST_CASE("driving_point_passivity: a passive driving point takes in power, a reversed one gives it out") {
+  std::mt19937_64 rng(11);
+  const ChannelResidual c = channel("d1/F1", 1.0, 0.01, rng);  // a receptance: Im H <= 0
+  const PassivityCheck right = driving_point_passivity(c.measured, c.sigma, 0);
+  CHECK(right.lines > 50);
+  CHECK(right.against_share < 0.02);
+  const PassivityCheck reversed = driving_point_passivity(-c.measured, c.sigma, 0);
+  CHECK(reversed.against_share > 0.98);
+  // The same data as a mobility (times i w) and an accelerance (times -w^2).
+  Eigen::VectorXcd mobility(c.measured.size()), accelerance(c.measured.size());
+  Eigen::VectorXd sigma_v(c.measured.size()), sigma_a(c.measured.size());
+  for (Eigen::Index k = 0; k < c.measured.size(); ++k) {
+    const double w = 2 * M_PI * c.f_hz[static_cast<std::size_t>(k)];
+    mobility[k] = std::complex<double>(0, w) * c.measured[k];
+    accelerance[k] = -w * w * c.measured[k];
+    sigma_v[k] = w * c.sigma[k];
+    sigma_a[k] = w * w * c.sigma[k];
+  }
+  CHECK(driving_point_passivity(mobility, sigma_v, 1).against_share < 0.02);
+  CHECK(driving_point_passivity(accelerance, sigma_a, 2).against_share < 0.02);
+  CHECK(driving_point_passivity(-accelerance, sigma_a, 2).against_share > 0.98);
+  // Noise alone decides nothing: no line stands out.
+  CHECK(driving_point_passivity(Eigen::VectorXcd::Zero(10), Eigen::VectorXd::Constant(10, 1.0), 0).lines == 0);
+}
+
 TEST_CASE("swap_gain is large when two outputs' data are exchanged, negative when they are right") {
   std::mt19937_64 rng(9);
   ChannelResidual a = channel("a/F", 1.0, 0.01, rng, 100), b = channel("b/F", 1.0, 0.01, rng, 180);

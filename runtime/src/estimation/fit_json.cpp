@@ -22,6 +22,7 @@ std::string fit_result_json(const FitResult& r) {
   j["model"] = r.model;
   j["data"] = r.data;
   j["method"] = r.method;
+  if (!r.warnings.empty()) j["warnings"] = r.warnings;
   nlohmann::json params = nlohmann::json::object();
   for (const auto& e : r.parameters) {
     nlohmann::json p;

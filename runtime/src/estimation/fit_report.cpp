@@ -78,6 +78,7 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
 
   report::Document doc;
   doc.heading(1, report::Inline("Fit report: ") << report::code(result.model));
+  for (const std::string& w : result.warnings) doc.paragraph(report::Inline("**Warning:** ") << report::text(w) << ".");
   report::Inline intro = report::Inline("Method: `") << result.method << "`. Data:";
   for (const auto& d : result.data) intro << " " << report::code(d);
   doc.paragraph(intro << ".");

@@ -70,7 +70,10 @@ OutputErrorProblem::OutputErrorProblem(const Model& model, const std::vector<Dat
       }
     } else {
       const TimeRecord& t = std::get<TimeRecord>(d.content);
-      if (t.samples() < 2) throw FitError(where(d) + ": a time record needs at least 2 samples");
+      // A method may fit a part of the record (a split for validation): say how many samples it had.
+      if (t.samples() < 2)
+        throw FitError(where(d) + ": error: a time record needs at least 2 samples for a fit; the part of it fitted here "
+                       "has " + std::to_string(t.samples()));
       require_inputs(t, info.inputs);
       p.dt = t.dt();
       p.hold = t.hold;
