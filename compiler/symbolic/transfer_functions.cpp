@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <map>
+#include <set>
 #include <cstdio>
 #include <sstream>
 
@@ -186,6 +187,27 @@ std::optional<Cancellation> probable_cancellation(const SymbolicModel& sm, const
                                                   const std::vector<ModularPolynomials>& images, std::size_t o,
                                                   std::size_t u);
 
+// The distinct irrational numbers the block's M, C and K hold at the parameters' values (sqrt(2), pi, sin(1/2)). GiNaC's
+// exact determinants work in the field they generate, whose degree doubles with each independent square root: the
+// cost grows with their number far faster than with the block's size (a 12-mass chain with a distinct square root
+// per spring took over 120 s, with three of them 0.1 s; the spinning spindle's 12-coordinate block, with pi alone,
+// a fraction of a second).
+std::size_t irrational_atoms(const SymbolicModel& sm, const std::vector<int>& coordinates) {
+  const GiNaC::exmap values = sm.values();
+  std::set<GiNaC::ex, GiNaC::ex_is_less> atoms;
+  for (const GiNaC::matrix* m : {&sm.M, &sm.C_total, &sm.K})
+    for (int i : coordinates)
+      for (int j : coordinates) {
+        const GiNaC::ex e = (*m)(static_cast<unsigned>(i), static_cast<unsigned>(j)).subs(values);
+        for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it) {
+          const bool root = GiNaC::is_a<GiNaC::power>(*it) && GiNaC::is_a<GiNaC::numeric>(it->op(0)) &&
+                            !it->op(1).info(GiNaC::info_flags::integer);
+          if (root || GiNaC::is_a<GiNaC::constant>(*it) || GiNaC::is_a<GiNaC::function>(*it)) atoms.insert(*it);
+        }
+      }
+  return atoms.size();
+}
+
 // The transfer functions of `pairs` (indices into tfs, all on the same coordinates, numeric): exact rationals by
 // the multimodular route (pencil_determinants.hpp) when the values are rational and the block is at most
 // kMaxExactBlockSize; the GiNaC route for other exact numbers on small blocks; otherwise none (left to run time).
@@ -224,7 +246,9 @@ void numeric_transfer_functions(const SymbolicModel& sm, std::vector<TransferFun
       // det P(s) vanishes identically: on a small block the GiNaC route below says so as before.
     }
   }
-  if (n > kMaxGinacBlockSize) {  // over the exact limit, or not rational, or a singular pencil: not exponential
+  // Over the exact limit, or not rational (or a singular pencil) on a block too large, or holding too many irrational
+  // numbers, for GiNaC's exponential route: left to run time.
+  if (n > kMaxGinacBlockSize || (!rational && irrational_atoms(sm, coordinates) > kMaxIrrationalNumbers)) {
     for (std::size_t k : pairs) tfs[k].exact = false;
     if (rational) {
       const std::vector<ModularPolynomials> images = {modular_polynomials(rp, 0), modular_polynomials(rp, 1)};

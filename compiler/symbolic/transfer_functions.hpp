@@ -20,6 +20,9 @@ constexpr int kMaxExactBlockSize = 100;
 // Exact numbers that are not all rational (pi, square roots) go through GiNaC's determinants, exponential in the
 // size: up to this many coordinates.
 constexpr int kMaxGinacBlockSize = 12;
+// ... and holding at most this many distinct irrational numbers (square roots, pi, sines) at the parameters' values:
+// the field they generate, in which the exact determinants are taken, doubles its degree with each square root.
+constexpr std::size_t kMaxIrrationalNumbers = 3;
 
 // The transfer function from input `input` to output `output` of a derived model (M, C_total, K, B, Cd, Cv, Ca,
 // blocks filled). It is computed on the blocks where both the input and the output have entries; if there is

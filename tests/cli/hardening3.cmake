@@ -205,3 +205,19 @@ expect_run(STATUS 1 STDERR "two.csv: error: a time record needs at least 2 sampl
 # A method's refusal without a file says `mbgen: error:` (it began with "fit: ").
 expect_run(STATUS 1 STDERR "^mbgen: error: --method arx-two-stage needs the mass matrix known"
   ARGS fit ${MDOF2} --data two.csv --method arx-two-stage)
+
+# --- A block of irrational exact values is bounded (11: GiNaC's exponential route took over 120 s at 12 coordinates):
+# a 12-mass chain whose springs hold distinct square roots gets run-time transfer functions, within the 60 s timeout.
+set(chain "model irrational\nground g\n")
+foreach(i RANGE 0 11)
+  math(EXPR mass "${i} + 1")
+  string(APPEND chain "body b${i} { mass ${mass}; dof x }\n")
+endforeach()
+string(APPEND chain "spring s0 { from g; to b0; along x; stiffness 1000*sqrt(2); damping 1 }\n")
+foreach(i RANGE 1 11)
+  math(EXPR prev "${i} - 1")
+  math(EXPR root "${i} + 2")
+  string(APPEND chain "spring s${i} { from b${prev}; to b${i}; along x; stiffness 1000*sqrt(${root}); damping 1 }\n")
+endforeach()
+file(WRITE "${WORK}/irrational.mdl" "${chain}input F force on b0 along x\noutput y displacement of b11 along x\n")
+expect_run(STATUS 0 ARGS irrational.mdl -o irrational.cpp)
