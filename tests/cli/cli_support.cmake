@@ -43,14 +43,21 @@ set(FAST_FIT fit one.mdl --data one_frf.csv --starts 1)
 # expect_run(STATUS n [STDERR regex] [STDOUT regex] [DIR dir] ARGS ...): runs mbgen with ARGS in DIR (default WORK)
 # and checks its exit status and that standard error (output) matches the regular expression. The run's standard
 # error is left in LAST_STDERR. Like the checks below, a failure is reported and the script goes on (SEND_ERROR):
-# one run shows every check that fails.
+# one run shows every check that fails. INPUT file: standard input; OUTPUT file: standard output goes there.
 function(expect_run)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "" "STATUS;STDERR;STDOUT;DIR" "ARGS")
+  cmake_parse_arguments(PARSE_ARGV 0 arg "" "STATUS;STDERR;STDOUT;DIR;INPUT;OUTPUT" "ARGS")
   if(NOT arg_DIR)
     set(arg_DIR "${WORK}")
   endif()
+  set(redirect OUTPUT_VARIABLE out)
+  if(arg_OUTPUT)
+    set(redirect OUTPUT_FILE "${arg_OUTPUT}")
+  endif()
+  if(arg_INPUT)
+    list(APPEND redirect INPUT_FILE "${arg_INPUT}")
+  endif()
   execute_process(COMMAND "${MBGEN}" ${arg_ARGS} WORKING_DIRECTORY "${arg_DIR}"
-    RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+    RESULT_VARIABLE status ${redirect} ERROR_VARIABLE err TIMEOUT 60)
   string(REPLACE ";" " " shown "${arg_ARGS}")
   if(NOT status STREQUAL "${arg_STATUS}")
     message(SEND_ERROR "`mbgen ${shown}`: expected exit status ${arg_STATUS}, got ${status}\nstderr: ${err}")

@@ -4,54 +4,30 @@
 # seeds, numbers beyond a double's range, and modal's data errors.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_support.cmake)
 
-# run_with(STATUS n [STDERR regex] [INPUT file] [OUTPUT file] ARGS ...): like expect_run, with standard input and
-# output redirected to files.
-function(run_with)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "" "STATUS;STDERR;INPUT;OUTPUT" "ARGS")
-  set(redirect "")
-  if(arg_INPUT)
-    list(APPEND redirect INPUT_FILE "${arg_INPUT}")
-  endif()
-  if(arg_OUTPUT)
-    list(APPEND redirect OUTPUT_FILE "${arg_OUTPUT}")
-  else()
-    list(APPEND redirect OUTPUT_VARIABLE out)
-  endif()
-  execute_process(COMMAND "${MBGEN}" ${arg_ARGS} WORKING_DIRECTORY "${WORK}" ${redirect}
-    RESULT_VARIABLE status ERROR_VARIABLE err TIMEOUT 120)
-  string(REPLACE ";" " " shown "${arg_ARGS}")
-  if(NOT status STREQUAL "${arg_STATUS}")
-    message(SEND_ERROR "`mbgen ${shown}`: expected exit status ${arg_STATUS}, got ${status}\nstderr: ${err}")
-  endif()
-  if(DEFINED arg_STDERR AND NOT err MATCHES "${arg_STDERR}")
-    message(SEND_ERROR "`mbgen ${shown}`: standard error does not match `${arg_STDERR}`:\n${err}")
-  endif()
-endfunction()
-
 # --- Standard input is an input: the file it reads is never replaced (3).
 file(SHA256 "${WORK}/one.mdl" model_hash)
-run_with(STATUS 2 STDERR "is the file standard input \\(-\\) reads" INPUT "${WORK}/one.mdl" ARGS - -o one.mdl)
-run_with(STATUS 2 STDERR "is the file standard input \\(-\\) reads" INPUT "${WORK}/one.mdl"
+expect_run(STATUS 2 STDERR "is the file standard input \\(-\\) reads" INPUT "${WORK}/one.mdl" ARGS - -o one.mdl)
+expect_run(STATUS 2 STDERR "is the file standard input \\(-\\) reads" INPUT "${WORK}/one.mdl"
   ARGS inspect - -o one.mdl)
 file(SHA256 "${WORK}/one.mdl" model_hash_after)
 if(NOT model_hash STREQUAL model_hash_after)
   message(SEND_ERROR "the model read through standard input was replaced")
 endif()
 file(SHA256 "${WORK}/one_frf.csv" data_hash)
-run_with(STATUS 2 STDERR "is the file standard input \\(-\\) reads" INPUT "${WORK}/one_frf.csv"
+expect_run(STATUS 2 STDERR "is the file standard input \\(-\\) reads" INPUT "${WORK}/one_frf.csv"
   ARGS fit one.mdl --data - --json one_frf.csv --starts 1)
 file(SHA256 "${WORK}/one_frf.csv" data_hash_after)
 if(NOT data_hash STREQUAL data_hash_after)
   message(SEND_ERROR "the data read through standard input were replaced")
 endif()
 # A pipe or another file on standard input is no collision.
-run_with(STATUS 0 INPUT "${WORK}/one.mdl" ARGS - -o from_stdin.cpp)
+expect_run(STATUS 0 INPUT "${WORK}/one.mdl" ARGS - -o from_stdin.cpp)
 
 # --- Output lost on standard output is a failure (5).
 if(EXISTS /dev/full)
-  run_with(STATUS 1 STDERR "error: writing to standard output failed" OUTPUT /dev/full ARGS inspect one.mdl)
-  run_with(STATUS 1 STDERR "error: writing to standard output failed" OUTPUT /dev/full ARGS one.mdl -o -)
-  run_with(STATUS 1 STDERR "error: writing to standard output failed" OUTPUT /dev/full
+  expect_run(STATUS 1 STDERR "error: writing to standard output failed" OUTPUT /dev/full ARGS inspect one.mdl)
+  expect_run(STATUS 1 STDERR "error: writing to standard output failed" OUTPUT /dev/full ARGS one.mdl -o -)
+  expect_run(STATUS 1 STDERR "error: writing to standard output failed" OUTPUT /dev/full
     ARGS ${FAST_FIT} --json -)
 endif()
 
