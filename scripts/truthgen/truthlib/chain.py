@@ -83,14 +83,18 @@ def parse(outputs, inputs, output_orders, kind, gains=(), input_gains=(), force_
             raise ChainError("%s %s: given twice" % (option, name))
         seen.add(key)
 
-    for text in gains:
-        name, value = _split("--gain", text, outputs, "output", "OUTPUT=FACTOR")
-        once(("gain", name), "--gain", name)
-        factor, drawn = _factor("--gain", name, value, draw_n)
-        entry = {"kind": "gain", "output": name, "factor": factor}
+    def factor_entry(kind, option, text, names, what, form, twice):
+        """A --gain or --input-gain entry: CHANNEL=FACTOR, the factor given or drawn."""
+        name, value = _split(option, text, names, what, form)
+        once((kind, name), twice, name)
+        factor, drawn = _factor(option, name, value, draw_n)
+        entry = {"kind": kind, what: name, "factor": factor}
         if drawn:
             entry["drawn"] = drawn
         entries.append(entry)
+
+    for text in gains:
+        factor_entry("gain", "--gain", text, outputs, "output", "OUTPUT=FACTOR", "--gain")
     if force_sign is not None:
         if force_sign.strip() not in ("-1", "1", "+1"):
             raise ChainError("--force-sign %s: expected -1 (or 1, no change)" % force_sign)
@@ -99,13 +103,8 @@ def parse(outputs, inputs, output_orders, kind, gains=(), input_gains=(), force_
                 once(("input_gain", name), "--force-sign -1 and --input-gain", name)
                 entries.append({"kind": "input_gain", "input": name, "factor": -1.0})
     for text in input_gains:
-        name, value = _split("--input-gain", text, inputs, "input", "INPUT=FACTOR")
-        once(("input_gain", name), "--input-gain (or --force-sign)", name)
-        factor, drawn = _factor("--input-gain", name, value, draw_n)
-        entry = {"kind": "input_gain", "input": name, "factor": factor}
-        if drawn:
-            entry["drawn"] = drawn
-        entries.append(entry)
+        factor_entry("input_gain", "--input-gain", text, inputs, "input", "INPUT=FACTOR",
+                     "--input-gain (or --force-sign)")
     form_order = {}
     for text in forms:
         name, value = _split("--frf-form", text, outputs, "output", "OUTPUT=mobility|accelerance")
