@@ -32,14 +32,10 @@ std::string summary(const diagnosis::DiagnosisResult& r) {
   std::ostringstream out;
   for (const std::string& w : r.warnings) out << "warning: " << w << "\n";
   out << "verdict: " << r.verdict << "\n";
-  // Each selected extension with what it says (the last qualifying outcome of that id is the one taken).
+  // Each selected extension with what it says.
   for (const std::string& id : r.selected) {
     out << "selected: " << id << "\n";
-    for (auto it = r.candidates.rbegin(); it != r.candidates.rend(); ++it)
-      if (it->id == id && it->qualifies) {
-        out << "  " << it->description << "\n";
-        break;
-      }
+    if (const diagnosis::CandidateOutcome* o = diagnosis::selected_outcome(r, id)) out << "  " << o->description << "\n";
   }
   if (!r.nominal.fit.converged)
     out << "warning: the nominal model's fit did not converge (" << r.nominal.fit.stop_reason

@@ -1265,6 +1265,12 @@ class Diagnoser {
 
 }  // namespace
 
+const CandidateOutcome* selected_outcome(const DiagnosisResult& result, const std::string& id) {
+  for (auto it = result.candidates.rbegin(); it != result.candidates.rend(); ++it)
+    if (it->id == id && it->qualifies) return &*it;
+  return nullptr;
+}
+
 DiagnosisResult diagnose(const ir::ModelIr& model, const std::string& model_text, const std::vector<DataSet>& data,
                          const DiagnoseOptions& options) {
   return Diagnoser(data, options).run(model, model_text);

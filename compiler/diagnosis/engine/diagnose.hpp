@@ -105,6 +105,10 @@ struct DiagnosisResult {
   ModelState final;     // the extended model when extended, else the nominal
 };
 
+// The outcome of selected extension `id`: the last qualifying one of that id (the round it was taken in); null if
+// none.
+const CandidateOutcome* selected_outcome(const DiagnosisResult& result, const std::string& id);
+
 DiagnosisResult diagnose(const ir::ModelIr& model, const std::string& model_text, const std::vector<DataSet>& data,
                          const DiagnoseOptions& options);
 

@@ -82,14 +82,11 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
     doc.paragraph(selected << ". Mean normalized residual " << num(r.nominal.residual.mean_z) << " -> "
                            << num(r.final.residual.mean_z) << " (1 is the noise level); validation error "
                            << num(r.nominal.validation_nrmse) << " -> " << num(r.final.validation_nrmse) << ".");
-    // What each selected extension says (the last qualifying outcome of its id is the one taken).
+    // What each selected extension says.
     std::vector<report::Inline> said;
     for (const std::string& id : r.selected)
-      for (auto it = r.candidates.rbegin(); it != r.candidates.rend(); ++it)
-        if (it->id == id && it->qualifies) {
-          said.push_back(report::Inline(report::code(id)) << ": " << report::text(it->description));
-          break;
-        }
+      if (const CandidateOutcome* o = selected_outcome(r, id))
+        said.push_back(report::Inline(report::code(id)) << ": " << report::text(o->description));
     doc.list(std::move(said));
   } else if (r.verdict == "unexplained") {
     doc.paragraph("The model misses the data beyond the noise, and no candidate extension explains it (see the "
