@@ -11,11 +11,8 @@
 
 namespace mbgen::cli {
 
-// Driving points whose phase a passive structure cannot have (mbgen/chain_scores.hpp, driving_point_passivity): an
-// output at a force input's point, along its direction (the same frame, and the same point and direction as written
-// once the front end has filled them), whose measured FRF gives out power on more than half of the lines where its
-// phase is clear. The force or the sensor is then recorded with the wrong sign: no fit of the structure can follow
-// it. One warning per such channel and data set.
+// The warnings of diagnosis/engine/driving_points.hpp: one per driving point whose measured phase a passive
+// structure cannot have (the force or the sensor recorded with the wrong sign), per data set.
 std::vector<std::string> passivity_warnings(const ir::ModelIr& model, const std::vector<DataSet>& data);
 
 }  // namespace mbgen::cli

@@ -146,9 +146,10 @@ TEST_CASE("the measurement chain: a factor per output and on the input, and swap
     if (x.operator_name == "measurement_chain") chain.push_back(std::move(x));
   CHECK_THAT(test::ids_of(chain),
              Equals(std::vector<std::string>{"measurement_chain:gain:d1", "measurement_chain:gain:d1",
+                                             "measurement_chain:gain:d1", "measurement_chain:gain:d2",
                                              "measurement_chain:gain:d2", "measurement_chain:gain:d2",
                                              "measurement_chain:swap:d1,d2", "measurement_chain:input:F1",
-                                             "measurement_chain:input:F1"}));
+                                             "measurement_chain:input:F1", "measurement_chain:input:F1"}));
   for (const Extension& x : chain) {
     INFO(x.id << " " << x.variant);
     test::check_candidate(x);
@@ -157,6 +158,20 @@ TEST_CASE("the measurement chain: a factor per output and on the input, and swap
       CHECK(x.new_parameters.empty());
       CHECK(x.model.outputs[0].name == "d2");
       CHECK(x.model.outputs[1].name == "d1");
+      continue;
+    }
+    if (x.variant == "reversed") {
+      // The sign alone: no new parameter; an output's reading negated by a gain of -1, the input's direction turned.
+      CHECK(x.new_parameters.empty());
+      if (x.target == "input:F1") {
+        CHECK(x.model.filters.empty());
+        CHECK(x.mdl_text.find("F1 reversed") != std::string::npos);
+      } else {
+        REQUIRE(x.model.filters.size() == 1u);
+        CHECK(x.model.filters[0].kind == ir::FilterKind::Gain);
+        REQUIRE(x.model.filters[0].factor);
+        CHECK(ModelValues(x.model, {}).of(*x.model.filters[0].factor) == -1.0);
+      }
       continue;
     }
     REQUIRE(x.new_parameters.size() == 1);

@@ -608,6 +608,52 @@ def check_frame3():
           "examples/frame3/frame3.mdl: parameters, roles, columns, inputs and outputs match the truth's nominal model")
 
 
+def check_tower5():
+    """tower5: a five-mass shear chain shaken at the roof; its matrices and accelerances written out by hand here."""
+    p = dict(models.TOWER5_NOMINAL)
+    mats = models.build_tower5(p).matrices()
+    M, C, K = mats["M"], mats["C"], mats["K"]
+    k = [p["k%d" % i] for i in range(1, 6)]
+    c = [p["c%d" % i] for i in range(1, 6)]
+
+    def chain(v):  # storey i is joined to i-1 (the ground for storey 1) by element i
+        A = np.zeros((5, 5))
+        for i in range(5):
+            A[i, i] += v[i]
+            if i + 1 < 5:
+                A[i, i] += v[i + 1]
+                A[i, i + 1] = A[i + 1, i] = -v[i + 1]
+        return A
+    hand_M = np.diag([p["m%d" % i] for i in range(1, 6)])
+    same = (np.allclose(M, hand_M, rtol=1e-12) and np.allclose(K, chain(k), rtol=1e-12)
+            and np.allclose(C, chain(c), rtol=1e-12))
+    f = generate.frequency_grid(*generate.FRF_GRID["tower5"])
+    w = 2 * np.pi * f[::29]
+    B = np.zeros((5, 1))
+    B[4, 0] = 1.0   # the roof shaker
+    hand_H = np.array([-wi ** 2 * np.linalg.solve(chain(k) + 1j * wi * chain(c) - wi ** 2 * hand_M, B) for wi in w])
+    H = response.frf(mats, f[::29])
+    err = np.max(np.abs(H - hand_H)) / np.max(np.abs(hand_H))
+    fr, zeta = response.damped_modes(mats)
+    check(same and err < 1e-10 and len(f) == 591 and 0.5 < fr[0] < 0.8 and fr[-1] < 5,
+          "tower5: M, K, C of the shear chain and the roof accelerances (5 channels) by hand (error %.0e); modes %s Hz "
+          "in the 0.1-6 Hz grid" % (err, np.round(fr, 2).tolist()))
+
+    # examples/tower5/tower5.mdl: the truth's parameters (a first guess of their values), shear elements and signals
+    text = open(os.path.join(REPO, "examples", "tower5", "tower5.mdl")).read()
+    roles = sorted(re.findall(r"^param\s+(\w+)\s*=\s*[-+0-9.eE]+\s+\"[^\"]*\"\s+estimate", text, re.M))
+    springs = re.findall(r"spring (shear\d) \{ from (\w+); to (\w+); along x; stiffness (\w+); damping (\w+) \}",
+                         text)
+    want_springs = [("shear%d" % i, "ground" if i == 1 else "storey%d" % (i - 1), "storey%d" % i, "k%d" % i,
+                     "c%d" % i) for i in range(1, 6)]
+    signals = re.findall(r"^(input|output)\s+(\w+)\s+(\w+)\s+(?:on|of)\s+(\w+)\s+along\s+x\s*$", text, re.M)
+    want = [("input", "F", "force", "storey5")] + \
+           [("output", "a%d" % i, "acceleration", "storey%d" % i) for i in range(1, 6)]
+    check(roles == sorted(models.TOWER5_ESTIMABLE) and springs == want_springs and signals == want,
+          "examples/tower5/tower5.mdl: estimable parameters, shear elements, the roof force and the five "
+          "accelerometers match the truth's model")
+
+
 def check_draws():
     """--draw: sizes inside their ranges, offsets 3-10 %, deterministic, different draws differ, and the
     default truth untouched."""
@@ -914,6 +960,7 @@ def main():
         check_sensor_filters()
         check_base_on_feet()
         check_frame3()
+        check_tower5()
         check_draws()
         check_time_vs_frf()
         check_delay_from_rest()

@@ -11,10 +11,12 @@
 #include <mbgen/chain_scores.hpp>
 #include <mbgen/channel_residuals.hpp>
 #include <mbgen/data_split.hpp>
+#include <mbgen/frf.hpp>
 #include <mbgen/parallel.hpp>
 #include <mbgen/same_response.hpp>
 #include <mbgen/spectral_companion.hpp>
 
+#include "diagnosis/engine/driving_points.hpp"
 #include "diagnosis/engine/new_body_modes.hpp"
 #include "diagnosis/engine/thresholds.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
@@ -290,6 +292,7 @@ class Diagnoser {
     result.model_file = model.file;
     result.seed = options_.fit.seed;
     for (const DataSet& d : data_) result.data.push_back(d.file());
+    reversed_ = reversed_driving_points(model, data_);
     result.nominal = assess_nominal(model, text);
     ModelState current = result.nominal;
     for (int round = 1; round <= options_.max_extensions; ++round)
@@ -365,8 +368,10 @@ class Diagnoser {
 
   // The chain candidates whose statistic at the current fit says the data would support them (chain_scores.hpp): a
   // factor on an output's (or an input's) channels whose score statistic exceeds ln(n), the BIC price of the factor
-  // with n residuals, in the variant of the factor's sign only (calibration g > 0, polarity g < 0); two outputs whose
-  // exchanged data lower chi-square by more than ln(n). The kChainFits best by statistic are fitted. The statistics
+  // with n residuals, in the variants of the factor's sign only (calibration g > 0; polarity g < 0 and reversed
+  // g = -1); two outputs whose exchanged data lower chi-square by more than ln(n). The kChainFits best by statistic
+  // are fitted; a driving point that gives out power (driving_points.hpp) puts its force's and its sensor's negative
+  // variants first. The statistics
   // take milliseconds: where the data's chain is right, no chain candidate is fitted.
   std::vector<Extension> chain_candidates_worth_fitting(std::vector<Extension> extensions,
                                                         const ModelState& current) const {
@@ -402,21 +407,40 @@ class Diagnoser {
         const GainScore at_fit = gain_score(current.channels, selected);
         const GainScore at_priors = gain_score(prior_channels_, selected);
         const GainScore& s = at_priors.factor < 0 && at_priors.statistic > price ? at_priors : at_fit;
-        if ((e.variant == "polarity") != (s.factor < 0)) continue;
-        statistic = s.statistic;
         const auto factor = [&](const GainScore& g) { return kind == "gain" ? g.factor : 1 / g.factor; };
         seen = format("the data read %.4g times the model (score statistic %.1f; at the priors %.4g, ", factor(at_fit),
                       at_fit.statistic, factor(at_priors)) +
                format("%.1f)", at_priors.statistic);
+        // A driving point that gives out power says, without any model, that its force or its sensor has the wrong
+        // sign: both polarities are fitted, first, whatever the factors read. A structure fitted to reversed data
+        // (every mode of a shear tower shaken at its roof, with the force's sign reversed) reads positive factors
+        // at the fit and meaningless ones at priors whose modes lie elsewhere.
+        const bool reversed = std::any_of(reversed_.begin(), reversed_.end(), [&](const ReversedDrivingPoint& p) {
+          return (kind == "gain" ? p.output : p.input) == what;
+        });
+        const bool negative = e.variant == "polarity" || e.variant == "reversed";
+        if (reversed && negative) {
+          statistic = std::numeric_limits<double>::infinity();
+          seen = "a driving point on it gives out power (the data's phase; no model needed); " + seen;
+        } else {
+          if (negative != (s.factor < 0)) continue;
+          statistic = s.statistic;
+        }
       }
       if (!(statistic > price)) continue;
       say("measurement chain: " + label(e) + ": " + seen);
       worth.push_back({statistic, k});
     }
-    // The kChainFits largest statistics are fitted, in enumeration order.
+    // The candidates of the kChainFits largest statistics are fitted (each with the variants that passed), in
+    // enumeration order.
     std::stable_sort(worth.begin(), worth.end(),
                      [](const Worth& a, const Worth& b) { return a.statistic > b.statistic; });
-    if (worth.size() > kChainFits) worth.resize(kChainFits);
+    std::set<std::string> ids;
+    const auto beyond = std::find_if(worth.begin(), worth.end(), [&](const Worth& w) {
+      ids.insert(extensions[w.index].id);
+      return ids.size() > kChainFits;
+    });
+    worth.erase(beyond, worth.end());
     std::sort(worth.begin(), worth.end(), [](const Worth& a, const Worth& b) { return a.index < b.index; });
     std::vector<Extension> out;
     for (const Worth& w : worth) out.push_back(std::move(extensions[w.index]));
@@ -431,11 +455,25 @@ class Diagnoser {
                         std::vector<CandidateOutcome>& outcomes, const std::vector<ModelState>& states,
                         std::size_t first_of_round) {
     int best = best_qualifying(outcomes);
-    for (int guard = 0; best >= 0 && guard < 3; ++guard) {
-      ModelState refit = assess(current.model, current.text, states[static_cast<std::size_t>(best)].values,
+    // The candidate to refit from: the qualifying winner, or, where none qualifies, the lowest BIC of all when it is
+    // strongly lower. An implausible candidate far below the current model has most likely found a better optimum
+    // of the parameters they share (a shear tower after its force's sign was corrected, fitted to a local optimum:
+    // every added mass, none identifiable, fell by 13 000 in BIC); without the refit the current model would be
+    // judged at a fit that has not converged.
+    const auto source = [&]() -> int {
+      if (best >= 0) return best;
+      int lowest = -1;
+      for (std::size_t k = 0; k < outcomes.size(); ++k)
+        if (outcomes[k].error.empty() && outcomes[k].fully_fitted &&
+            (lowest < 0 || outcomes[k].delta_bic < outcomes[static_cast<std::size_t>(lowest)].delta_bic))
+          lowest = static_cast<int>(k);
+      return lowest >= 0 && outcomes[static_cast<std::size_t>(lowest)].delta_bic < options_.min_delta_bic ? lowest : -1;
+    };
+    for (int guard = 0, from = source(); from >= 0 && guard < 3; ++guard, from = source()) {
+      ModelState refit = assess(current.model, current.text, states[static_cast<std::size_t>(from)].values,
                                 options_.candidate_starts);
       if (!(refit.fit.cost < current.fit.cost * (1.0 - 1e-9))) break;
-      say("the current model fits better started from the estimate of " + outcomes[static_cast<std::size_t>(best)].id +
+      say("the current model fits better started from the estimate of " + outcomes[static_cast<std::size_t>(from)].id +
           format(" (BIC %.1f -> %.1f): a better optimum, not an effect; judging the candidates again",
                  current.fit.bic, refit.fit.bic));
       if (result.selected.empty()) result.nominal = refit;  // the current model is still the nominal one
@@ -568,15 +606,21 @@ class Diagnoser {
       while (end < outcomes.size() && outcomes[end].id == outcomes[first].id) ++end;
       // Fully fitted variants before screened-out ones before failed ones, and among fully fitted the plausible
       // ones first (a richer variant whose parameters the data cannot determine does not stand for the candidate
-      // when a plausible one exists); within a tier, the lowest BIC.
+      // when a plausible one exists); within a tier, the lowest BIC, and of variants that fit exactly as well the
+      // one with fewer new parameters (a force reversed rather than reversed and scaled, where the structure's
+      // scale takes up the scale: BIC counts only the parameters the data determine, so the two tie).
       const auto tier = [&](std::size_t k) {
         return !outcomes[k].error.empty() ? 3 : !outcomes[k].fully_fitted ? 2 : outcomes[k].plausible ? 0 : 1;
+      };
+      const auto simpler = [&](std::size_t a, std::size_t b) {
+        return outcomes[a].new_parameters.size() < outcomes[b].new_parameters.size();
       };
       std::size_t best = first;
       for (std::size_t k = first; k < end; ++k)
         if (tier(k) < tier(best) ||
             (tier(k) == tier(best) && tier(k) <= 1 &&
-             outcomes[k].delta_bic < outcomes[best].delta_bic - thresholds::kBicTie))
+             (outcomes[k].delta_bic < outcomes[best].delta_bic - thresholds::kBicTie ||
+              (outcomes[k].delta_bic <= outcomes[best].delta_bic + thresholds::kBicTie && simpler(k, best)))))
           best = k;
       CandidateOutcome o = outcomes[best];
       o.variants_tried = static_cast<int>(end - first);
@@ -1155,7 +1199,10 @@ class Diagnoser {
       o.description += " (the data do not determine " + names + ": held at " + (s.held.size() > 1 ? "their" : "its") +
                        " start value" + (s.held.size() > 1 ? "s" : "") + ")";
     }
-    if (ext.operator_name == kChainOperator) o.description = chain_description(ext, s.fit, o.description);
+    if (ext.operator_name == kChainOperator)
+      o.description = chain_description(ext, s.fit, o.description,
+                                        ext.new_parameters.size() == 1 &&
+                                            scale_confounded(evaluator, s, ext.new_parameters[0].name));
     judge_plausibility(ext, s.info, o);
     judge_new_body_modes(ext, evaluator, s, o);
     o.plausible = o.doubts.empty();
@@ -1165,7 +1212,40 @@ class Diagnoser {
 
   // A chain candidate's description with its estimate: "xs_rear reads 0.8012 +- 0.0031 times the structure's motion
   // (...)", naming a unit mix-up when the factor is one (mm read as m, g as m/s^2, and back).
-  static std::string chain_description(const Extension& ext, const FitResult& fit, const std::string& otherwise) {
+  // Whether the data cannot tell parameter `name`'s size from the structure's scale: doubling every other estimated
+  // parameter and doubling or halving this one leaves every FRF of the model as it is (a force's factor where every
+  // mass, stiffness and damping is estimated, or the factor of a model's only output). Checked on the model's FRFs at
+  // a few of the data's lines; a fit then holds some parameter or stops at a bound, and the factor's size and std it
+  // reports are only relative to that.
+  static bool scale_confounded(const mbgen::Model& evaluator, const ModelState& s, const std::string& name) {
+    const ModelInfo& info = evaluator.info();
+    const int g = info.parameter_index(name);
+    if (g < 0 || s.channels.empty() || s.channels.front().f_hz.empty()) return false;
+    const std::vector<double>& lines = s.channels.front().f_hz;
+    std::vector<double> f;
+    for (std::size_t k = 0; k < 8; ++k) f.push_back(lines[k * (lines.size() - 1) / 7]);
+    try {
+      const Eigen::VectorXd p = s.fit.values;
+      const FrfResult at = frf(evaluator, p, f);
+      for (double factor : {2.0, 0.5}) {
+        Eigen::VectorXd q = p;
+        for (std::size_t i = 0; i < info.parameters.size(); ++i)
+          if (info.parameters[i].role == ParameterRole::Estimate && static_cast<int>(i) != g)
+            q[static_cast<Eigen::Index>(i)] *= 2.0;
+        q[g] *= factor;
+        const FrfResult scaled = frf(evaluator, q, f);
+        double worst = 0;
+        for (std::size_t k = 0; k < f.size(); ++k)
+          worst = std::max(worst, (scaled.H[k] - at.H[k]).norm() / std::max(at.H[k].norm(), 1e-300));
+        if (worst < 1e-8) return true;
+      }
+    } catch (const std::exception&) {
+    }
+    return false;
+  }
+
+  static std::string chain_description(const Extension& ext, const FitResult& fit, const std::string& otherwise,
+                                       bool size_confounded) {
     if (ext.new_parameters.size() != 1) return otherwise;
     const auto it = std::find_if(fit.parameters.begin(), fit.parameters.end(),
                                  [&](const ParameterEstimate& p) { return p.name == ext.new_parameters[0].name; });
@@ -1173,6 +1253,17 @@ class Diagnoser {
     const double g = it->value, sd = it->identifiable ? it->std : 0.0;
     const std::string what = ext.target.substr(ext.target.find(':') + 1);
     const bool input = ext.target.rfind("input:", 0) == 0;
+    if (size_confounded) {
+      const std::string size = "; its size the data cannot tell from the structure's scale";
+      if (g < 0)
+        return (input ? "the recorded " + what + " has the opposite sign of the force applied (a reaction force taken "
+                                                   "with the wrong sign)"
+                      : what + " reads with the opposite sign: the sensor is mounted or wired reversed") +
+               size;
+      return (input ? "the recorded " + what + " is a constant factor of the force applied" : what + " reads a constant "
+                                                                                                  "factor of the motion") +
+             size;
+    }
     std::string text = (input ? "the recorded " + what + " is " : what + " reads ") + format("%.4g", g) +
                        (sd > 0 ? format(" +- %.2g", sd) : "") +
                        (input ? " times the force applied" : " times the structure's motion");
@@ -1261,6 +1352,7 @@ class Diagnoser {
   int screen_averages_ = 1;           // the H1 estimates' segments (their coherence's weighting)
   std::map<std::string, std::vector<double>> prior_output_peaks_;
   std::vector<ChannelResidual> prior_channels_;  // measured against the current model at its prior values
+  std::vector<ReversedDrivingPoint> reversed_;   // driving points whose data a passive structure cannot give
 };
 
 }  // namespace

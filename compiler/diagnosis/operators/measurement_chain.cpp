@@ -2,17 +2,22 @@
 // or polarity, two cables swapped, a force transducer's calibration or sign. These come first in a diagnosis
 // (docs/diagnosis.md, "The measurement chain first"): a structural extension must never stand in for them.
 //
-//   measurement_chain:gain:O     O reads g times the truth (a `filter ... gain` on O). Two variants: "calibration"
-//                                (g > 0, started at 1: a sensitivity error, or a unit mix-up when g is near 1000,
-//                                1/1000, 9.81 or 1/9.81) and "polarity" (g < 0, started at -1: the sensor mounted
-//                                reversed, or its sign wired wrong).
+//   measurement_chain:gain:O     O reads g times the truth (a `filter ... gain` on O). Three variants:
+//                                "calibration" (g > 0, started at 1: a sensitivity error, or a unit mix-up when g
+//                                is near 1000, 1/1000, 9.81 or 1/9.81), "polarity" (g < 0, started at -1: the sensor
+//                                mounted reversed, or its sign wired wrong, and its size off too) and "reversed"
+//                                (g = -1, no new parameter: the sign alone). BIC chooses between the last two: the
+//                                sign alone wins where the data do not show a size besides it (a reversed sensor of
+//                                the right sensitivity, or a size the structure's scale stands in for).
 //   measurement_chain:swap:A,B   the columns of outputs A and B exchanged (two cables swapped): the two output
 //                                statements exchange their names. No new parameter. Offered for outputs of one kind
 //                                (displacement, velocity, acceleration) without filters of their own.
 //   measurement_chain:input:F    the recorded force is g times the applied one. With one input every FRF is divided
-//                                by g: a gain 1/g on every output. Variants "calibration" (g > 0, started at 1) and
+//                                by g: a gain 1/g on every output. Variants "calibration" (g > 0, started at 1),
 //                                "polarity" (g < 0, started at -1: a reaction mass's force computed with the wrong
-//                                sign). With several inputs, only the polarity: F's direction reversed.
+//                                sign) and "reversed" (F's direction reversed, no new parameter: with every mass,
+//                                stiffness and damping estimated, the data cannot tell g's size from the structure's
+//                                scale). With several inputs, only the reversed direction.
 //
 // None of these is a new body or element; the structure's parameters stay as they are.
 #include <algorithm>
@@ -58,6 +63,13 @@ Extension output_gain(const OperatorInput& in, const ir::Output& out, const Sign
                   (sign.start > 0 ? "calibration (or units)" : "polarity (mounted or wired reversed)"));
 }
 
+Extension reversed_output(const OperatorInput& in, const ir::Output& out) {
+  Draft d(in, "measurement_chain", "gain:" + out.name);
+  d.set_variant("reversed");
+  d.add_filter(gain_filter(d, out.name, neg(num("1"))));
+  return d.finish(out.name + " reads with the opposite sign: its sensor is mounted or wired reversed");
+}
+
 Extension swapped(const OperatorInput& in, const ir::Output& a, const ir::Output& b) {
   Draft d(in, "measurement_chain", "swap:" + a.name + "," + b.name);
   ir::Output& first = *std::find_if(d.model().outputs.begin(), d.model().outputs.end(),
@@ -83,7 +95,7 @@ Extension input_gain(const OperatorInput& in, const ir::Input& input, const Sign
 
 Extension reversed_input(const OperatorInput& in, const ir::Input& input) {
   Draft d(in, "measurement_chain", "input:" + input.name);
-  d.set_variant("polarity");
+  d.set_variant("reversed");
   ir::Input& changed = *std::find_if(d.model().inputs.begin(), d.model().inputs.end(),
                                      [&](const ir::Input& i) { return i.name == input.name; });
   changed.direction.axis.clear();
@@ -99,8 +111,10 @@ Extension reversed_input(const OperatorInput& in, const ir::Input& input) {
 
 std::vector<Extension> measurement_chain(const OperatorInput& in) {
   std::vector<Extension> out;
-  for (const ir::Output& o : in.model.outputs)
+  for (const ir::Output& o : in.model.outputs) {
     for (const Sign& sign : {kCalibration, kPolarity}) out.push_back(output_gain(in, o, sign));
+    out.push_back(reversed_output(in, o));
+  }
   const auto& outputs = in.model.outputs;
   for (std::size_t i = 0; i < outputs.size(); ++i)
     for (std::size_t j = i + 1; j < outputs.size(); ++j)
@@ -109,6 +123,7 @@ std::vector<Extension> measurement_chain(const OperatorInput& in) {
         out.push_back(swapped(in, outputs[i], outputs[j]));
   if (in.model.inputs.size() == 1) {
     for (const Sign& sign : {kCalibration, kPolarity}) out.push_back(input_gain(in, in.model.inputs.front(), sign));
+    out.push_back(reversed_input(in, in.model.inputs.front()));
   } else {
     for (const ir::Input& input : in.model.inputs) out.push_back(reversed_input(in, input));
   }

@@ -37,7 +37,10 @@ struct Discrepancy {
   double f_hz = 0;              // the characteristic frequency (a peak of the data, or the band's centre)
   double f_lo = 0, f_hi = 0;    // the band
   double model_f_hz = 0;        // frequency_shift: the model's nearby peak
-  double size_db = 0;           // |H_meas| / |H_model| at f_hz, in dB (positive: the data is larger)
+  // |H_meas| / |H_model| at f_hz in dB (positive: the data is larger), each magnitude at least the noise level
+  // there, so no size exceeds what the data can tell; unexplained_resonance: the peak's rise above the response
+  // around it (what the model would have to add)
+  double size_db = 0;
   double significance = 0;      // mean normalized residual over the band (1 = noise level); phase_trend: slope / its std
   double delay_s = 0;           // phase_trend: the delay that explains it
   std::string text;             // one sentence

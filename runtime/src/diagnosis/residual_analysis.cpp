@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
+#include <utility>
 
 #include "../data/string_format.hpp"
 #include "../data/window_median.hpp"
@@ -30,6 +32,13 @@ int nearest_peak(const std::vector<int>& peaks, const std::vector<double>& f, do
     if (best < 0 || std::abs(f[static_cast<std::size_t>(p)] - target) < std::abs(f[static_cast<std::size_t>(best)] - target))
       best = p;
   return best;
+}
+
+// The measured magnitude averaged over three lines, so that noise does not make peaks of its own.
+Eigen::VectorXcd smoothed(const Eigen::VectorXcd& h) {
+  Eigen::VectorXcd out = h;
+  for (Eigen::Index i = 1; i + 1 < h.size(); ++i) out[i] = (std::abs(h[i - 1]) + std::abs(h[i]) + std::abs(h[i + 1])) / 3.0;
+  return out;
 }
 
 struct Band {
@@ -86,6 +95,44 @@ std::vector<Band> contrasted_bands(const Eigen::VectorXd& z, const Band& band, c
       band.hi);
 }
 
+// |H_meas| / |H_model| at line i in dB, each magnitude taken at least at the noise level there: no measurement
+// tells a ratio beyond its own signal-to-noise ratio (a model that has almost no response at a line made
+// "109.8 dB" findings, a figure no data can support).
+double measurable_ratio_db(const ChannelResidual& c, int i) {
+  const double noise = std::max(c.sigma[i], 1e-300);
+  return db(std::max(std::abs(c.measured[i]), noise) / std::max(std::abs(c.model[i]), noise));
+}
+
+// How far the measured magnitude at a peak rises above its surroundings (the higher of the lowest levels either
+// side before a higher peak, peak_prominence_db's reference), as a multiple of the noise there: a resonance the
+// model lacks is what the model would have to add, and its size is that rise, not its ratio to a model that may
+// be orders of magnitude off everywhere around it.
+struct PeakRise {
+  double db = 0;         // the rise in dB
+  double z = 0;          // (rise / sigma)^2, on the scale of the normalized residual
+};
+PeakRise peak_rise(const Eigen::VectorXcd& smooth, const Eigen::VectorXd& sigma, int p) {
+  const int n = static_cast<int>(smooth.size());
+  const double m = std::abs(smooth[p]);
+  double left = m, right = m;
+  for (int j = p - 1; j >= 0 && std::abs(smooth[j]) <= m; --j) left = std::min(left, std::abs(smooth[j]));
+  for (int j = p + 1; j < n && std::abs(smooth[j]) <= m; ++j) right = std::min(right, std::abs(smooth[j]));
+  const double base = std::max(left, right), noise = std::max(sigma[p], 1e-300);
+  PeakRise r;
+  r.db = db(m / std::max(base, noise));
+  r.z = (m - base) * (m - base) / (noise * noise);
+  return r;
+}
+
+void describe_unexplained_resonance(const ChannelResidual& c, int peak, Discrepancy& d) {
+  d.kind = "unexplained_resonance";
+  d.f_hz = c.f_hz[static_cast<std::size_t>(peak)];
+  d.size_db = peak_rise(smoothed(c.measured), c.sigma, peak).db;
+  d.text = format("a resonance near %.1f Hz on %s (%s) that the model does not have: it rises %.1f dB above the "
+                  "response around it",
+                  d.f_hz, c.channel.c_str(), c.data_set.c_str(), d.size_db);
+}
+
 Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vector<int>& data_peaks,
                      const std::vector<int>& model_peaks, const ResidualOptions& o) {
   const std::vector<double>& f = c.f_hz;
@@ -117,7 +164,7 @@ Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vect
   }
   const int at = data_peak >= 0 ? data_peak : argmax_abs(c.measured - c.model, band.lo, band.hi);
   d.f_hz = f[static_cast<std::size_t>(at)];
-  d.size_db = db(std::abs(c.measured[at]) / std::max(std::abs(c.model[at]), 1e-300));
+  d.size_db = measurable_ratio_db(c, at);
 
   const std::string where = format("%s (%s)", c.channel.c_str(), c.data_set.c_str());
   if (data_peak >= 0) {
@@ -153,9 +200,7 @@ Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vect
       d.text = format("the resonance at %.1f Hz on %s sits at %.1f Hz in the model (%+.1f %%)", d.f_hz, where.c_str(),
                            d.model_f_hz, 100.0 * (d.model_f_hz - d.f_hz) / d.f_hz);
     } else {
-      d.kind = "unexplained_resonance";
-      d.text = format("a resonance near %.1f Hz on %s that the model does not have (%.1f dB above it)", d.f_hz,
-                           where.c_str(), d.size_db);
+      describe_unexplained_resonance(c, data_peak, d);
     }
     return d;
   }
@@ -176,6 +221,37 @@ Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vect
                          std::abs(d.size_db));
   }
   return d;
+}
+
+// Every clear resonance of the data in a band the model misses, when the model has no peak within 25 % of it: a
+// band is classified once, by the peak nearest its worst line, and a band over a whole channel (a model far off)
+// would otherwise name one of several resonances the model lacks. A peak counts when both the residual around it
+// and its rise over its surroundings exceed the finding threshold on the normalized residual's scale (noise alone
+// passes either at the family-wise false-alarm rate), so the noise's own bumps in a misfit band are not peaks.
+std::vector<Discrepancy> resonances_missing_in_band(const ChannelResidual& c, const Eigen::VectorXd& z,
+                                                    const Band& band, const std::vector<int>& data_peaks,
+                                                    const std::vector<int>& model_peaks, const ResidualOptions& o) {
+  std::vector<Discrepancy> found;
+  const Eigen::VectorXcd smooth = smoothed(c.measured);
+  const int n = static_cast<int>(z.size()), half = std::max(0, o.window / 2);
+  for (int p : data_peaks) {
+    if (p < band.lo || p > band.hi) continue;
+    const double fp = c.f_hz[static_cast<std::size_t>(p)];
+    const int model_peak = nearest_peak(model_peaks, c.f_hz, fp);
+    if (model_peak >= 0 && std::abs(c.f_hz[static_cast<std::size_t>(model_peak)] - fp) <= 0.25 * fp) continue;
+    const int lo = std::max(0, p - half), hi = std::min(n - 1, p + half);
+    const double local_z = z.segment(lo, hi - lo + 1).mean();
+    if (local_z <= o.threshold || peak_rise(smooth, c.sigma, p).z <= o.threshold) continue;
+    Discrepancy d;
+    d.channel = c.channel;
+    d.data_set = c.data_set;
+    d.f_lo = c.f_hz[static_cast<std::size_t>(lo)];
+    d.f_hi = c.f_hz[static_cast<std::size_t>(hi)];
+    d.significance = local_z;
+    describe_unexplained_resonance(c, p, d);
+    found.push_back(std::move(d));
+  }
+  return found;
 }
 
 // A phase difference growing linearly with frequency (a delay) across the whole channel.
@@ -210,36 +286,30 @@ bool phase_trend(const ChannelResidual& c, Discrepancy& d) {
   return true;
 }
 
-// The measured magnitude averaged over three lines, so that noise does not make peaks of its own.
-Eigen::VectorXcd smoothed(const Eigen::VectorXcd& h) {
-  Eigen::VectorXcd out = h;
-  for (Eigen::Index i = 1; i + 1 < h.size(); ++i) out[i] = (std::abs(h[i - 1]) + std::abs(h[i]) + std::abs(h[i + 1])) / 3.0;
-  return out;
-}
-
 // One mode shows on every channel: findings of one kind within a few per cent of each other are one finding,
 // kept on the channel where it is strongest and noting the others. On one channel they are one finding too (a
 // wide band and the sub-band that stands out inside it, classified alike: the beam's 687 Hz mode was listed twice).
 std::vector<Discrepancy> merge_across_channels(std::vector<Discrepancy> all) {
   std::stable_sort(all.begin(), all.end(), [](const Discrepancy& a, const Discrepancy& b) { return a.significance > b.significance; });
   std::vector<Discrepancy> kept;
-  std::vector<int> others;
+  std::vector<std::set<std::pair<std::string, std::string>>> others;  // the other channels each kept one was seen on
   for (const Discrepancy& d : all) {
     bool merged = false;
     for (std::size_t k = 0; k < kept.size() && !merged; ++k) {
       const Discrepancy& m = kept[k];
       if (m.kind == d.kind && std::abs(m.f_hz - d.f_hz) <= 0.02 * std::max(m.f_hz, d.f_hz)) {
-        if (m.channel != d.channel || m.data_set != d.data_set) ++others[k];
+        if (m.channel != d.channel || m.data_set != d.data_set) others[k].insert({d.channel, d.data_set});
         merged = true;
       }
     }
     if (!merged) {
       kept.push_back(d);
-      others.push_back(0);
+      others.emplace_back();
     }
   }
   for (std::size_t k = 0; k < kept.size(); ++k)
-    if (others[k] > 0) kept[k].text += format(" (also seen on %d other channel%s)", others[k], others[k] > 1 ? "s" : "");
+    if (const std::size_t n = others[k].size(); n > 0)
+      kept[k].text += format(" (also seen on %d other channel%s)", static_cast<int>(n), n > 1 ? "s" : "");
   return kept;
 }
 
@@ -323,6 +393,8 @@ ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, 
     const std::vector<int> data_peaks = magnitude_peaks(smoothed(c.measured)), model_peaks = magnitude_peaks(c.model);
     for (const Band& band : significant_bands(z, options)) {
       summary.discrepancies.push_back(classify(c, band, data_peaks, model_peaks, options));
+      for (Discrepancy& d : resonances_missing_in_band(c, z, band, data_peaks, model_peaks, options))
+        summary.discrepancies.push_back(std::move(d));
       if (band.hi - band.lo + 1 < options.wide_band) continue;
       for (const Band& sub : contrasted_bands(z, band, options))
         if (sub.lo != band.lo || sub.hi != band.hi)

@@ -69,6 +69,39 @@ TEST_CASE("a hidden mode is found as an unexplained resonance at its frequency",
   CHECK(d.text.find("190.") != std::string::npos);
 }
 
+TEST_CASE("every resonance a far-off model lacks is a finding, sized by its rise above its surroundings",
+          "[residual]") {
+  // A naive model: one mode at 120 Hz, a thousand times too weak, where the data have three more at 190, 250 and
+  // 290 Hz. The whole channel is one band the model misses; each of the three is named, on its own line, and no
+  // size exceeds what the data (1 % noise) can tell: about 40 dB.
+  ChannelResidual c = make_channel(false, 7, 0.01);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (std::size_t i = 0; i < c.f_hz.size(); ++i) {
+    const Eigen::Index k = static_cast<Eigen::Index>(i);
+    const double f = c.f_hz[i];
+    const cd truth = mode(f, 120.0, 0.01, 1e6) + mode(f, 190.0, 0.01, 2e7) + mode(f, 250.0, 0.01, 3e7) +
+                     mode(f, 290.0, 0.01, 4e7);
+    c.sigma[k] = 0.01 * std::abs(truth);
+    c.measured[k] = truth + cd(g(rng), g(rng)) * (c.sigma[k] / std::sqrt(2.0));
+    c.model[k] = 1e-3 * mode(f, 120.0, 0.01, 1e6);
+  }
+  const ResidualSummary s = analyse_residuals({c});
+  for (double f : {190.0, 250.0, 290.0}) {
+    const auto it = std::find_if(s.discrepancies.begin(), s.discrepancies.end(), [&](const Discrepancy& x) {
+      return x.kind == "unexplained_resonance" && std::abs(x.f_hz - f) <= 1.0;
+    });
+    INFO("the resonance at " << f << " Hz");
+    REQUIRE(it != s.discrepancies.end());
+    CHECK(it->size_db > 6.0);
+    CHECK(it->text.find("rises") != std::string::npos);
+  }
+  for (const Discrepancy& d : s.discrepancies) {
+    INFO(d.text);
+    CHECK(d.size_db < 45.0);  // 1 % noise: 40 dB of signal to noise, with its scatter
+  }
+}
+
 TEST_CASE("a shifted resonance is reported as a frequency shift", "[residual]") {
   ChannelResidual c = make_channel(false, 4, 0.01);
   for (std::size_t i = 0; i < c.f_hz.size(); ++i) c.model[static_cast<Eigen::Index>(i)] = mode(c.f_hz[i], 126.0, 0.01, 1e6);

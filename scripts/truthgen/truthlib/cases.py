@@ -470,7 +470,15 @@ def _frame3_cases():
     ]
 
 
-CASES = {(c.example, c.name): c for c in _mdof2_cases() + _spindle_cases() + _frame3_cases()}
+# ---- tower5 --------------------------------------------------------------------------------------------------
+def _tower5_cases():
+    return [
+        Case("tower5", "nominal", None, lambda v: {"hidden": "nothing: the nominal model with its parameters off "
+                                                             "nominal"}, kinds=("frf",), control=True),
+    ]
+
+
+CASES = {(c.example, c.name): c for c in _mdof2_cases() + _spindle_cases() + _frame3_cases() + _tower5_cases()}
 
 
 def get(example, name):

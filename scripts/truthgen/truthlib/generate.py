@@ -18,7 +18,8 @@ import numpy as np
 
 from . import response
 
-FRF_GRID = {"mdof2": (10.0, 400.0, 0.25), "spindle": (50.0, 1200.0, 1.0), "frame3": (0.03125, 128.0, 0.03125)}
+FRF_GRID = {"mdof2": (10.0, 400.0, 0.25), "spindle": (50.0, 1200.0, 1.0), "frame3": (0.03125, 128.0, 0.03125),
+            "tower5": (0.1, 6.0, 0.01)}
 SAMPLE_RATE = {"mdof2": 4096.0, "spindle": 8192.0}
 DURATION = {"mdof2": 2.0, "spindle": 2.0}
 AMPLITUDE = {"mdof2": 10.0, "spindle": 100.0}

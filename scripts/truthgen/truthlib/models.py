@@ -283,8 +283,37 @@ def build_frame3(p, effects=None):
     return s
 
 
+# ---------------------------------------------------------------------------------------------------------
+# tower5: a five-storey shear tower shaken at the roof (like a building's forced-vibration test), y vertical
+
+TOWER5_NOMINAL = {
+    "m1": 5200.0, "m2": 5000.0, "m3": 4900.0, "m4": 4700.0, "m5": 4000.0,
+    "k1": 1.05e6, "k2": 0.92e6, "k3": 0.80e6, "k4": 0.70e6, "k5": 0.58e6,
+    "c1": 3200.0, "c2": 2800.0, "c3": 2500.0, "c4": 2200.0, "c5": 1900.0,
+}
+TOWER5_ESTIMABLE = ["m1", "m2", "m3", "m4", "m5", "k1", "k2", "k3", "k4", "k5", "c1", "c2", "c3", "c4", "c5"]
+TOWER_STOREY_HEIGHT = 3.0
+
+
+def build_tower5(p, effects=None):
+    """Ground `ground`, storeys 1-5 along x joined by shear springs-dampers along x, one force F at the roof
+    (storey5) along x, accelerations a1-a5 of the storeys along x. No effects."""
+    s = System("tower5")
+    s.ground("ground")
+    storeys = ["storey%d" % (i + 1) for i in range(5)]
+    for i, name in enumerate(storeys):
+        s.body(name, p["m%d" % (i + 1)], [0.0, 0.0, 0.0], (0, TOWER_STOREY_HEIGHT * (i + 1), 0), ["x"])
+    for i, (a, b) in enumerate(zip(["ground"] + storeys[:-1], storeys)):
+        s.spring("shear%d" % (i + 1), a, None, b, None, "x", p["k%d" % (i + 1)], p["c%d" % (i + 1)])
+    s.input_force("F", "storey5", (0, TOWER_STOREY_HEIGHT * 5, 0), "x")
+    for i, name in enumerate(storeys):
+        s.output_acceleration("a%d" % (i + 1), name, (0, TOWER_STOREY_HEIGHT * (i + 1), 0), "x")
+    return s
+
+
 EXAMPLES = {
     "mdof2": {"nominal": MDOF2_NOMINAL, "estimable": MDOF2_ESTIMABLE, "build": build_mdof2},
     "spindle": {"nominal": SPINDLE_NOMINAL, "estimable": SPINDLE_ESTIMABLE, "build": build_spindle},
     "frame3": {"nominal": FRAME3_NOMINAL, "estimable": FRAME3_ESTIMABLE, "build": build_frame3},
+    "tower5": {"nominal": TOWER5_NOMINAL, "estimable": TOWER5_ESTIMABLE, "build": build_tower5},
 }
