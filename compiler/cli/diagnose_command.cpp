@@ -5,6 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/data_checks.hpp"
+#include "cli/parameter_roles.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/number_checks.hpp"
@@ -78,6 +79,8 @@ int run_diagnose(int argc, char** argv) {
   app.add_option("--extended", extended_path,
                  "when extended, write the extended model here (and its C++ as OUT_model.cpp/.hpp beside it)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
+  RoleOptions roles;
+  add_role_options(app, roles);
   app.add_option("--starts", options.fit.starts, "starts of the nominal fit's global search (default 16)")
       ->check(starts_range());
   app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)")->check(seed_check());
@@ -106,8 +109,9 @@ int run_diagnose(int argc, char** argv) {
     plan.inputs.push_back(model_path);
     plan.check();
     // The text is read once (standard input cannot be read twice): the model is parsed from it.
-    const std::string text = frontend::read_model_text(model_path);
-    const ir::ModelIr model = frontend::parse_string(text, model_path);
+    const RoledModel roled = read_model_with_roles(model_path, roles, options.set);
+    const std::string& text = roled.text;
+    const ir::ModelIr& model = roled.model;
     symbolic::DeriveOptions derive;
     derive.set = options.set;
     const std::vector<DataSet> data = load_data(data_paths, evaluator::make_evaluator(model, derive)->info(), model, derive.set);

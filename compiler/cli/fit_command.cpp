@@ -18,6 +18,7 @@
 #include "cli/data_checks.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
+#include "cli/parameter_roles.hpp"
 #include "cli/number_checks.hpp"
 #include "cli/run_guarded.hpp"
 #include "cli/seed_option.hpp"
@@ -111,6 +112,8 @@ int run_fit(int argc, char** argv) {
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
+  RoleOptions roles;
+  add_role_options(app, roles);
   app.add_option("--starts", options.starts, "number of starts of the global search (default 16)")
       ->check(starts_range());
   app.add_option("--seed", options.seed, "seed of the global search (default 1)")->check(seed_check());
@@ -141,7 +144,7 @@ int run_fit(int argc, char** argv) {
     plan.inputs = data_paths;
     plan.inputs.push_back(model_path);
     plan.check();
-    const ir::ModelIr model = frontend::parse_file(model_path);
+    const ir::ModelIr model = read_model_with_roles(model_path, roles, derive.set).model;
     const auto evaluator = evaluator::make_evaluator(model, derive);
     std::vector<DataSet> data = load_data(data_paths, evaluator->info(), model, derive.set);
     if (!band.empty()) data = within_band(data, parse_band("--band", band));

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/parameter_roles.hpp"
 #include "cli/fleet_manifest.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
@@ -66,6 +67,7 @@ double residual_misfit(const Model& model, const DataSet& set, const FitResult& 
 struct MonitorSettings {
   MonitorOptions options;
   std::vector<std::string> sets;
+  RoleOptions roles;
   bool no_diagnosis = false;
 };
 
@@ -76,10 +78,11 @@ MonitorResult monitor_machine(const std::string& model_path, const std::vector<s
   const std::vector<std::string>& sets = settings.sets;
   const bool no_diagnosis = settings.no_diagnosis;
   // The text is read once (standard input cannot be read twice): the model is parsed from it.
-  const std::string text = frontend::read_model_text(model_path);
-  const ir::ModelIr parsed = frontend::parse_string(text, model_path);
   symbolic::DeriveOptions derive;
   derive.set = parse_set_options(sets);
+  const RoledModel roled = read_model_with_roles(model_path, settings.roles, derive.set);
+  const std::string& text = roled.text;
+  const ir::ModelIr& parsed = roled.model;
   const auto evaluator = evaluator::make_evaluator(parsed, derive);
 
   std::vector<std::optional<MeasurementTime>> stamps;
@@ -227,6 +230,7 @@ int run_monitor(int argc, char** argv) {
   app.add_option("--json", json_path, "write the result (schema mbgen-monitor/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with parameter trend plots)");
   app.add_option("--set", settings.sets, "override a parameter's value: NAME=VALUE (repeatable)");
+  add_role_options(app, settings.roles);
   app.add_option("--starts", options.fit.starts, "starts of the first data set's fit (default 16)")
       ->check(starts_range());
   app.add_option("--warm-starts", options.warm_starts,

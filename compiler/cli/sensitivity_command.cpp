@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "cli/commands.hpp"
+#include "cli/parameter_roles.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
@@ -113,6 +114,8 @@ int run_sensitivity(int argc, char** argv) {
   app.add_flag("--bounds", bounds, "--global: over the parameters' declared bounds instead (they must be finite)");
   app.add_option("--sweep", sweeps, "feature map: NAME=LO:HI:N sweeps parameter NAME over N values (repeatable)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
+  RoleOptions roles;
+  add_role_options(app, roles);
   app.add_option("--json", json_path, "write the result (schema mbgen-sensitivity/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with plots)");
   app.set_version_flag("--version", version_text());
@@ -126,7 +129,7 @@ int run_sensitivity(int argc, char** argv) {
     plan.check();
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(sets);
-    const ir::ModelIr declared = frontend::parse_file(model_path);
+    const ir::ModelIr declared = read_model_with_roles(model_path, roles, derive.set).model;
     const auto model = evaluator::make_evaluator(declared, derive);
     const ModelInfo& info = model->info();
     std::vector<Sweep> parsed;

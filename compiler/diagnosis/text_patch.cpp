@@ -135,7 +135,16 @@ void TextPatch::change_role(ir::SourceLoc name_loc, const std::string& from, con
 
 void TextPatch::append(const std::string& text) { appended_ += text; }
 
+void TextPatch::rewrite_statement(ir::SourceLoc name_loc, const std::string& replacement) {
+  const Range r = statement(name_loc);
+  edit(offset(tokens_[r.first].loc), token_end(r.last), replacement);
+}
+
 std::string TextPatch::result(const std::string& title) const {
+  return text() + "\n# --- mbgen diagnose: " + title + " ---\n" + appended_;
+}
+
+std::string TextPatch::text() const {
   std::vector<Edit> edits = edits_;
   std::sort(edits.begin(), edits.end(),
             [](const Edit& a, const Edit& b) { return a.begin != b.begin ? a.begin < b.begin : a.order < b.order; });
@@ -149,7 +158,7 @@ std::string TextPatch::result(const std::string& title) const {
   }
   out.append(original_, pos, std::string::npos);
   if (!out.empty() && out.back() != '\n') out += '\n';
-  return out + "\n# --- mbgen diagnose: " + title + " ---\n" + appended_;
+  return out;
 }
 
 }  // namespace mbgen::diagnosis

@@ -34,11 +34,17 @@ class TextPatch {
   // the change in a comment on the same line (or in the end section if the line goes on).
   void change_role(ir::SourceLoc name_loc, const std::string& from, const std::string& to, const std::string& note);
 
+  // Replaces the tokens of the statement whose name token is at `name_loc` by `replacement` (one statement, no
+  // newline), in place: the lines keep their numbers and a trailing comment stays.
+  void rewrite_statement(ir::SourceLoc name_loc, const std::string& replacement);
+
   // Text for the end section (complete statements or comment lines, each ending in a newline).
   void append(const std::string& text);
 
   // The edited text, then the end section under `# --- mbgen diagnose: TITLE ---`.
   std::string result(const std::string& title) const;
+  // The edited text alone (ending in a newline).
+  std::string text() const;
 
  private:
   struct Edit {

@@ -2,6 +2,8 @@
 // implicit points that must stay where they were.
 #include "diagnosis/text_patch.hpp"
 
+#include <algorithm>
+
 #include "diagnosis/test_support.hpp"
 
 using namespace mbgen;
@@ -78,4 +80,18 @@ TEST_CASE("a text patch checks what it edits", "[diagnosis][text]") {
   overlap.rename({1, 7}, "a", "x");
   overlap.rename({1, 7}, "a", "y");
   CHECK_THROWS_AS(overlap.result("t"), std::logic_error);
+}
+
+TEST_CASE("a statement rewritten in place keeps the lines and what shares its line", "[diagnosis][text]") {
+  const ir::ModelIr m = frontend::parse_string(kCompact, "compact.mdl");
+  TextPatch patch(kCompact, "compact.mdl");
+  // `param c = 0 fixed` shares its line with `param m ...`: only its tokens change, the `;` and the line stay.
+  patch.rewrite_statement(m.parameters[1].loc, "param c = 0 estimate in [0, 10]");
+  const std::string text = patch.text();
+  CHECK_THAT(text, Contains("\nparam m = 2 \"kg\" estimate in [0, inf]; param c = 0 estimate in [0, 10]\n"));
+  CHECK(std::count(text.begin(), text.end(), '\n') == 10);  // the original's 9 lines and the final newline
+  CHECK(text.find("mbgen diagnose") == std::string::npos);    // no end section
+  const ir::ModelIr edited = frontend::parse_string(text, "compact.mdl");
+  CHECK(edited.parameters[1].role == ir::Role::Estimate);
+  CHECK(edited.outputs[0].loc.line == m.outputs[0].loc.line);
 }

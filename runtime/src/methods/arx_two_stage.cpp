@@ -143,7 +143,7 @@ FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data
       throw FitError("fit: --method arx-two-stage needs the mass matrix known (C = -M F1, K = -M F2; the free response "
                      "determines only M^-1 C and M^-1 K): the estimated parameters " +
                      join(std::vector<std::string>(in_mass.begin(), in_mass.end())) +
-                     " enter M; make them known (with their values, e.g. --set)");
+                     " enter M; make them known with their values (--fix NAME=VALUE)");
   }
 
   // Stage 1: q_t = sum_{i=1..L} A_i q_{t-i} + sum_{i=0..L} E_i u_{t-i}, all records in one regression.
