@@ -48,7 +48,9 @@ void print_usage() {
                "  mbgen sensitivity MODEL.mdl [--global] [--sweep NAME=LO:HI:N] [--json OUT] [--report DIR]\n"
                "                                                                  how the modes depend on the parameters\n"
                "  mbgen monitor MODEL.mdl --data FILE... [--baseline N] [--json OUT] [--report DIR]\n"
-               "                                                                  track parameters over time, detect changes\n\n"
+               "                                                                  track parameters over time, detect changes\n"
+               "  mbgen export MODEL.mdl [--what matrices|state-space|modes|frf] [--format json|csv] [-o OUT]\n"
+               "                                                                  the model's numbers for another tool\n\n"
                "Run `mbgen COMMAND --help` for a command's options.\n";
 }
 
@@ -81,6 +83,7 @@ int dispatch(int argc, char** argv) {
   if (first == "modal") return mbgen::cli::run_modal(argc - 1, argv + 1);
   if (first == "sensitivity") return mbgen::cli::run_sensitivity(argc - 1, argv + 1);
   if (first == "monitor") return mbgen::cli::run_monitor(argc - 1, argv + 1);
+  if (first == "export") return mbgen::cli::run_export(argc - 1, argv + 1);
   return mbgen::cli::run_compile(argc, argv);
 }
 

@@ -1,0 +1,229 @@
+// `mbgen export MODEL.mdl [--what matrices|state-space|modes|frf] [--frf LO:HI:N] [--format json|csv]
+// [--fit-result FIT.json] [--set ...] [-o OUT]`: the model's numbers at its values or at an estimate, for another
+// tool (docs/interfaces.md, "mbgen-export/1"). Deterministic: the same input gives the same bytes.
+#include <mbgen/data_error.hpp>
+#include <mbgen/frf.hpp>
+#include <mbgen/modal.hpp>
+#include <mbgen/state_space.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/commands.hpp"
+#include "cli/output_files.hpp"
+#include "cli/run_guarded.hpp"
+#include "cli/version.hpp"
+#include "evaluator/symbolic_evaluator.hpp"
+#include "frontend/parser.hpp"
+#include "symbolic/derive.hpp"
+
+namespace mbgen::cli {
+
+namespace {
+
+using Json = nlohmann::json;  // keys sorted, as every mbgen JSON but inspect's and diagnose's (docs/interfaces.md)
+
+Json matrix_json(const Eigen::MatrixXd& m) {
+  Json rows = Json::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    Json row = Json::array();
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(m(i, j) == 0 ? 0.0 : m(i, j));  // no -0
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Shortest text that reads back as the same double.
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+// The values of a `mbgen fit --json` result (schema mbgen-fit/1) put into `p`; DataError for another file or a
+// parameter the model does not have.
+void take_fit_result(const std::string& path, const ModelInfo& info, Eigen::VectorXd& p) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw DataError(path, 0, 0, "cannot read the file");
+  Json j;
+  try {
+    j = Json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw DataError(path, 0, 0, std::string("not JSON: ") + e.what());
+  }
+  if (!j.is_object() || j.value("schema", "") != "mbgen-fit/1" || !j.contains("parameters") ||
+      !j["parameters"].is_object())
+    throw DataError(path, 0, 0, "not a fit result: expected the JSON of `mbgen fit --json` (schema mbgen-fit/1)");
+  for (const auto& [name, entry] : j["parameters"].items()) {
+    const int i = info.parameter_index(name);
+    if (i < 0) throw DataError(path, 0, 0, "parameter `" + name + "` of the fit result is not in the model");
+    if (!entry.is_object() || !entry.contains("value") || !entry["value"].is_number())
+      throw DataError(path, 0, 0, "parameter `" + name + "` has no numeric value");
+    p[i] = entry["value"].get<double>();
+  }
+}
+
+// `LO:HI:N`: N >= 2 lines from LO to HI Hz, evenly spaced, both ends included.
+std::vector<double> frequency_grid(const std::string& text) {
+  const std::size_t a = text.find(':'), b = text.find(':', a == std::string::npos ? 0 : a + 1);
+  const auto fail = [&] {
+    throw CLI::ValidationError("--frf", "expected LO:HI:N (Hz, 0 <= LO < HI, N lines >= 2), got `" + text + "`");
+  };
+  if (a == std::string::npos || b == std::string::npos) fail();
+  double lo = 0, hi = 0;
+  long n = 0;
+  try {
+    std::size_t used = 0;
+    lo = std::stod(text.substr(0, a), &used);
+    if (used != a) fail();
+    hi = std::stod(text.substr(a + 1, b - a - 1), &used);
+    if (used != b - a - 1) fail();
+    n = std::stol(text.substr(b + 1), &used);
+    if (used != text.size() - b - 1) fail();
+  } catch (const std::logic_error&) {
+    fail();
+  }
+  if (!(lo >= 0) || !(hi > lo) || !std::isfinite(hi) || n < 2 || n > 10000000) fail();
+  std::vector<double> f;
+  for (long k = 0; k < n; ++k) f.push_back(k + 1 == n ? hi : lo + (hi - lo) * static_cast<double>(k) / (n - 1));
+  return f;
+}
+
+std::string frf_csv(const ModelInfo& info, const FrfResult& r) {
+  std::ostringstream out;
+  out << "f_hz";
+  for (const std::string& o : info.outputs)
+    for (const std::string& i : info.inputs) out << "," << o << "/" << i << ".re," << o << "/" << i << ".im";
+  out << "\n";
+  for (std::size_t k = 0; k < r.freqs_hz.size(); ++k) {
+    char f[32];
+    std::snprintf(f, sizeof f, "%.12g", r.freqs_hz[k]);  // the grid's own digits (60.05, not 60.049999999999997)
+    out << f;
+    for (Eigen::Index o = 0; o < r.H[k].rows(); ++o)
+      for (Eigen::Index i = 0; i < r.H[k].cols(); ++i)
+        out << "," << number(r.H[k](o, i).real()) << "," << number(r.H[k](o, i).imag());
+    out << "\n";
+  }
+  return out.str();
+}
+
+Json frf_json(const ModelInfo& info, const FrfResult& r) {
+  Json channels = Json::object();
+  for (std::size_t o = 0; o < info.outputs.size(); ++o)
+    for (std::size_t i = 0; i < info.inputs.size(); ++i) {
+      Json re = Json::array(), im = Json::array();
+      for (const Eigen::MatrixXcd& h : r.H) {
+        re.push_back(h(static_cast<Eigen::Index>(o), static_cast<Eigen::Index>(i)).real());
+        im.push_back(h(static_cast<Eigen::Index>(o), static_cast<Eigen::Index>(i)).imag());
+      }
+      channels[info.outputs[o] + "/" + info.inputs[i]] = {{"re", re}, {"im", im}};
+    }
+  return {{"f_hz", r.freqs_hz}, {"channels", channels}};
+}
+
+std::string modes_csv(const ModelInfo& info, const std::vector<Mode>& modes) {
+  std::ostringstream out;
+  out << "mode,f_hz,zeta";
+  for (const std::string& c : info.coordinates) out << "," << c << ".re," << c << ".im";
+  out << "\n";
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    out << m + 1 << "," << number(modes[m].f_hz) << "," << number(modes[m].zeta);
+    for (Eigen::Index c = 0; c < modes[m].shape.size(); ++c)
+      out << "," << number(modes[m].shape[c].real()) << "," << number(modes[m].shape[c].imag());
+    out << "\n";
+  }
+  return out.str();
+}
+
+Json modes_json(const std::vector<Mode>& modes) {
+  Json out = Json::array();
+  for (const Mode& m : modes) {
+    Json re = Json::array(), im = Json::array();
+    for (Eigen::Index c = 0; c < m.shape.size(); ++c) re.push_back(m.shape[c].real()), im.push_back(m.shape[c].imag());
+    out.push_back({{"f_hz", m.f_hz},
+                   {"zeta", m.zeta},
+                   {"eigenvalue", {{"re", m.eigenvalue.real()}, {"im", m.eigenvalue.imag()}}},
+                   {"shape", {{"re", re}, {"im", im}}}});
+  }
+  return out;
+}
+
+}  // namespace
+
+int run_export(int argc, char** argv) {
+  CLI::App app{"Write a model's numbers for another tool: M, C, K, B and the output maps, the state space, the modes "
+               "or FRFs on a frequency grid, at the model's values or at a fit's estimate.",
+               "mbgen export"};
+  std::string model_path, what = "matrices", format = "json", output = "-", grid, fit_result;
+  std::vector<std::string> sets;
+  app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
+  app.add_option("--what", what, "matrices (default), state-space, modes or frf")
+      ->check(CLI::IsMember({"matrices", "state-space", "modes", "frf"}));
+  app.add_option("--frf", grid, "with --what frf: the frequency grid LO:HI:N (Hz; N lines, both ends included)");
+  app.add_option("--format", format, "json (default, schema mbgen-export/1) or csv (frf: the FRF CSV layout mbgen "
+                                     "reads; modes: one row per mode)")
+      ->check(CLI::IsMember({"json", "csv"}));
+  app.add_option("--fit-result", fit_result, "the parameters' values from a `mbgen fit --json` result");
+  app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
+  app.add_option("-o,--output", output, "file to write (default: standard output)");
+  app.set_version_flag("--version", version_text());
+  return run_guarded(app, argc, argv, [&] {
+    if (what == "frf" && grid.empty()) throw CLI::ValidationError("--frf", "--what frf needs the grid: --frf LO:HI:N");
+    if (what != "frf" && !grid.empty()) throw CLI::ValidationError("--frf", "only with --what frf");
+    if (format == "csv" && (what == "matrices" || what == "state-space"))
+      throw CLI::ValidationError("--format", "csv holds one table: frf or modes; matrices and the state space are json");
+    const std::vector<double> f = what == "frf" ? frequency_grid(grid) : std::vector<double>{};
+    symbolic::DeriveOptions derive;
+    derive.set = parse_set_options(sets);
+    OutputPlan plan;
+    plan.files = {{"-o", output}};
+    plan.inputs = {model_path};
+    if (!fit_result.empty()) plan.inputs.push_back(fit_result);
+    plan.check();
+    const ir::ModelIr model = frontend::parse_file(model_path);
+    const auto evaluator = evaluator::make_evaluator(model, derive);
+    const ModelInfo& info = evaluator->info();
+    Eigen::VectorXd p = info.default_values();
+    if (!fit_result.empty()) take_fit_result(fit_result, info, p);
+    ModelMatrices m;
+    evaluator->evaluate(p, m);
+
+    std::string text;
+    if (format == "csv") {
+      text = what == "frf" ? frf_csv(info, frf(*evaluator, p, f)) : modes_csv(info, modal_analysis(m.M, m.C, m.K));
+    } else {
+      Json j;
+      j["schema"] = "mbgen-export/1";
+      j["model"] = model_path;
+      j["what"] = what;
+      Json values = Json::object();
+      for (std::size_t i = 0; i < info.parameters.size(); ++i)
+        values[info.parameters[i].name] = p[static_cast<Eigen::Index>(i)];
+      j["parameters"] = values;
+      j["coordinates"] = info.coordinates;
+      j["inputs"] = info.inputs;
+      j["outputs"] = info.outputs;
+      if (what == "matrices") {
+        j["M"] = matrix_json(m.M), j["C"] = matrix_json(m.C), j["K"] = matrix_json(m.K), j["B"] = matrix_json(m.B);
+        j["Cd"] = matrix_json(m.Cd), j["Cv"] = matrix_json(m.Cv), j["Ca"] = matrix_json(m.Ca);
+      } else if (what == "state-space") {
+        const StateSpace ss = state_space(m);
+        j["A"] = matrix_json(ss.A), j["B"] = matrix_json(ss.B), j["C"] = matrix_json(ss.C), j["D"] = matrix_json(ss.D);
+      } else if (what == "modes") {
+        j["modes"] = modes_json(modal_analysis(m.M, m.C, m.K));
+      } else {
+        j["frf"] = frf_json(info, frf(*evaluator, p, f));
+      }
+      text = j.dump(2) + "\n";
+    }
+    OutputFiles out;
+    out.add(output, text);
+    out.commit();
+    return 0;
+  }, &model_path);
+}
+
+}  // namespace mbgen::cli

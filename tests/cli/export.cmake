@@ -1,0 +1,66 @@
+# `mbgen export` (docs/interfaces.md, "mbgen-export/1"): the model's numbers for another tool, checked against each
+# other by hand (export_check.py, numpy), read back by mbgen itself (the FRF CSV), at a fit's estimate, and refused
+# with a clear message where the request cannot be met.
+include(${CMAKE_CURRENT_LIST_DIR}/cli_support.cmake)
+
+foreach(what matrices state-space modes)
+  expect_run(STATUS 0 ARGS export ${MDOF2} --what ${what} -o ${what}.json)
+endforeach()
+expect_run(STATUS 0 ARGS export ${MDOF2} --what frf --frf 10:400:40 -o frf.json)
+execute_process(COMMAND /usr/bin/python3 "${CMAKE_CURRENT_LIST_DIR}/export_check.py" matrices.json state-space.json
+                        modes.json frf.json
+                WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(SEND_ERROR "export's numbers disagree with each other:\n${out}${err}")
+endif()
+file(READ "${WORK}/matrices.json" json)
+string(JSON m11 GET "${json}" M 0 0)
+string(JSON m22 GET "${json}" M 1 1)
+if(NOT m11 EQUAL 1.39 OR NOT m22 EQUAL 1.09)
+  message(SEND_ERROR "M's diagonal is ${m11}, ${m22}, not the model's masses 1.39, 1.09")
+endif()
+
+# The FRF CSV is the layout mbgen reads: modal analysis of it finds the model's modes, and the same request gives the
+# same bytes.
+expect_run(STATUS 0 ARGS export ${MDOF2} --what frf --frf 60:200:2801 --format csv -o frf.csv)
+expect_run(STATUS 0 ARGS export ${MDOF2} --what frf --frf 60:200:2801 --format csv -o frf_again.csv)
+file(SHA256 "${WORK}/frf.csv" first)
+file(SHA256 "${WORK}/frf_again.csv" second)
+if(NOT first STREQUAL second)
+  message(SEND_ERROR "export is not deterministic")
+endif()
+expect_run(STATUS 0 ARGS modal --data frf.csv --json modal.json)
+file(READ "${WORK}/modal.json" json)
+file(READ "${WORK}/modes.json" model_json)
+foreach(k 0 1)
+  string(JSON identified GET "${json}" modes ${k} f_hz)
+  string(JSON expected GET "${model_json}" modes ${k} f_hz)
+  math(EXPR dummy "0")
+  execute_process(COMMAND /usr/bin/python3 -c "import sys; a, b = float(sys.argv[1]), float(sys.argv[2]); sys.exit(abs(a / b - 1) > 1e-3)"
+                          ${identified} ${expected} RESULT_VARIABLE far)
+  if(far)
+    message(SEND_ERROR "modal on the exported FRFs found ${identified} Hz, the model's mode is at ${expected} Hz")
+  endif()
+endforeach()
+
+# At a fit's estimate.
+expect_run(STATUS 0 ARGS fit ${MDOF2} --data ${MDOF2_FRF} --starts 2 --json fit.json)
+expect_run(STATUS 0 ARGS export ${MDOF2} --fit-result fit.json -o at_fit.json)
+file(READ "${WORK}/fit.json" fit)
+file(READ "${WORK}/at_fit.json" exported)
+foreach(p m1 k12 c22)
+  string(JSON fitted GET "${fit}" parameters ${p} value)
+  string(JSON value GET "${exported}" parameters ${p})
+  if(NOT fitted EQUAL value)
+    message(SEND_ERROR "--fit-result: ${p} is ${value}, the fit's estimate ${fitted}")
+  endif()
+endforeach()
+
+# Refusals.
+expect_run(STATUS 2 STDERR "--what frf needs the grid: --frf LO:HI:N" ARGS export ${MDOF2} --what frf)
+expect_run(STATUS 2 STDERR "--frf: expected LO:HI:N" ARGS export ${MDOF2} --what frf --frf 10:5:3)
+expect_run(STATUS 2 STDERR "--format: csv holds one table" ARGS export ${MDOF2} --format csv)
+expect_run(STATUS 1 STDERR "matrices.json: .*not a fit result" ARGS export ${MDOF2} --fit-result matrices.json)
+file(WRITE "${WORK}/other.json" "{\"schema\": \"mbgen-fit/1\", \"parameters\": {\"nosuch\": {\"value\": 1}}}")
+expect_run(STATUS 1 STDERR "other.json: .*parameter `nosuch` of the fit result is not in the model"
+  ARGS export ${MDOF2} --fit-result other.json)
