@@ -43,8 +43,14 @@ cases=(
   "spindle nominal frf measurement_chain:swap:xs_front,xs_rear --swap xs_front,xs_rear"
   "spindle nominal frf measurement_chain:gain:xs_front --unit xs_front=mm"
   "spindle untie_parameter frf measurement_chain:gain:xs_rear --gain xs_rear=draw"
+  "spindle nominal frf measurement_chain:form:xs_front --frf-form xs_front=mobility"
+  "spindle nominal frf measurement_chain:form:xh_front --frf-form xh_front=accelerance"
+  "mdof2 nominal frf measurement_chain:form:d2 --frf-form d2=mobility"
   "frame3 nominal frf -"
   "frame3 outside_torsion frf not_extended"
+  "tower5 nominal frf - --no-coherence"
+  "tower5 nominal frf measurement_chain:input:F --no-coherence --force-sign -1"
+  "tower5 nominal frf measurement_chain:gain:a5 --no-coherence --gain a5=-1"
 )
 
 printf '%-48s %6s %6s %12s %6s %6s %9s\n' case draws right unexplained wrong failed "s/draw"

@@ -2,9 +2,10 @@
 # mbgen's code), run `mbgen diagnose`, and check the verdict and the selected extensions in its JSON.
 #   -DMBGEN=... -DPYTHON=... -DTRUTHGEN=... -DMODEL=... -DWORK_DIR=...
 #   -DDATA="example:case:kind:seed[:NAME=VALUE][:duration=S][:draw=N][:averages=N][:nocoh][:fs=HZ]
-#           [:gain=OUTPUT=FACTOR][:inputgain=INPUT=FACTOR][:forcesign=-1][:swap=A,B][:unit=OUTPUT=UNIT]|..."
+#           [:gain=OUTPUT=FACTOR][:inputgain=INPUT=FACTOR][:forcesign=-1][:swap=A,B][:unit=OUTPUT=UNIT]
+#           [:form=OUTPUT=FORM]|..."
 #                                                                     one or more data sets; gain, inputgain,
-#                                                                     forcesign, swap, unit: errors of the
+#                                                                     forcesign, swap, unit, form: errors of the
 #                                                                     measurement chain (docs/truthgen.md)
 #         or "file=PATH|..." for measured data as they are (real data, no generator)
 #   -DDIAGNOSE_ARGS="--fit-band;20:320" (optional): more arguments of `mbgen diagnose`
@@ -52,6 +53,8 @@ foreach(set IN LISTS sets)
         list(APPEND extra --swap "${CMAKE_MATCH_1}")  # two outputs' columns exchanged
       elseif(option MATCHES "^unit=(.*)$")
         list(APPEND extra --unit "${CMAKE_MATCH_1}")  # a channel written in another unit
+      elseif(option MATCHES "^form=(.*)$")
+        list(APPEND extra --frf-form "${CMAKE_MATCH_1}")  # a channel written as a mobility or an accelerance
       else()
         list(APPEND extra --set "${option}")
       endif()

@@ -12,6 +12,10 @@
 //   measurement_chain:swap:A,B   the columns of outputs A and B exchanged (two cables swapped): the two output
 //                                statements exchange their names. No new parameter. Offered for outputs of one kind
 //                                (displacement, velocity, acceleration) without filters of their own.
+//   measurement_chain:form:O     O's data are another form of its quantity: a mobility or an accelerance exported
+//                                where the model has a receptance, or the other way round (a factor (i w)^k, not a
+//                                constant). Variants "displacement", "velocity", "acceleration": the output
+//                                statement measures that instead. No new parameter.
 //   measurement_chain:input:F    the recorded force is g times the applied one. With one input every FRF is divided
 //                                by g: a gain 1/g on every output. Variants "calibration" (g > 0, started at 1),
 //                                "polarity" (g < 0, started at -1: a reaction mass's force computed with the wrong
@@ -70,6 +74,23 @@ Extension reversed_output(const OperatorInput& in, const ir::Output& out) {
   return d.finish(out.name + " reads with the opposite sign: its sensor is mounted or wired reversed");
 }
 
+Extension other_form(const OperatorInput& in, const ir::Output& out, ir::OutputKind kind) {
+  Draft d(in, "measurement_chain", "form:" + out.name);
+  d.set_variant(ir::to_string(kind));
+  ir::Output& changed = *std::find_if(d.model().outputs.begin(), d.model().outputs.end(),
+                                      [&](const ir::Output& o) { return o.name == out.name; });
+  changed.kind = kind;
+  d.patch().replace_statement(out.loc, out.name + std::string(" measured as ") + ir::to_string(kind) +
+                                           ": its data are that form of the quantity",
+                              frontend::write_output(changed));
+  const std::string article = kind == ir::OutputKind::Acceleration ? "an " : "a ";
+  return d.finish(out.name + "'s data are " + article + ir::to_string(kind) + ", not the " + ir::to_string(out.kind) +
+                  " the model reads (" + (kind == ir::OutputKind::Velocity       ? "a mobility"
+                                          : kind == ir::OutputKind::Acceleration ? "an accelerance"
+                                                                                 : "a receptance") +
+                  " exported as the other form)");
+}
+
 Extension swapped(const OperatorInput& in, const ir::Output& a, const ir::Output& b) {
   Draft d(in, "measurement_chain", "swap:" + a.name + "," + b.name);
   ir::Output& first = *std::find_if(d.model().outputs.begin(), d.model().outputs.end(),
@@ -115,6 +136,9 @@ std::vector<Extension> measurement_chain(const OperatorInput& in) {
     for (const Sign& sign : {kCalibration, kPolarity}) out.push_back(output_gain(in, o, sign));
     out.push_back(reversed_output(in, o));
   }
+  for (const ir::Output& o : in.model.outputs)
+    for (ir::OutputKind kind : {ir::OutputKind::Displacement, ir::OutputKind::Velocity, ir::OutputKind::Acceleration})
+      if (kind != o.kind) out.push_back(other_form(in, o, kind));
   const auto& outputs = in.model.outputs;
   for (std::size_t i = 0; i < outputs.size(); ++i)
     for (std::size_t j = i + 1; j < outputs.size(); ++j)

@@ -43,4 +43,15 @@ PassivityCheck driving_point_passivity(const Eigen::VectorXcd& h, const Eigen::V
 // lines.
 double swap_gain(const std::vector<ChannelResidual>& channels, const std::string& a, const std::string& b);
 
+// How much lower chi^2 (as above) is, each with its least-squares real factor, when output `output`'s model FRFs are
+// multiplied by (i w)^derivatives than as they are, the model's parameters held: positive when the output's data
+// are another form of its quantity (a mobility, derivatives 1, or an accelerance, 2, where the model has a
+// receptance; -1, -2 the other way). 0 without lines.
+double form_gain(const std::vector<ChannelResidual>& channels, const std::string& output, int derivatives);
+
+// The least-squares slope of log10 |measured / model| against log10 f over output `output`'s lines: near k where the
+// data are (i w)^k times the model's form. Resonances the model places elsewhere make spikes about the line, not a
+// trend, so the slope shows a form where chi^2 (form_gain) at a misplaced model cannot. NaN without lines.
+double magnitude_slope(const std::vector<ChannelResidual>& channels, const std::string& output);
+
 }  // namespace mbgen

@@ -1,6 +1,7 @@
 #include "mbgen/chain_scores.hpp"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <tuple>
 
@@ -79,6 +80,41 @@ double swap_gain(const std::vector<ChannelResidual>& channels, const std::string
     }
   }
   return gain;
+}
+
+double form_gain(const std::vector<ChannelResidual>& channels, const std::string& output, int derivatives) {
+  // min over g of sum w |d - g m|^2 = sum w |d|^2 - U^2 / I with U = sum w Re(conj(m) d), I = sum w |m|^2.
+  double u_as_is = 0, i_as_is = 0, u_form = 0, i_form = 0;
+  for (const ChannelResidual& c : channels) {
+    if (output_of(c.channel) != output) continue;
+    for (Eigen::Index k = 0; k < c.measured.size(); ++k) {
+      const double w = weight(c.sigma[k]);
+      const std::complex<double> iw(0, 2 * M_PI * c.f_hz[static_cast<std::size_t>(k)]);
+      const std::complex<double> m = c.model[k], mf = m * std::pow(iw, derivatives);
+      u_as_is += w * std::real(std::conj(m) * c.measured[k]);
+      i_as_is += w * std::norm(m);
+      u_form += w * std::real(std::conj(mf) * c.measured[k]);
+      i_form += w * std::norm(mf);
+    }
+  }
+  if (!(i_as_is > 0) || !(i_form > 0)) return 0;
+  return u_form * u_form / i_form - u_as_is * u_as_is / i_as_is;
+}
+
+double magnitude_slope(const std::vector<ChannelResidual>& channels, const std::string& output) {
+  double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const ChannelResidual& c : channels) {
+    if (output_of(c.channel) != output) continue;
+    for (Eigen::Index k = 0; k < c.measured.size(); ++k) {
+      const double f = c.f_hz[static_cast<std::size_t>(k)], d = std::abs(c.measured[k]), m = std::abs(c.model[k]);
+      if (!(f > 0) || !(d > 0) || !(m > 0)) continue;
+      const double x = std::log10(f), y = std::log10(d / m);
+      sw += 1, sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+  }
+  const double den = sw * sxx - sx * sx;
+  if (sw < 3 || !(den > 0)) return std::numeric_limits<double>::quiet_NaN();
+  return (sw * sxy - sx * sy) / den;
 }
 
 }  // namespace mbgen

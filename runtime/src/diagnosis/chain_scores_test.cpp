@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <random>
 
 #include <mbgen/chain_scores.hpp>
@@ -95,4 +96,31 @@ TEST_CASE("swap_gain is large when two outputs' data are exchanged, negative whe
   CHECK(swap_gain({a, b}, "a", "b") > 100);
   CHECK(swap_gain({a, b}, "b", "a") > 100);
   CHECK(swap_gain({a, b}, "a", "c") == 0);
+}
+
+TEST_CASE("form_gain finds data given as another form of the quantity, and nothing where the form is right") {
+  std::mt19937_64 rng(11);
+  // The data of y are a mobility, i w times the receptance the model has (written out here, 1 % noise of the peak).
+  ChannelResidual mobility = channel("y/F", 1.0, 0.01, rng);
+  ChannelResidual as_model = channel("z/F", 1.0, 0.01, rng);
+  for (Eigen::Index k = 0; k < mobility.measured.size(); ++k) {
+    const std::complex<double> iw(0, 2 * M_PI * mobility.f_hz[static_cast<std::size_t>(k)]);
+    mobility.measured[k] = iw * mobility.model[k] + (mobility.measured[k] - mobility.model[k]) * std::abs(iw);
+    mobility.sigma[k] *= std::abs(iw);
+  }
+  const std::vector<ChannelResidual> channels{mobility, as_model};
+  const double log_n = std::log(2.0 * 2 * 400);
+  CHECK(form_gain(channels, "y", 1) > 1000 * log_n);  // a velocity: far better
+  for (int d : {-2, -1, 2}) CHECK(form_gain(channels, "y", d) < form_gain(channels, "y", 1));  // the right form wins
+  // z's data are what the model says: no other form fits better by the price of a parameter.
+  for (int d : {-2, -1, 1, 2}) CHECK(form_gain(channels, "z", d) < log_n);
+  CHECK(form_gain(channels, "nosuch", 1) == 0);
+  // The magnitude's trend shows the form even where the model's resonance lies elsewhere (6 % off, where chi^2
+  // compares misplaced peaks): one decade per decade for a mobility against a receptance, none for z.
+  std::mt19937_64 other(12);
+  std::vector<ChannelResidual> misplaced = channels;
+  misplaced[0].model = channel("y/F", 1.0, 0.01, other, 106).model;
+  CHECK(magnitude_slope(misplaced, "y") == Approx(1.0).margin(0.15));
+  CHECK(std::abs(magnitude_slope(channels, "z")) < 0.05);
+  CHECK(std::isnan(magnitude_slope(channels, "nosuch")));
 }
