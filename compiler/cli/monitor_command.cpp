@@ -37,8 +37,9 @@ namespace {
 std::string summary(const MonitorResult& r) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "%zu data sets, baseline %d; CUSUM k %.3g, h %.4g (one false alarm in %.6g sets)\n",
-                r.series.size(), r.baseline, r.k, r.h, r.run_length);
+  std::snprintf(line, sizeof line,
+                "%zu data sets, baseline %d; CUSUM k %.3g, h %.4g, single-set limit %.4g (one false alarm in %.6g sets)\n",
+                r.series.size(), r.baseline, r.k, r.h, r.single_set_limit, r.run_length);
   out += line;
   if (r.changes.empty()) out += "no change detected\n";
   for (const MonitorChange& c : r.changes) {

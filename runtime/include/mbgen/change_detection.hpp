@@ -3,6 +3,7 @@
 // the scatter of a monitored parameter learned from baseline data sets.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 namespace mbgen {
@@ -21,11 +22,17 @@ double cusum_threshold(double k, double run_length);
 // 2 streams run_length (false alarms are rare events whose rates add).
 double scheme_threshold(double k, double run_length, int streams);
 
+// The single-value limit of a scheme of `streams` two-sided tests whose single-value alarms alone come once in
+// `run_length` data sets on average: |z| > limit with probability 1 / (streams run_length) per stream and set.
+double single_set_limit(double run_length, int streams);
+
 // Page's two-sided CUSUM on standardized values. Also remembers where each side last stood at zero: the data set
 // after it is the change point's maximum-likelihood estimate once that side alarms.
 class TwoSidedCusum {
  public:
-  TwoSidedCusum(double k, double h) : k_(k), h_(h) {}
+  // `limit`: a single value beyond +-limit alarms on its own (a combined Shewhart-CUSUM scheme, Lucas 1982).
+  TwoSidedCusum(double k, double h, double limit = std::numeric_limits<double>::infinity())
+      : k_(k), h_(h), limit_(limit) {}
   // Adds the value of data set `index`. Returns +1 when the upper side alarms (an increase), -1 for the lower side,
   // 0 otherwise.
   int update(double z, int index);
@@ -36,7 +43,7 @@ class TwoSidedCusum {
   int onset(int direction) const { return direction > 0 ? upper_zero_ + 1 : lower_zero_ + 1; }
 
  private:
-  double k_, h_;
+  double k_, h_, limit_;
   double upper_ = 0, lower_ = 0;
   int upper_zero_ = -1, lower_zero_ = -1;
 };
@@ -66,5 +73,46 @@ BaselineScatter baseline_scatter(const std::vector<double>& values, const std::v
 // with scatter `sigma`: (x - mean) / sqrt(max(sigma, std)^2 + sigma^2 / count). The second term is the reference
 // mean's own uncertainty.
 double standardized_shift(double x, double std, double mean, double sigma, int count);
+
+// P(T <= t) for Student's t with nu > 0 degrees of freedom (the regularized incomplete beta function); nu = inf:
+// the standard normal's.
+double student_t_cdf(double t, double nu);
+
+// The standard normal quantile of p in (0, 1) (Acklam's rational approximation, refined by one Halley step: about
+// 1e-15 relative).
+double normal_quantile(double p);
+
+// A value distributed as Student's t with nu degrees of freedom mapped to the standard normal value of the same tail
+// probability (nu = inf: unchanged): what the CUSUM's threshold assumes. A shift standardized by a scatter estimated
+// from few sets has the t's heavy tails; taken as normal, three baseline sets gave false alarms on ordinary day-to-day
+// scatter (two in twelve daily mdof2 sets with 0.5 % scatter in the truth, against a stated one in 1000).
+double t_to_normal(double t, double nu);
+
+// One monitored parameter's reference level and scatter, learned self-starting (docs/monitor.md, "The sequential
+// test"): the level from the sets of the current regime, the scatter pooled over every in-control set of every
+// regime (their deviations from their own regime's level), never below the baseline fits' root mean square std.
+// Its standardized shifts are independent and standard normal without a change, whatever the number of sets behind
+// it (Hawkins 1987, self-starting CUSUM). A step's first sets, tested and not yet alarmed on, join and widen the
+// scatter: the scheme's single-set limit (TwoSidedCusum) finds a large step at its first set.
+class SelfStartingReference {
+ public:
+  // The baseline's estimates (at least 2) and the root mean square of their fits' stds.
+  SelfStartingReference(const std::vector<double>& baseline, double fit_std);
+  // The standardized shift of estimate x (its fit's std `std`) as a standard normal value: (x - mean) over
+  // sqrt(max(sigma, std)^2 + sigma^2 / count), a Student t with the scatter's degrees of freedom where the sets'
+  // spread sets sigma (normal where the fits' std does), mapped by t_to_normal.
+  double z(double x, double std) const;
+  void join(double x);     // a set tested without a change joins the level and the scatter
+  void restart(double x);  // a change: the level from x alone, the scatter pooled on
+  double mean() const { return sum_ / count_; }
+  int count() const { return count_; }
+  double sigma() const;      // the scatter used
+  double sample_std() const;  // the sets' pooled spread
+  double dof() const;        // the degrees of freedom behind sigma (infinite where the fits' std sets it)
+
+ private:
+  double sum_ = 0, m2_ = 0, fit_std_ = 0;
+  int count_ = 0, pooled_dof_ = 0;
+};
 
 }  // namespace mbgen

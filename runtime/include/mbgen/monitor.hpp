@@ -90,6 +90,7 @@ struct MonitorResult {
   std::string model;
   int baseline = 0;
   double k = 0, h = 0, run_length = 0, structural_ratio = 0;
+  double single_set_limit = 0;  // a single standardized shift beyond it alarms on its own
   std::vector<MonitoredParameter> parameters;  // the monitored ones (estimated and identifiable in the baseline)
   double baseline_misfit = 0;                  // the largest misfit among the baseline sets
   std::vector<MonitorPoint> series;

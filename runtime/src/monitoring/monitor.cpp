@@ -29,14 +29,6 @@ const ParameterEstimate* usable(const FitResult& r, const std::string& name) {
   return p && p->estimated && p->identifiable && std::isfinite(p->std) && std::isfinite(p->value) ? p : nullptr;
 }
 
-// The reference level of a parameter in the current regime: the baseline's mean, or after a change the mean of
-// the estimates since its onset, learned until it rests on as many sets as the baseline did.
-struct Reference {
-  double sum = 0;
-  int count = 0;
-  double mean() const { return sum / count; }
-};
-
 }  // namespace
 
 MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
@@ -62,8 +54,7 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
   std::map<std::string, double> cold = options.fit.values;
 
   std::vector<TwoSidedCusum> cusums;
-  std::vector<Reference> references;
-  std::vector<double> sigmas;
+  std::vector<SelfStartingReference> references;  // per monitored parameter: its level and scatter
   bool in_structural = false;
   int regime_first = n_base;  // the first set tested against the current references
 
@@ -104,15 +95,19 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
           if (static_cast<int>(values.size()) != n_base) continue;
           const BaselineScatter s = baseline_scatter(values, stds);
           result.parameters.push_back({p.name, p.unit, s.mean, s.sigma, s.sample_std, s.fit_std});
+          references.emplace_back(values, s.fit_std);
         }
         if (result.parameters.empty())
           throw FitError("no parameter was estimated and identifiable in every baseline data set: nothing to monitor");
-        result.h = scheme_threshold(result.k, options.run_length, static_cast<int>(result.parameters.size()));
-        for (const MonitoredParameter& p : result.parameters) {
-          cusums.emplace_back(result.k, result.h);
+        // The stated false-alarm rate split in halves between the CUSUMs and the single-set limit (rare events'
+        // rates add): a large step is then found at its first set even where the shifts' t tails, with the scatter
+        // known from few sets, keep its first value from crossing h alone.
+        const int streams = static_cast<int>(result.parameters.size());
+        result.h = scheme_threshold(result.k, 2 * options.run_length, streams);
+        result.single_set_limit = mbgen::single_set_limit(2 * options.run_length, streams);
+        for (std::size_t j = 0; j < result.parameters.size(); ++j) {
+          cusums.emplace_back(result.k, result.h, result.single_set_limit);
           cusums.back().reset(i);
-          references.push_back({p.mean * n_base, n_base});
-          sigmas.push_back(p.sigma);
         }
         result.baseline_misfit = 0;
         for (const MonitorPoint& b : result.series) result.baseline_misfit = std::max(result.baseline_misfit, b.misfit);
@@ -131,7 +126,7 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
       if (!e) {  // no information on it in this set: the CUSUM waits
         here.shift[name] = std::numeric_limits<double>::quiet_NaN();
       } else {
-        const double z = standardized_shift(e->value, e->std, references[j].mean(), sigmas[j], references[j].count);
+        const double z = references[j].z(e->value, e->std);
         here.shift[name] = z;
         alarms[j] = cusums[j].update(z, i);
         any_alarm = any_alarm || alarms[j] != 0;
@@ -169,7 +164,7 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
       for (std::size_t j = 0; j < result.parameters.size(); ++j) {
         const std::string& name = result.parameters[j].name;
         const double before = references[j].mean();
-        if (const ParameterEstimate* e = usable(here.fit, name)) references[j] = {e->value, 1};
+        if (const ParameterEstimate* e = usable(here.fit, name)) references[j].restart(e->value);
         cusums[j].reset(i);
         if (alarms[j] == 0) continue;
         change.parameters.push_back(name);
@@ -195,10 +190,7 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
       // a scatter-only mdof2 series three parameters stood 1.3 sigma above it in every later set and a statistic
       // reached 4.8 of h = 7.7 within five sets.
       for (std::size_t j = 0; j < result.parameters.size(); ++j)
-        if (const ParameterEstimate* e = usable(here.fit, result.parameters[j].name)) {
-            references[j].sum += e->value;
-            ++references[j].count;
-          }
+        if (const ParameterEstimate* e = usable(here.fit, result.parameters[j].name)) references[j].join(e->value);
     }
     if (options.progress) {
       std::string line = "nrmse " + g4(here.fit.nrmse) + ", misfit " + g4(ratio) + "x baseline";

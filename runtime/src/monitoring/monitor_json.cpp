@@ -31,7 +31,7 @@ std::string monitor_result_json(const MonitorResult& r) {
                          {"fit_std", number(p.fit_std)}, {"unit", p.unit}};
   base["parameters"] = monitored;
   j["baseline"] = base;
-  j["detector"] = {{"method", "two-sided CUSUM"}, {"k", number(r.k)}, {"h", number(r.h)},
+  j["detector"] = {{"method", "two-sided CUSUM"}, {"k", number(r.k)}, {"h", number(r.h)}, {"single_set_limit", number(r.single_set_limit)},
                    {"run_length", number(r.run_length)}, {"structural_ratio", number(r.structural_ratio)}};
   nlohmann::json series = nlohmann::json::array();
   for (const MonitorPoint& s : r.series) {

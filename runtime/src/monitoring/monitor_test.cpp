@@ -44,7 +44,9 @@ TEST_CASE("monitor: a stiffness step is one change naming it, scatter alone none
   const MonitorResult r = monitor(model, data, std::vector<std::optional<std::string>>(7), quick());
   REQUIRE(r.series.size() == 7);
   CHECK(r.parameters.size() == 7);
-  CHECK(r.h == Approx(scheme_threshold(0.5, 1000, 7)));
+  // The stated rate (one false alarm in 1000 sets) split between the CUSUMs and the single-set limit.
+  CHECK(r.h == Approx(scheme_threshold(0.5, 2000, 7)));
+  CHECK(r.single_set_limit == Approx(single_set_limit(2000, 7)));
   REQUIRE(r.changes.size() == 1);
   CHECK(r.changes[0].index == 4);
   CHECK(r.changes[0].onset == 4);
