@@ -5,6 +5,7 @@
 #include <mbgen/frf.hpp>
 #include <mbgen/modal.hpp>
 #include <mbgen/state_space.hpp>
+#include <mbgen/uff.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -124,6 +125,54 @@ Json frf_json(const ModelInfo& info, const FrfResult& r) {
   return {{"f_hz", r.freqs_hz}, {"channels", channels}};
 }
 
+// The FRFs as UFF 58 (one dataset per channel: response node o + 1, reference node 1001 + i, both +X) and the
+// mapping file that names the points (`OUT.uff.map`, which the readers take beside the file).
+struct UffFiles {
+  std::string data, mapping;
+};
+UffFiles frf_uff(const ir::ModelIr& model, const std::string& model_path, const ModelInfo& info, const FrfResult& r) {
+  UffFiles out;
+  out.mapping = "# mbgen export " + model_path + ": UFF points to model channels\n";
+  for (std::size_t o = 0; o < info.outputs.size(); ++o)
+    out.mapping += uff_point_key(static_cast<int>(o) + 1, 1) + " = " + info.outputs[o] + "\n";
+  for (std::size_t i = 0; i < info.inputs.size(); ++i)
+    out.mapping += uff_point_key(1001 + static_cast<int>(i), 1) + " = " + info.inputs[i] + "\n";
+  const std::size_t n = r.freqs_hz.size();
+  const double increment = n > 1 ? (r.freqs_hz.back() - r.freqs_hz.front()) / static_cast<double>(n - 1) : 1.0;
+  const bool even = uff58_even_increment_exact(increment) && uff58_even_increment_exact(r.freqs_hz.front() + increment);
+  std::ostringstream text;
+  for (std::size_t o = 0; o < info.outputs.size(); ++o) {
+    ir::OutputKind kind = ir::OutputKind::Displacement;
+    for (const ir::Output& declared : model.outputs)
+      if (declared.name == info.outputs[o]) kind = declared.kind;
+    for (std::size_t i = 0; i < info.inputs.size(); ++i) {
+      Uff58Record rec;
+      rec.id = {"mbgen export " + model_path, info.outputs[o] + "/" + info.inputs[i], "NONE", "NONE", "NONE"};
+      rec.function_type = 4;
+      rec.response_entity = rec.reference_entity = "mbgen";
+      rec.response_node = static_cast<int>(o) + 1, rec.response_direction = 1;
+      rec.reference_node = 1001 + static_cast<int>(i), rec.reference_direction = 1;
+      rec.ordinate_data_type = 6;
+      rec.even_spacing = even;
+      rec.abscissa_min = r.freqs_hz.front(), rec.abscissa_increment = increment;
+      rec.abscissa_type = 18, rec.abscissa_label = "Frequency", rec.abscissa_units = "Hz";
+      rec.ordinate_type = kind == ir::OutputKind::Acceleration ? 12 : kind == ir::OutputKind::Velocity ? 11 : 8;
+      rec.ordinate_label = ir::to_string(kind);
+      rec.ordinate_units = kind == ir::OutputKind::Acceleration ? "m/s^2" : kind == ir::OutputKind::Velocity ? "m/s" : "m";
+      rec.ordinate_denominator_type = 13, rec.ordinate_denominator_label = "force", rec.ordinate_denominator_units = "N";
+      rec.x.resize(static_cast<Eigen::Index>(n));
+      rec.y.resize(static_cast<Eigen::Index>(n));
+      for (std::size_t k = 0; k < n; ++k) {
+        rec.x[static_cast<Eigen::Index>(k)] = r.freqs_hz[k];
+        rec.y[static_cast<Eigen::Index>(k)] = r.H[k](static_cast<Eigen::Index>(o), static_cast<Eigen::Index>(i));
+      }
+      write_uff58(text, rec);
+    }
+  }
+  out.data = text.str();
+  return out;
+}
+
 std::string modes_csv(const ModelInfo& info, const std::vector<Mode>& modes) {
   std::ostringstream out;
   out << "mode,f_hz,zeta";
@@ -163,9 +212,9 @@ int run_export(int argc, char** argv) {
   app.add_option("--what", what, "matrices (default), state-space, modes or frf")
       ->check(CLI::IsMember({"matrices", "state-space", "modes", "frf"}));
   app.add_option("--frf", grid, "with --what frf: the frequency grid LO:HI:N (Hz; N lines, both ends included)");
-  app.add_option("--format", format, "json (default, schema mbgen-export/1) or csv (frf: the FRF CSV layout mbgen "
-                                     "reads; modes: one row per mode)")
-      ->check(CLI::IsMember({"json", "csv"}));
+  app.add_option("--format", format, "json (default, schema mbgen-export/1), csv (frf: the FRF CSV layout mbgen "
+                                     "reads; modes: one row per mode) or uff (frf: UFF 58 and its .map beside it)")
+      ->check(CLI::IsMember({"json", "csv", "uff"}));
   app.add_option("--fit-result", fit_result, "the parameters' values from a `mbgen fit --json` result");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("-o,--output", output, "file to write (default: standard output)");
@@ -175,11 +224,14 @@ int run_export(int argc, char** argv) {
     if (what != "frf" && !grid.empty()) throw CLI::ValidationError("--frf", "only with --what frf");
     if (format == "csv" && (what == "matrices" || what == "state-space"))
       throw CLI::ValidationError("--format", "csv holds one table: frf or modes; matrices and the state space are json");
+    if (format == "uff" && what != "frf") throw CLI::ValidationError("--format", "uff holds FRFs: --what frf");
+    if (format == "uff" && output == "-")
+      throw CLI::ValidationError("-o", "a UFF file comes with its mapping file (OUT.map): name a file");
     const std::vector<double> f = what == "frf" ? frequency_grid(grid) : std::vector<double>{};
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(sets);
     OutputPlan plan;
-    plan.files = {{"-o", output}};
+    plan.files = {{"-o", output}, {"-o (its UFF mapping file)", format == "uff" ? output + ".map" : ""}};
     plan.inputs = {model_path};
     if (!fit_result.empty()) plan.inputs.push_back(fit_result);
     plan.check();
@@ -192,6 +244,14 @@ int run_export(int argc, char** argv) {
     evaluator->evaluate(p, m);
 
     std::string text;
+    if (format == "uff") {
+      const UffFiles files = frf_uff(model, model_path, info, frf(*evaluator, p, f));
+      OutputFiles out;
+      out.add(output, files.data);
+      out.add(output + ".map", files.mapping);
+      out.commit();
+      return 0;
+    }
     if (format == "csv") {
       text = what == "frf" ? frf_csv(info, frf(*evaluator, p, f)) : modes_csv(info, modal_analysis(m.M, m.C, m.K));
     } else {

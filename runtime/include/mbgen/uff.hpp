@@ -37,13 +37,24 @@ struct Uff58Record {
   double abscissa_min = 0, abscissa_increment = 0, z_value = 0;
   int abscissa_type = 0;              // record 8 specific data type: 17 time, 18 frequency, ...
   std::string abscissa_label, abscissa_units;
-  int ordinate_type = 0;              // record 9 specific data type
+  int ordinate_type = 0;              // record 9 specific data type: 8 displacement, 11 velocity, 12 acceleration...
   std::string ordinate_label, ordinate_units;
+  int ordinate_denominator_type = 0;  // record 10 specific data type (13: force, an FRF's denominator)
+  std::string ordinate_denominator_label, ordinate_denominator_units;
   Eigen::VectorXd x;                  // abscissa of every point (filled in from min/increment when even)
   Eigen::VectorXcd y;                 // ordinate of every point; imaginary part 0 for real data
 
   bool is_complex() const { return ordinate_data_type == 5 || ordinate_data_type == 6; }
 };
+
+// Writes `record` as an ASCII dataset 58 between `-1` delimiter lines, in the specification's fixed columns:
+// record 7's E13.5 fields, the data 4E20.12 a line (13 significant digits). Real (4) or complex (6) double ordinates;
+// evenly spaced data (even_spacing: abscissa_min and abscissa_increment) or uneven (each point's x written before it).
+// Throws std::invalid_argument for 58b, other ordinate types, or x and y of different or zero length.
+void write_uff58(std::ostream& out, const Uff58Record& record);
+// Whether an even spacing's increment survives record 7's six significant digits exactly (otherwise the far lines
+// would move by their index times the rounding: write the abscissa with each point instead).
+bool uff58_even_increment_exact(double increment);
 
 // Reads every dataset 58/58b of a UFF file; other datasets (ASCII ones such as 151, 164, 15) are skipped.
 // Throws DataError naming file and line for: a file that is not UFF, a header that cannot be parsed, an

@@ -172,6 +172,16 @@ void parse_header_records(const std::vector<std::string>& lines, int first_line,
     r.ordinate_type = static_cast<int>(parse_integer(field(lines[8], 0, 10), at9, 1, "specific data type"));
     r.ordinate_label = std::string(field(lines[8], 26, 20));
     r.ordinate_units = std::string(field(lines[8], 47, std::string_view::npos));
+    // Record 10 was never needed to read data: a writer's odd one is taken as type 0, not refused.
+    const LineContext at10{file, first_line + 9, "record 10"};
+    try {
+      r.ordinate_denominator_type =
+          static_cast<int>(parse_integer(field(lines[9], 0, 10), at10, 1, "specific data type"));
+    } catch (const DataError&) {
+      r.ordinate_denominator_type = 0;
+    }
+    r.ordinate_denominator_label = std::string(field(lines[9], 26, 20));
+    r.ordinate_denominator_units = std::string(field(lines[9], 47, std::string_view::npos));
   }
 }
 

@@ -300,3 +300,59 @@ TEST_CASE("UFF mapping files") {
   CHECK_THAT(error("1:+X = 9a\n"), Catch::Contains("map.txt:1:8: error: '9a' is not a channel name"));
   CHECK_THAT(error("set a\n"), Catch::Contains("map.txt:1: error: bad '# set' line"));
 }
+
+TEST_CASE("write_uff58 writes what read_uff58 reads back, in the specification's columns") {
+  Uff58Record r;
+  r.id = {"mbgen export mdof2.mdl", "d1/F1", "NONE", "NONE", "NONE"};
+  r.function_type = 4;
+  r.response_entity = "mbgen", r.reference_entity = "mbgen";
+  r.response_node = 2, r.response_direction = -3, r.reference_node = 1001, r.reference_direction = 1;
+  r.ordinate_data_type = 6;
+  r.abscissa_type = 18, r.abscissa_label = "Frequency", r.abscissa_units = "Hz";
+  r.ordinate_type = 8, r.ordinate_label = "Displacement", r.ordinate_units = "m";
+  r.ordinate_denominator_type = 13, r.ordinate_denominator_label = "Force", r.ordinate_denominator_units = "N";
+  const int n = 7;  // an odd count: the last data line holds one complex point
+  r.x.resize(n);
+  r.y.resize(n);
+  for (int k = 0; k < n; ++k) {
+    r.x[k] = 10 + 0.25 * k;
+    r.y[k] = {std::sin(0.3 * k) * 1e-6, -std::cos(0.7 * k) * 3e-7};
+  }
+  for (bool even : {true, false}) {
+    r.even_spacing = even;
+    r.abscissa_min = even ? 10 : 0, r.abscissa_increment = even ? 0.25 : 0;
+    std::ostringstream text;
+    write_uff58(text, r);
+    // Record 6 in its fixed columns: entity at 32, node at 42-51, direction at 52-55 (1-based).
+    std::istringstream lines(text.str());
+    std::string line;
+    for (int i = 0; i < 8; ++i) std::getline(lines, line);
+    CHECK(line.substr(31, 10) == "mbgen     ");
+    CHECK(line.substr(41, 10) == "         2");
+    CHECK(line.substr(51, 4) == "  -3");
+    std::istringstream in(text.str());
+    const std::vector<Uff58Record> back = read_uff58(in, "written.uff");
+    REQUIRE(back.size() == 1);
+    const Uff58Record& b = back[0];
+    CHECK(b.id == r.id);
+    CHECK(b.function_type == 4);
+    CHECK(b.response_node == 2);
+    CHECK(b.response_direction == -3);
+    CHECK(b.reference_node == 1001);
+    CHECK(b.even_spacing == even);
+    CHECK(b.ordinate_type == 8);
+    CHECK(b.ordinate_units == "m");
+    CHECK(b.ordinate_denominator_type == 13);
+    CHECK(b.abscissa_units == "Hz");
+    REQUIRE(b.y.size() == n);
+    for (int k = 0; k < n; ++k) {
+      CHECK(b.x[k] == Approx(r.x[k]).epsilon(1e-12));
+      CHECK(std::abs(b.y[k] - r.y[k]) <= 1e-12 * std::abs(r.y[k]) + 1e-30);
+    }
+  }
+  CHECK(uff58_even_increment_exact(0.25));
+  CHECK_FALSE(uff58_even_increment_exact(1.0 / 3));
+  r.binary = true;
+  std::ostringstream ignored;
+  CHECK_THROWS_AS(write_uff58(ignored, r), std::invalid_argument);
+}
