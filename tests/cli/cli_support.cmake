@@ -44,8 +44,12 @@ set(FAST_FIT fit one.mdl --data one_frf.csv --starts 1)
 # and checks its exit status and that standard error (output) matches the regular expression. The run's standard
 # error is left in LAST_STDERR. Like the checks below, a failure is reported and the script goes on (SEND_ERROR):
 # one run shows every check that fails. INPUT file: standard input; OUTPUT file: standard output goes there.
+# TIMEOUT seconds (default 60): a diagnosis takes minutes under the sanitizers.
 function(expect_run)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "" "STATUS;STDERR;STDOUT;DIR;INPUT;OUTPUT" "ARGS")
+  cmake_parse_arguments(PARSE_ARGV 0 arg "" "STATUS;STDERR;STDOUT;DIR;INPUT;OUTPUT;TIMEOUT" "ARGS")
+  if(NOT arg_TIMEOUT)
+    set(arg_TIMEOUT 60)
+  endif()
   if(NOT arg_DIR)
     set(arg_DIR "${WORK}")
   endif()
@@ -57,7 +61,7 @@ function(expect_run)
     list(APPEND redirect INPUT_FILE "${arg_INPUT}")
   endif()
   execute_process(COMMAND "${MBGEN}" ${arg_ARGS} WORKING_DIRECTORY "${arg_DIR}"
-    RESULT_VARIABLE status ${redirect} ERROR_VARIABLE err TIMEOUT 60)
+    RESULT_VARIABLE status ${redirect} ERROR_VARIABLE err TIMEOUT ${arg_TIMEOUT})
   string(REPLACE ";" " " shown "${arg_ARGS}")
   if(NOT status STREQUAL "${arg_STATUS}")
     message(SEND_ERROR "`mbgen ${shown}`: expected exit status ${arg_STATUS}, got ${status}\nstderr: ${err}")

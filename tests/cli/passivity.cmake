@@ -25,7 +25,7 @@ if(NOT warning MATCHES "the force F1 or the sensor d1 is recorded with the wrong
 endif()
 expect_run(STATUS 0 STDOUT "^warning: d1/F1 in sensor_reversed.csv is a driving point"
   ARGS fit ${MDOF2} --data sensor_reversed.csv --starts 2)
-expect_run(STATUS 0 STDOUT "^warning: d1/F1 in force_reversed.csv is a driving point"
+expect_run(STATUS 0 STDOUT "^warning: d1/F1 in force_reversed.csv is a driving point" TIMEOUT 600
   ARGS diagnose ${MDOF2} --data force_reversed.csv --starts 2)
 execute_process(COMMAND "${MBGEN}" fit ${MDOF2} --data right.csv --starts 2 WORKING_DIRECTORY "${WORK}"
                 RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_QUIET)
