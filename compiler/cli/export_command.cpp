@@ -1,6 +1,7 @@
 // `mbgen export MODEL.mdl [--what matrices|state-space|modes|frf] [--frf LO:HI:N] [--format json|csv]
 // [--fit-result FIT.json] [--set ...] [-o OUT]`: the model's numbers at its values or at an estimate, for another
 // tool (docs/interfaces.md, "mbgen-export/1"). Deterministic: the same input gives the same bytes.
+#include <mbgen/csv.hpp>
 #include <mbgen/data_error.hpp>
 #include <mbgen/frf.hpp>
 #include <mbgen/modal.hpp>
@@ -93,21 +94,19 @@ std::vector<double> frequency_grid(const std::string& text) {
   return f;
 }
 
+// The FRFs in the readers' CSV layout (write_frf_csv).
 std::string frf_csv(const ModelInfo& info, const FrfResult& r) {
+  FrfData data;
+  data.f_hz = Eigen::Map<const Eigen::VectorXd>(r.freqs_hz.data(), static_cast<Eigen::Index>(r.freqs_hz.size()));
+  for (std::size_t o = 0; o < info.outputs.size(); ++o)
+    for (std::size_t i = 0; i < info.inputs.size(); ++i) {
+      FrfChannel c{info.outputs[o], info.inputs[i], Eigen::VectorXcd(data.f_hz.size()), std::nullopt};
+      for (std::size_t k = 0; k < r.H.size(); ++k)
+        c.values[static_cast<Eigen::Index>(k)] = r.H[k](static_cast<Eigen::Index>(o), static_cast<Eigen::Index>(i));
+      data.channels.push_back(std::move(c));
+    }
   std::ostringstream out;
-  out << "f_hz";
-  for (const std::string& o : info.outputs)
-    for (const std::string& i : info.inputs) out << "," << o << "/" << i << ".re," << o << "/" << i << ".im";
-  out << "\n";
-  for (std::size_t k = 0; k < r.freqs_hz.size(); ++k) {
-    char f[32];
-    std::snprintf(f, sizeof f, "%.12g", r.freqs_hz[k]);  // the grid's own digits (60.05, not 60.049999999999997)
-    out << f;
-    for (Eigen::Index o = 0; o < r.H[k].rows(); ++o)
-      for (Eigen::Index i = 0; i < r.H[k].cols(); ++i)
-        out << "," << number(r.H[k](o, i).real()) << "," << number(r.H[k](o, i).imag());
-    out << "\n";
-  }
+  write_frf_csv(out, data);
   return out.str();
 }
 

@@ -124,17 +124,20 @@ PeakRise peak_rise(const Eigen::VectorXcd& smooth, const Eigen::VectorXd& sigma,
   return r;
 }
 
-void describe_unexplained_resonance(const ChannelResidual& c, int peak, Discrepancy& d) {
+// `smooth`: smoothed(c.measured), computed once per channel.
+void describe_unexplained_resonance(const ChannelResidual& c, const Eigen::VectorXcd& smooth, int peak,
+                                    Discrepancy& d) {
   d.kind = "unexplained_resonance";
   d.f_hz = c.f_hz[static_cast<std::size_t>(peak)];
-  d.size_db = peak_rise(smoothed(c.measured), c.sigma, peak).db;
+  d.size_db = peak_rise(smooth, c.sigma, peak).db;
   d.text = format("a resonance near %.1f Hz on %s (%s) that the model does not have: it rises %.1f dB above the "
                   "response around it",
                   d.f_hz, c.channel.c_str(), c.data_set.c_str(), d.size_db);
 }
 
-Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vector<int>& data_peaks,
-                     const std::vector<int>& model_peaks, const ResidualOptions& o) {
+Discrepancy classify(const ChannelResidual& c, const Eigen::VectorXcd& smooth, const Band& band,
+                     const std::vector<int>& data_peaks, const std::vector<int>& model_peaks,
+                     const ResidualOptions& o) {
   const std::vector<double>& f = c.f_hz;
   const int n = static_cast<int>(f.size());
   Discrepancy d;
@@ -200,7 +203,7 @@ Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vect
       d.text = format("the resonance at %.1f Hz on %s sits at %.1f Hz in the model (%+.1f %%)", d.f_hz, where.c_str(),
                            d.model_f_hz, 100.0 * (d.model_f_hz - d.f_hz) / d.f_hz);
     } else {
-      describe_unexplained_resonance(c, data_peak, d);
+      describe_unexplained_resonance(c, smooth, data_peak, d);
     }
     return d;
   }
@@ -228,11 +231,11 @@ Discrepancy classify(const ChannelResidual& c, const Band& band, const std::vect
 // would otherwise name one of several resonances the model lacks. A peak counts when both the residual around it
 // and its rise over its surroundings exceed the finding threshold on the normalized residual's scale (noise alone
 // passes either at the family-wise false-alarm rate), so the noise's own bumps in a misfit band are not peaks.
-std::vector<Discrepancy> resonances_missing_in_band(const ChannelResidual& c, const Eigen::VectorXd& z,
+std::vector<Discrepancy> resonances_missing_in_band(const ChannelResidual& c, const Eigen::VectorXcd& smooth,
+                                                    const Eigen::VectorXd& z,
                                                     const Band& band, const std::vector<int>& data_peaks,
                                                     const std::vector<int>& model_peaks, const ResidualOptions& o) {
   std::vector<Discrepancy> found;
-  const Eigen::VectorXcd smooth = smoothed(c.measured);
   const int n = static_cast<int>(z.size()), half = std::max(0, o.window / 2);
   for (int p : data_peaks) {
     if (p < band.lo || p > band.hi) continue;
@@ -248,7 +251,7 @@ std::vector<Discrepancy> resonances_missing_in_band(const ChannelResidual& c, co
     d.f_lo = c.f_hz[static_cast<std::size_t>(lo)];
     d.f_hi = c.f_hz[static_cast<std::size_t>(hi)];
     d.significance = local_z;
-    describe_unexplained_resonance(c, p, d);
+    describe_unexplained_resonance(c, smooth, p, d);
     found.push_back(std::move(d));
   }
   return found;
@@ -390,15 +393,16 @@ ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, 
         z = z_undelayed;
       }
     }
-    const std::vector<int> data_peaks = magnitude_peaks(smoothed(c.measured)), model_peaks = magnitude_peaks(c.model);
+    const Eigen::VectorXcd smooth = smoothed(c.measured);
+    const std::vector<int> data_peaks = magnitude_peaks(smooth), model_peaks = magnitude_peaks(c.model);
     for (const Band& band : significant_bands(z, options)) {
-      summary.discrepancies.push_back(classify(c, band, data_peaks, model_peaks, options));
-      for (Discrepancy& d : resonances_missing_in_band(c, z, band, data_peaks, model_peaks, options))
+      summary.discrepancies.push_back(classify(c, smooth, band, data_peaks, model_peaks, options));
+      for (Discrepancy& d : resonances_missing_in_band(c, smooth, z, band, data_peaks, model_peaks, options))
         summary.discrepancies.push_back(std::move(d));
       if (band.hi - band.lo + 1 < options.wide_band) continue;
       for (const Band& sub : contrasted_bands(z, band, options))
         if (sub.lo != band.lo || sub.hi != band.hi)
-          summary.discrepancies.push_back(classify(c, sub, data_peaks, model_peaks, options));
+          summary.discrepancies.push_back(classify(c, smooth, sub, data_peaks, model_peaks, options));
     }
   }
   summary.mean_z = summary.lines ? z_sum / static_cast<double>(summary.lines) : 0;
