@@ -1,4 +1,4 @@
-# `fit --method modal` on the spindle (docs/methods.md#modal). "slow" in the name: 9 s in the normal build, over a
+# `fit --method modal` on the spindle (docs/methods.md#modal). "slow" in the name: 30 s in the normal build, over a
 # minute under the sanitizers, whose pass skips it (the mdof2 cases of methods_modal.cmake run there).
 include(${CMAKE_CURRENT_LIST_DIR}/cli_support.cmake)
 
@@ -33,14 +33,14 @@ if(NOT status EQUAL 0 OR NOT problems STREQUAL "\n")
   message(SEND_ERROR "modal on the spindle: status ${status}: ${problems}")
 endif()
 
-# Truths drawn by truthgen (40 dB FRFs, the dampers known at the truth's values): on draws 2 and 3 the subproblem
-# sweeps end at a wrong optimum (k_hbz at its lower bound, k_hbx 56-64 % high: docs/methods.md, Limits) that only 1 of
-# 16 repetitions reaches. The fit must say so: not converged, the repetitions' disagreement as the reason, and the
-# warning in the summary. On draw 4 (within 0.5 %) the repetitions agree and the fit converges.
-foreach(case IN ITEMS "2;52;disagree" "3;53;disagree" "4;54;agree")
+# Truths drawn by truthgen (40 dB FRFs, the dampers known at the truth's values). From the priors the subproblem sweeps
+# end at a wrong optimum on draws 2, 3 and 5 (k_hbz at its lower bound, k_hbx 56-66 % high; 1 of 16 repetitions
+# reaching it); the joint repetitions (docs/methods.md#modal, step 6) find the optimum below it. Every draw must
+# converge with its repetitions agreeing, and the five stiffnesses the x modes move lie within 2 % of the truth
+# (measured at most 0.9 %, draw 3's k_hbz).
+foreach(case IN ITEMS "2;52" "3;53" "4;54" "5;55")
   list(GET case 0 draw)
   list(GET case 1 seed)
-  list(GET case 2 expect)
   execute_process(COMMAND python3 ${SOURCE}/scripts/truthgen/truthgen.py --example spindle --case nominal --kind frf
                           --draw ${draw} --seed ${seed} --snr-db 40 -o draw${draw}.csv
                   WORKING_DIRECTORY "${WORK}" OUTPUT_QUIET RESULT_VARIABLE status)
@@ -53,17 +53,21 @@ foreach(case IN ITEMS "2;52;disagree" "3;53;disagree" "4;54;agree")
     string(JSON value GET "${truth}" parameters ${c})
     list(APPEND sets --set ${c}=${value})
   endforeach()
-  if(expect STREQUAL "disagree")
-    expect_run(STATUS 0 STDOUT "warning: the fit did not converge \\(the repetitions did not agree on one optimum"
-      ARGS fit spindle_known_damping.mdl --data draw${draw}.csv --method modal --json d${draw}.json ${sets})
-  else()
-    expect_run(STATUS 0 ARGS fit spindle_known_damping.mdl --data draw${draw}.csv --method modal --json d${draw}.json
-      ${sets})
-    file(READ "${WORK}/d${draw}.json" result)
-    string(JSON converged GET "${result}" fit converged)
-    string(JSON agree GET "${result}" method_details modal repetitions_agree)
-    if(NOT converged OR NOT agree)
-      message(SEND_ERROR "modal on the spindle, draw ${draw}: converged ${converged}, repetitions agree ${agree}")
-    endif()
+  expect_run(STATUS 0 ARGS fit spindle_known_damping.mdl --data draw${draw}.csv --method modal --json d${draw}.json
+    ${sets})
+  execute_process(COMMAND python3 -c "
+import json, sys
+r = json.load(open(sys.argv[1]))
+t = json.load(open(sys.argv[2]))['parameters']
+bad = []
+if not r['fit']['converged']: bad.append('not converged: ' + r['fit']['stop_reason'])
+if not r['method_details']['modal']['repetitions_agree']: bad.append('repetitions disagree')
+for name in ('k_fx', 'k_rx', 'k_hbx', 'k_hby', 'k_hbz'):
+    v = r['parameters'][name]['value']
+    if abs(v / t[name] - 1) > 0.02: bad.append('%s = %g, truth %g' % (name, v, t[name]))
+print('; '.join(bad))
+" d${draw}.json draw${draw}.truth.json WORKING_DIRECTORY "${WORK}" OUTPUT_VARIABLE problems RESULT_VARIABLE status)
+  if(NOT status EQUAL 0 OR NOT problems STREQUAL "\n")
+    message(SEND_ERROR "modal on the spindle, draw ${draw}: status ${status}: ${problems}")
   endif()
 endforeach()

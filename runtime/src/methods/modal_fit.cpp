@@ -368,6 +368,50 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
     solve_damping();
   }
   details["joint_polish"] = {{"cost_before", polish_before}, {"cost_after", polish_after}};
+
+  // 6. The joint problem's own repetitions: every influential mass/stiffness parameter against every mode's
+  //    objectives, from `starts` seeded starts (the priors, then log-uniform within the range factor of them), the
+  //    paper's test for the global optimum applied to the whole problem. The sweeps' subproblems each fit their own
+  //    modes only, and their fixed point need not be the joint optimum: on drawn spindle truths (x FRFs, dampers
+  //    known) the sweeps ended at k_hbx 56-66 % high and k_hbz at its lower bound on 3 of 4 draws, where a joint
+  //    solve from the priors placed every influential stiffness within 1 %. The lower joint cost wins.
+  // joint_confirms: at least half of the joint repetitions reach their best, and that best is the estimate.
+  bool joint_taken = false, joint_agree = true, joint_confirms = false;
+  if (!structural.empty()) {
+    Eigen::VectorXd x(static_cast<Eigen::Index>(structural.size())), r;
+    for (std::size_t j = 0; j < structural.size(); ++j) x[static_cast<Eigen::Index>(j)] = std::log(p[structural[j]]);
+    const double current = residuals_at(pr, p, structural, all_modes, x, r) ? r.squaredNorm()
+                                                                             : std::numeric_limits<double>::infinity();
+    std::mt19937_64 joint_rng(options.seed ^ 0x9e3779b97f4a7c15ULL);  // its own stream: the sweeps' stay as they were
+    std::vector<LocalOptimum> reps;
+    int best = 0;
+    for (int k = 0; k < starts; ++k) {
+      Eigen::VectorXd start = p;
+      for (int i : structural) {
+        const auto [lo, hi] = log_range(info.parameters[static_cast<std::size_t>(i)], prior[i], spread_factor);
+        start[i] = k == 0 ? prior[i] : std::exp(std::uniform_real_distribution<double>(lo, hi)(joint_rng));
+      }
+      reps.push_back(local_fit(pr, p, start, structural, all_modes, options));
+      total_iterations += reps.back().iterations;
+      if (reps.back().cost < reps[static_cast<std::size_t>(best)].cost) best = k;
+    }
+    const LocalOptimum& b = reps[static_cast<std::size_t>(best)];
+    joint_taken = b.cost < current * (1 - 1e-6);
+    nlohmann::json j = spread(info, Subproblem{-1, structural, all_modes}, reps, best);
+    j.erase("mode");
+    j["cost_of_sweeps"] = std::isfinite(current) ? current : -1.0;
+    j["taken"] = joint_taken;
+    joint_agree = 2 * j["agreeing"].get<int>() >= static_cast<int>(reps.size());
+    double deviation = 0;
+    for (int i : structural) deviation = std::max(deviation, std::abs(b.p[i] / p[i] - 1));
+    joint_confirms = joint_agree && (joint_taken || deviation < 1e-3);
+    details["joint_repetitions"] = j;
+    if (joint_taken) {
+      p = b.p;
+      joint_converged = b.converged;
+      solve_damping();
+    }
+  }
   if (!damping.empty()) details["damping"] = jdamp;
 
   // Agreement per mode at the estimate.
@@ -423,8 +467,15 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   // The paper's test for the global optimum: the repetitions from seeded starts agree. Where fewer than half of a
   // subproblem's repetitions in the last sweep reach its best, that best is not shown to be the global optimum (on
   // the spindle with drawn truths, 1 of 16 agreed at a wrong optimum: docs/methods.md, Limits).
+  // Where the joint repetitions confirm the estimate, theirs is the test (the sweeps' subproblems may stop apart from
+  // the joint optimum, or not settle, while the joint problem has one optimum repeatably).
   std::string disagreeing;
-  if (details.contains("repetitions"))
+  if (!joint_confirms && joint_taken) {
+    const nlohmann::json& j = details["joint_repetitions"];
+    disagreeing = "the joint repetitions did not agree on one optimum (" + std::to_string(j["agreeing"].get<int>()) +
+                  " of " + std::to_string(j["repetitions"].get<int>()) +
+                  " reached the best); the estimate may be a local optimum";
+  } else if (!joint_confirms && details.contains("repetitions")) {
     for (const nlohmann::json& s : details["repetitions"]["last_sweep"]) {
       const int agreeing = s["agreeing"].get<int>(), repetitions = s["repetitions"].get<int>();
       if (2 * agreeing < repetitions) {
@@ -436,12 +487,24 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
         break;
       }
     }
+  }
   details["repetitions_agree"] = disagreeing.empty();
-  result.converged = settled && joint_converged && disagreeing.empty();
-  result.stop_reason = !disagreeing.empty() ? disagreeing
-                       : !settled            ? "sweep limit reached"
-                       : !joint_converged    ? "the joint mass/stiffness step did not converge"
-                                             : "the subproblem sweeps settled and the joint step converged";
+  if (joint_confirms) {
+    const nlohmann::json& j = details["joint_repetitions"];
+    const std::string count = std::to_string(j["agreeing"].get<int>()) + " of " + std::to_string(j["repetitions"].get<int>());
+    result.converged = joint_converged;
+    result.stop_reason = !joint_converged ? "the joint mass/stiffness solve did not converge"
+                         : joint_taken    ? "the joint repetitions (" + count +
+                                             ") agree on an optimum below the subproblem sweeps' (which stopped at a "
+                                             "local optimum)"
+                                          : "the joint repetitions (" + count + ") agree on the estimate";
+  } else {
+    result.converged = settled && joint_converged && disagreeing.empty();
+    result.stop_reason = !disagreeing.empty() ? disagreeing
+                         : !settled            ? "sweep limit reached"
+                         : !joint_converged    ? "the joint mass/stiffness step did not converge"
+                                               : "the subproblem sweeps settled and the joint step converged";
+  }
   result.method_details["modal"] = details.dump();
   return result;
 }
