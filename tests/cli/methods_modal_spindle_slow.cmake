@@ -71,3 +71,11 @@ print('; '.join(bad))
     message(SEND_ERROR "modal on the spindle, draw ${draw}: status ${status}: ${problems}")
   endif()
 endforeach()
+
+# The shipped spindle model with every damper estimated: refused before fitting, naming the option that makes some of
+# them known; following the advice fits (the refusal's option works).
+expect_run(STATUS 1 STDERR "fewer than the 8 damping parameters to estimate .*; make at least 4 of them known with --fix NAME\\[=VALUE\\] \\(c_fx, c_fy"
+  ARGS fit ${SOURCE}/examples/spindle/spindle.mdl --data ${SOURCE}/examples/spindle/data/frf_Fx.csv --method modal)
+expect_run(STATUS 0 STDOUT "modal\\)"
+  ARGS fit ${SOURCE}/examples/spindle/spindle.mdl --data ${SOURCE}/examples/spindle/data/frf_Fx.csv --method modal
+  --fix c_fy --fix c_fz --fix c_ry --fix c_hby)

@@ -141,6 +141,14 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
     const ModeRef& mr = modes[static_cast<std::size_t>(m)];
     return configurations[static_cast<std::size_t>(mr.configuration)].reference[static_cast<std::size_t>(mr.mode)];
   };
+  // What to change, for the refusals below: make `excess` of `which` known (the option works for fit, diagnose,
+  // monitor and sensitivity; docs/cli.md).
+  const auto advice = [&](const std::vector<int>& which, std::size_t excess) {
+    std::string names;
+    for (int i : which) names += (names.empty() ? "" : ", ") + info.parameters[static_cast<std::size_t>(i)].name;
+    return "; make at least " + std::to_string(excess) + " of them known with --fix NAME[=VALUE] (" + names +
+           "), or add data that show more modes";
+  };
   std::string channel_text;
   for (const ModalConfiguration& cf : configurations)
     channel_text += (channel_text.empty() ? "" : ", ") + std::to_string(cf.data.channels.size());
@@ -150,20 +158,23 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
                      " configurations show " + std::to_string(nr) + " mode(s) (" + hz_list(configurations) +
                      ") on " + channel_text + " channel(s), which give " + std::to_string(information) +
                      " numbers (per mode: frequency, channels - 1 shape ratios, scale), fewer than the " +
-                     std::to_string(structural.size()) + " mass/stiffness parameters to estimate");
+                     std::to_string(structural.size()) + " mass/stiffness parameters to estimate" +
+                     advice(structural, structural.size() - static_cast<std::size_t>(information)));
     const int channels = static_cast<int>(configurations.front().data.channels.size());
     throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" +
                    hz_list(configurations) + ") on " + std::to_string(channels) + " channel(s), which give " +
                    std::to_string(information) + " numbers (per mode: frequency, " + std::to_string(channels - 1) +
                    " shape ratio(s), scale), fewer "
                    "than the " +
-                   std::to_string(structural.size()) + " mass/stiffness parameters to estimate");
+                   std::to_string(structural.size()) + " mass/stiffness parameters to estimate" +
+                   advice(structural, structural.size() - static_cast<std::size_t>(information)));
   }
   if (nr < static_cast<int>(damping.size()))
     throw FitError("fit: error: --method modal: the FRFs show " + std::to_string(nr) + " mode(s) (" +
                    hz_list(configurations) + "), fewer than the " + std::to_string(damping.size()) +
                    " damping parameters to estimate (one "
-                   "modal damping ratio per mode)");
+                   "modal damping ratio per mode)" +
+                   advice(damping, damping.size() - static_cast<std::size_t>(nr)));
   const Problem pr{model, configurations, modes};
   for (const ModalConfiguration& cf : configurations)
     if (!methods::compare_modes(model, in_configuration(cf, prior), cf.data, cf.reference).ok)
