@@ -44,9 +44,11 @@ std::string summary(const MonitorResult& r) {
   if (r.changes.empty()) out += "no change detected\n";
   for (const MonitorChange& c : r.changes) {
     out += "change at data set " + std::to_string(c.index) + (c.time ? " (" + *c.time + ")" : "") + ": ";
-    for (std::size_t i = 0; i < c.parameters.size(); ++i) out += (i ? ", " : "") + c.parameters[i];
+    // A structural change's cause first; the parameters it moved are what the fit bent towards it.
     if (c.structural)
-      out += std::string(c.parameters.empty() ? "" : "; ") + "structural, cause " + (c.cause.empty() ? "not found" : c.cause);
+      out += "structural, cause " + (c.cause.empty() ? std::string("not found") : c.cause) +
+             (c.parameters.empty() ? "" : "; moved in the fit: ");
+    for (std::size_t i = 0; i < c.parameters.size(); ++i) out += (i ? ", " : "") + c.parameters[i];
     out += "\n  " + c.text + "\n";
   }
   return out;
@@ -131,7 +133,10 @@ MonitorResult monitor_machine(const std::string& model_path, const std::vector<s
     progress_done();
     if (d.verdict == "extended" && !d.selected.empty()) {
       change.cause = d.selected.front();
-      change.text += " The diagnosis names " + change.cause + ".";
+      std::string description;
+      for (const diagnosis::CandidateOutcome& c : d.candidates)
+        if (c.id == change.cause && !c.description.empty()) description = " (" + c.description + ")";
+      change.text = "The diagnosis names the cause: " + change.cause + description + ". " + change.text;
     } else {
       change.text += " The diagnosis named no cause (verdict " + d.verdict + ")";
       std::vector<const diagnosis::CandidateOutcome*> leads;

@@ -175,12 +175,17 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
         if (before != 0) moved += " (" + std::string(after > before ? "+" : "") + g4(100 * (after - before) / before) + " %)";
       }
       const std::string where = "data set " + std::to_string(i) + " (" + here.file + ")";
-      if (!moved.empty())
+      // A structural change is said first: the parameters then moved only as far as the fit could bend them towards
+      // what the model lacks (a loose mount showed as four bearing parameters moving), which is not the cause.
+      if (new_structural) {
+        change.text = "The model no longer fits " + where + ": its misfit is " + g4(ratio) +
+                      " times the baseline's, beyond what any of its parameters explains (a structural change).";
+        if (!moved.empty())
+          change.text += " Absorbing what it can, the fit moved its parameters: " + moved + ", since data set " +
+                         std::to_string(change.onset) + ".";
+      } else if (!moved.empty()) {
         change.text = moved + ", since data set " + std::to_string(change.onset) + "; detected at " + where + ".";
-      if (new_structural)
-        change.text += std::string(change.text.empty() ? "" : " ") + "The model no longer fits " + where + ": its misfit is " +
-                       g4(ratio) + " times the baseline's, beyond what any of its parameters explains (a structural "
-                       "change).";
+      }
       result.changes.push_back(std::move(change));
       regime_first = i + 1;
     } else {
