@@ -84,8 +84,9 @@ int run_diagnose(int argc, char** argv) {
   app.add_option("--starts", options.fit.starts, "starts of the nominal fit's global search (default 16)")
       ->check(starts_range());
   app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)")->check(seed_check());
-  app.add_flag("--start-from-modes", options.start_from_modes, "the nominal fit also starts where the model's modes "
-               "match the data's own (LSCF modes paired by MAC; docs/estimation.md)");
+  bool no_modal_start = false;
+  app.add_flag("--no-start-from-modes", no_modal_start, "the nominal fit does not start where the model's modes match "
+               "the data's own (by default it does, beside its random starts; docs/estimation.md)");
   app.add_option("--full-fits", options.full_fits,
                  "candidates fitted fully after the screening (default 6; 0: every candidate)")
       ->check(non_negative_number());
@@ -95,6 +96,7 @@ int run_diagnose(int argc, char** argv) {
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     options.set = parse_set_options(sets);
+    options.start_from_modes = !no_modal_start;
     if (extended_path == "-")
       throw CLI::ValidationError("--extended", "the extended model and its C++ are files; name one");
     if (!extended_path.empty())

@@ -315,16 +315,22 @@ class Diagnoser {
   // screened on themselves).
   ModelState assess_nominal(const ir::ModelIr& model, const std::string& text) {
     say("nominal model: fitting " + std::to_string(model.parameters.size()) + " parameters");
-    ModelState nominal;
+    // The caller's chosen starts (monitor: the baseline's levels), and the start from the data's modes before them.
+    const std::unique_ptr<mbgen::Model> evaluator = derive_model(model);
+    std::map<std::string, double> also = options_.fit.also_start_at;
+    std::vector<std::map<std::string, double>> further = options_.fit.further_starts_at;
+    int starts = options_.fit.starts;
     if (options_.start_from_modes) {
-      const std::unique_ptr<mbgen::Model> evaluator = derive_model(model);
       ModalStart from_modes = start_from_modes(*evaluator, split_.fit, options_.fit);
       say("nominal model: start from the data's modes: " + from_modes.summary);
-      nominal = assess(*evaluator, model, text, {}, std::max(options_.fit.starts, 2),
-                       Workers{options_.fit.threads, nullptr, nullptr}, from_modes.values);
-    } else {
-      nominal = assess(model, text, {}, options_.fit.starts);
+      if (!from_modes.values.empty()) {
+        if (!also.empty()) further.insert(further.begin(), also);
+        also = std::move(from_modes.values);
+        starts = std::max(starts, 2);
+      }
     }
+    ModelState nominal = assess(*evaluator, model, text, {}, starts, Workers{options_.fit.threads, nullptr, nullptr},
+                                also, {}, further);
     sensor_outputs_ = outputs_missed_alone(nominal.channels);
     if (has_records_) {
       if (const auto companion = estimation::spectral_companion(nominal.info, split_.fit)) {
