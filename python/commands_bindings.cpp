@@ -3,6 +3,7 @@
 // mbgen-fit/1, mbgen-diagnosis/1, mbgen-modal/1), made by the same code and read back by Python's json module.
 #include <pybind11/stl.h>
 
+#include <mbgen/dynamics_error.hpp>
 #include <mbgen/fit_report.hpp>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "cli/seed_option.hpp"
 #include "cli/starts_option.hpp"
 #include "diagnosis/engine/diagnosis_json.hpp"
+#include "frontend/diagnostics.hpp"
 
 namespace mbgen::python {
 

@@ -27,7 +27,11 @@ def test_time_csv():
     assert set(data["channels"]) == {"F1", "d1", "d2"}
     t = data["t"]
     assert len(t) == 8192 and data["values"].shape == (8192, 3)
-    np.testing.assert_allclose(np.diff(t), 1 / 4096, rtol=1e-9)
+    # the file's times as written (six decimals): 0.000000, 0.000244, ..., 1.999756
+    assert t[0] == 0.0 and t[1] == 0.000244 and t[-1] == 1.999756
+    names = data["channels"]
+    # its second data line: 0.000244,-10,-3.8485e-07,-1.5107e-07
+    assert [data["values"][1, names.index(n)] for n in ["F1", "d1", "d2"]] == [-10.0, -3.8485e-07, -1.5107e-07]
     assert data["hold"] == "zero-order"
 
 
