@@ -82,3 +82,16 @@ def test_diagnose_json_is_the_commands(diagnosed, mbgen_command, tmp_path):
     subprocess.run([mbgen_command, "diagnose", str(MODEL), "--data", str(FRF), "--json", str(out)], check=True,
                    capture_output=True)
     assert json.loads(out.read_text()) == diagnosed
+
+
+def test_arx_two_stage_with_the_masses_fixed():
+    # The case: arx-two-stage needs M known; fix= makes the masses known without editing the model.
+    record = MDOF2 / "data" / "time_F1.csv"
+    truth = json.loads((MDOF2 / "data" / "time_F1.truth.json").read_text())["parameters"]
+    with pytest.raises(mbgen.FitError, match=r"needs the mass matrix known .* \(--fix NAME=VALUE\)"):
+        mbgen.fit(MODEL, record, method="arx-two-stage")
+    result = mbgen.fit(MODEL, record, method="arx-two-stage", fix={"m1": truth["m1"], "m2": truth["m2"]})
+    assert result["method"] == "arx-two-stage"
+    assert set(result["parameters"]) == {"k11", "k22", "k12", "c11", "c22"}
+    for k in ["k11", "k22", "k12"]:  # the stiffnesses from the record; its dampings are the method's weak side
+        assert result["parameters"][k]["value"] == pytest.approx(truth[k], rel=0.03), k
