@@ -58,10 +58,11 @@ def plot(model_path, data_path, estimate, out):
     fig, axes = plt.subplots(2, 1, sharex=True, figsize=(8, 6))
     for c, name in enumerate(measured["channels"]):
         o, i = model.outputs.index(measured["outputs"][c]), model.inputs.index(measured["inputs"][c])
-        line = axes[0].semilogy(f, np.abs(measured["values"][:, c]), ".", ms=2, label=f"{name} measured")[0]
-        axes[0].semilogy(f, np.abs(fitted[:, o, i]), "-", color=line.get_color(), label=f"{name} fitted")
-        axes[1].plot(f, np.degrees(np.angle(measured["values"][:, c])), ".", ms=2, color=line.get_color())
-        axes[1].plot(f, np.degrees(np.angle(fitted[:, o, i])), "-", color=line.get_color())
+        # measured as faint dots, the fitted model as a dark line over them
+        line = axes[0].semilogy(f, np.abs(measured["values"][:, c]), ".", ms=2, alpha=0.4, label=f"{name} measured")[0]
+        axes[0].semilogy(f, np.abs(fitted[:, o, i]), "-", color=line.get_color(), lw=1.5, label=f"{name} fitted")
+        axes[1].plot(f, np.degrees(np.angle(measured["values"][:, c])), ".", ms=2, alpha=0.4, color=line.get_color())
+        axes[1].plot(f, np.degrees(np.angle(fitted[:, o, i])), "-", color=line.get_color(), lw=1.5)
     axes[0].set_ylabel("|H| [m/N]")
     axes[0].legend(fontsize=8)
     axes[1].set_ylabel("phase [deg]")
