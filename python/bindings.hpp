@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,17 @@ void register_errors(py::module_& m);    // errors.cpp: the exception classes an
 void register_model(py::module_& m);     // model_bindings.cpp: load_model and Model
 void register_data(py::module_& m);      // data_bindings.cpp: read_data
 void register_commands(py::module_& m);  // commands_bindings.cpp: fit, diagnose, modal
+
+// Runs `f` (which touches no Python object) with the interpreter lock released, so that other Python threads run
+// meanwhile, and one call at a time: the derivation and the diagnosis use GiNaC, which is not thread-safe (the
+// library keeps it on one thread, diagnose.cpp). The lock is let go before the interpreter's is taken back.
+std::mutex& compiler_mutex();
+template <typename F>
+auto released(F f) {
+  py::gil_scoped_release release;
+  std::lock_guard<std::mutex> lock(compiler_mutex());
+  return f();
+}
 
 // A usage error (a malformed argument): raised as mbgen.UsageError with the text the command prints for it.
 [[noreturn]] void usage_error(const std::string& option, const std::string& message);

@@ -63,8 +63,7 @@ std::string model_file(const py::object& model, ModelOptions& options) {
 template <typename F>
 auto guarded(const std::string& model, F f) {
   try {
-    py::gil_scoped_release release;  // a fit takes long; other Python threads run meanwhile
-    return f();
+    return released(f);  // a fit takes long
   } catch (const DynamicsError& e) {
     if (model.empty()) throw;
     throw frontend::ModelError(model, {}, e.what());

@@ -72,10 +72,7 @@ void register_data(py::module_& m) {
       "read_data",
       [](const py::object& path) {
         const std::string file = path_text(path);
-        const DataSet data = [&] {
-          py::gil_scoped_release release;
-          return read_data_file(file);
-        }();
+        const DataSet data = released([&] { return read_data_file(file); });
         return data.is_frf() ? frf_dict(std::get<FrfData>(data.content)) : time_dict(std::get<TimeRecord>(data.content));
       },
       py::arg("path"),

@@ -34,6 +34,11 @@ PyObject* add_class(py::module_& m, const char* name, PyObject* base, const char
 
 }  // namespace
 
+std::mutex& compiler_mutex() {
+  static std::mutex m;
+  return m;
+}
+
 [[noreturn]] void usage_error(const std::string& option, const std::string& message) {
   throw CLI::ValidationError(option, message);
 }

@@ -224,7 +224,11 @@ void register_model(py::module_& m) {
   m.def(
       "load_model",
       [](const py::object& path, const py::object& set, const py::object& fix, const py::object& free,
-         const py::object& bound) { return PyModel(path_text(path), model_options(set, fix, free, bound)); },
+         const py::object& bound) {
+        std::string file = path_text(path);
+        ModelOptions options = model_options(set, fix, free, bound);
+        return released([&] { return PyModel(std::move(file), std::move(options)); });  // derives: GiNaC
+      },
       py::arg("path"), py::arg("set") = py::none(), py::arg("fix") = py::none(), py::arg("free") = py::none(),
       py::arg("bound") = py::none(),
       "Derives the model of a .mdl file. set: dict NAME -> value (--set); fix: dict NAME -> value or None, or list "

@@ -95,3 +95,22 @@ def test_arx_two_stage_with_the_masses_fixed():
     assert set(result["parameters"]) == {"k11", "k22", "k12", "c11", "c22"}
     for k in ["k11", "k22", "k12"]:  # the stiffnesses from the record; its dampings are the method's weak side
         assert result["parameters"][k]["value"] == pytest.approx(truth[k], rel=0.03), k
+
+
+def test_calls_from_threads(fitted):
+    # The interpreter lock is released during a fit; the calls still run one at a time (GiNaC is not thread-safe)
+    # and give the results of a call alone.
+    import threading
+
+    results = [None] * 4
+
+    def work(k):
+        results[k] = mbgen.fit(MODEL, FRF) if k % 2 == 0 else mbgen.load_model(MODEL).parameters
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert results[0] == fitted and results[2] == fitted
+    assert results[1] == results[3] == mbgen.load_model(MODEL).parameters
