@@ -22,8 +22,8 @@ def test_malformed_model_names_line_and_column(tmp_path):
     with pytest.raises(mbgen.ModelError) as caught:
         mbgen.load_model(path)
     text = str(caught.value)
-    assert text.startswith(f"{path}:3:")
-    assert ": error: " in text
+    assert text.startswith(f"{path}:3:21: error: ")  # the line and column of `estimat`
+    assert "found `estimat`" in text
     assert isinstance(caught.value, ValueError) and isinstance(caught.value, mbgen.Error)
 
 
