@@ -3,6 +3,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/command_runs.hpp"
 #include "cli/commands.hpp"
 #include "cli/data_checks.hpp"
 #include "cli/parameter_roles.hpp"
@@ -65,6 +66,24 @@ std::string sibling(const std::string& mdl, const std::string& suffix) {
 
 }  // namespace
 
+DiagnoseRun diagnose_model(DiagnoseRequest request) {
+  diagnosis::DiagnoseOptions& options = request.options;
+  // The text is read once (standard input cannot be read twice): the model is parsed from it.
+  const RoledModel roled = read_model_with_roles(request.model_path, request.roles, options.set);
+  const std::string& text = roled.text;
+  const ir::ModelIr& model = roled.model;
+  symbolic::DeriveOptions derive;
+  derive.set = options.set;
+  const std::vector<DataSet> data =
+      load_data(request.data_paths, evaluator::make_evaluator(model, derive)->info(), model, derive.set);
+  if (!request.fit_band.empty()) options.fit_data = within_band(data, parse_band("--fit-band", request.fit_band));
+  DiagnoseRun run;
+  run.result = diagnosis::diagnose(model, text, data, options);
+  run.result.warnings = passivity_warnings(model, data);
+  run.set = derive.set;
+  return run;
+}
+
 int run_diagnose(int argc, char** argv) {
   CLI::App app{"Fit the model, find what its simulation gets wrong beyond the noise, try extensions of the model "
                "built from its own structure, and keep one only on strong evidence.",
@@ -112,25 +131,25 @@ int run_diagnose(int argc, char** argv) {
     plan.inputs = data_paths;
     plan.inputs.push_back(model_path);
     plan.check();
-    // The text is read once (standard input cannot be read twice): the model is parsed from it.
-    const RoledModel roled = read_model_with_roles(model_path, roles, options.set);
-    const std::string& text = roled.text;
-    const ir::ModelIr& model = roled.model;
-    symbolic::DeriveOptions derive;
-    derive.set = options.set;
-    const std::vector<DataSet> data = load_data(data_paths, evaluator::make_evaluator(model, derive)->info(), model, derive.set);
-    if (!fit_band.empty()) options.fit_data = within_band(data, parse_band("--fit-band", fit_band));
-    options.progress = [](const std::string& line) {
+    DiagnoseRequest request;
+    request.model_path = model_path;
+    request.data_paths = data_paths;
+    request.roles = roles;
+    request.options = options;
+    request.options.progress = [](const std::string& line) {
       progress_done();
       std::cerr << "diagnose: " << line << "\n";
     };
-    options.fit.progress = [](const FitProgress& p) {
+    request.options.fit.progress = [](const FitProgress& p) {
       progress_line("  fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
                     ", iteration " + std::to_string(p.iteration));
     };
-    diagnosis::DiagnosisResult result = diagnosis::diagnose(model, text, data, options);
+    request.fit_band = fit_band;
+    const DiagnoseRun run = diagnose_model(std::move(request));
     progress_done();
-    result.warnings = passivity_warnings(model, data);
+    const diagnosis::DiagnosisResult& result = run.result;
+    symbolic::DeriveOptions derive;
+    derive.set = run.set;
 
     OutputFiles out;
     const bool extended = result.verdict == "extended";

@@ -15,6 +15,7 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
+#include "cli/command_runs.hpp"
 #include "cli/commands.hpp"
 #include "cli/data_checks.hpp"
 #include "cli/load_data.hpp"
@@ -97,6 +98,48 @@ TwoStepOptions two_step_options(const ir::ModelIr& model, const symbolic::Derive
 
 }  // namespace
 
+FitRun fit_model(FitRequest request) {
+  const std::string& method = request.method;
+  symbolic::DeriveOptions derive;
+  derive.set = std::move(request.set);
+  const ir::ModelIr model = read_model_with_roles(request.model_path, request.roles, derive.set).model;
+  FitRun run;
+  run.model = evaluator::make_evaluator(model, derive);
+  const Model& evaluator = *run.model;
+  std::vector<DataSet>& data = run.data;
+  data = load_data(request.data_paths, evaluator.info(), model, derive.set);
+  if (!request.band.empty()) data = within_band(data, parse_band("--band", request.band));
+  // A named method that cannot use the data is bad input (status 1), as docs/interfaces.md says.
+  for (const DataSet& d : data) {
+    if (method == "frf-output-error" && !d.is_frf())
+      throw FitError(
+          frontend::error_text(d.file(), "--method frf-output-error needs FRF data, but this is a time record"));
+    if (method == "time-output-error" && d.is_frf())
+      throw FitError(
+          frontend::error_text(d.file(), "--method time-output-error needs time records, but this file holds FRFs"));
+  }
+  const bool output_error = method == "auto" || method == "frf-output-error" || method == "time-output-error";
+  if (request.start_from_modes && !output_error)
+    throw FitError("fit: error: --start-from-modes starts the output-error search; --method " + method +
+                   " has its own starts (drop --start-from-modes or use --method auto)");
+  std::optional<ModalStart> modal_start;
+  if (request.start_from_modes) modal_start = add_start_from_modes(evaluator, data, request.options, "fit");
+  const FitOptions& options = request.options;
+  FitResult& result = run.result;
+  if (method == "direct") result = fit_direct(evaluator, data, options);
+  else if (method == "two-step") result = fit_two_step(evaluator, data, options, two_step_options(model, derive, request.two_step, request.two_step_route));
+  else if (method == "hybrid") result = fit_hybrid(evaluator, data, options);
+  else if (method == "ekf") result = fit_ekf(evaluator, data, options, request.ekf);
+  else if (method == "arx-two-stage") result = fit_arx_two_stage(evaluator, data, options);
+  else if (method == "modal") result = fit_modal(evaluator, data, options);
+  else result = fit(evaluator, data, options);
+  if (modal_start) result.method_details["start_from_modes"] = start_from_modes_details(*modal_start);
+  result.model = request.model_path;
+  result.seed = options.seed;
+  result.warnings = passivity_warnings(model, data);
+  return run;
+}
+
 int run_fit(int argc, char** argv) {
   CLI::App app{"Estimate the parameters marked `estimate` from measured FRFs or time records: output error with "
                "analytic Jacobians, bounds by reparameterisation, a deterministic multi-start global search, "
@@ -141,50 +184,33 @@ int run_fit(int argc, char** argv) {
                  "(default 0.05; 0: constant parameters)")->check(non_negative_number());
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
-    symbolic::DeriveOptions derive;
-    derive.set = parse_set_options(sets);
+    FitRequest request;
+    request.set = parse_set_options(sets);
     OutputPlan plan;
     plan.files = {{"--json", json_path}};
     plan.report_dir = report_dir;
     plan.inputs = data_paths;
     plan.inputs.push_back(model_path);
     plan.check();
-    const ir::ModelIr model = read_model_with_roles(model_path, roles, derive.set).model;
-    const auto evaluator = evaluator::make_evaluator(model, derive);
-    std::vector<DataSet> data = load_data(data_paths, evaluator->info(), model, derive.set);
-    if (!band.empty()) data = within_band(data, parse_band("--band", band));
-    // A named method that cannot use the data is bad input (status 1), as docs/interfaces.md says.
-    for (const DataSet& d : data) {
-      if (method == "frf-output-error" && !d.is_frf())
-        throw FitError(
-            frontend::error_text(d.file(), "--method frf-output-error needs FRF data, but this is a time record"));
-      if (method == "time-output-error" && d.is_frf())
-        throw FitError(
-            frontend::error_text(d.file(), "--method time-output-error needs time records, but this file holds FRFs"));
-    }
-    const bool output_error = method == "auto" || method == "frf-output-error" || method == "time-output-error";
-    if (from_modes && !output_error)
-      throw FitError("fit: error: --start-from-modes starts the output-error search; --method " + method +
-                     " has its own starts (drop --start-from-modes or use --method auto)");
-    std::optional<ModalStart> modal_start;
-    if (from_modes) modal_start = add_start_from_modes(*evaluator, data, options, "fit");
-    options.progress = [](const FitProgress& p) {
+    request.model_path = model_path;
+    request.data_paths = data_paths;
+    request.method = method;
+    request.roles = roles;
+    request.options = options;
+    request.start_from_modes = from_modes;
+    request.options.progress = [](const FitProgress& p) {
       progress_line("fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
                     ", iteration " + std::to_string(p.iteration) + ", cost " + std::to_string(p.cost));
     };
-    FitResult result;
-    if (method == "direct") result = fit_direct(*evaluator, data, options);
-    else if (method == "two-step") result = fit_two_step(*evaluator, data, options, two_step_options(model, derive, two_step, two_step_route));
-    else if (method == "hybrid") result = fit_hybrid(*evaluator, data, options);
-    else if (method == "ekf") result = fit_ekf(*evaluator, data, options, ekf);
-    else if (method == "arx-two-stage") result = fit_arx_two_stage(*evaluator, data, options);
-    else if (method == "modal") result = fit_modal(*evaluator, data, options);
-    else result = fit(*evaluator, data, options);
+    request.band = band;
+    request.two_step = two_step;
+    request.two_step_route = two_step_route;
+    request.ekf = ekf;
+    const FitRun run = fit_model(std::move(request));
     progress_done();
-    if (modal_start) result.method_details["start_from_modes"] = start_from_modes_details(*modal_start);
-    result.model = model_path;
-    result.seed = options.seed;
-    result.warnings = passivity_warnings(model, data);
+    const FitResult& result = run.result;
+    const auto& evaluator = run.model;
+    const std::vector<DataSet>& data = run.data;
 
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, fit_result_json(result));

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "cli/command_runs.hpp"
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
@@ -19,6 +20,62 @@
 #include "frontend/parser.hpp"
 
 namespace mbgen::cli {
+
+ModalRun modal_identification(ModalRequest request) {
+  ModalRun run;
+  std::string& quantity_source = run.quantity_source;
+  std::unique_ptr<Model> model;
+  if (!request.model_path.empty()) {
+    symbolic::DeriveOptions derive;
+    derive.set = parse_set_options(request.sets);
+    model = evaluator::make_evaluator(frontend::parse_file(request.model_path), derive);
+  }
+  std::vector<FrfData> frfs;
+  FrfQuantity quantity = FrfQuantity::Unknown;
+  for (std::size_t d = 0; d < request.data_paths.size(); ++d) {
+    const std::string& path = request.data_paths[d];
+    DataSet file = model ? read_data_file(path, model->info().inputs, model->info().outputs) : read_data_file(path);
+    if (!file.is_frf()) throw DataError(path, 0, 0, "modal analysis needs FRFs, but this is a time record");
+    frfs.push_back(std::get<FrfData>(std::move(file.content)));
+    // From the records as read: by the file's name it missed UFF on standard input, through a pipe or under
+    // another extension (the modes and their std then differed), and it read the file a second time.
+    const FrfQuantity here = uff_frf_quantity(frfs.back());
+    quantity = d == 0 || here == quantity ? here : FrfQuantity::Unknown;
+  }
+  if (quantity != FrfQuantity::Unknown) quantity_source = "from the UFF ordinate type";
+  if (request.quantity != "auto") {
+    quantity = request.quantity == "receptance" ? FrfQuantity::Receptance
+               : request.quantity == "mobility" ? FrfQuantity::Mobility
+                                             : FrfQuantity::Accelerance;
+    quantity_source = "given by --quantity";
+  }
+  run.options = std::move(request.options);
+  ModalData& data = run.data;
+  data = modal_data(frfs, request.band, quantity);
+
+  std::optional<ModelComparison>& comparison = run.comparison;
+  if (model) {
+    comparison.emplace();
+    comparison->model_file = request.model_path;
+    comparison->modes = model_modes(*model, model->info().default_values(), data);
+    if (data.quantity == FrfQuantity::Unknown && comparison->modes.quantity != FrfQuantity::Unknown) {
+      data.quantity = comparison->modes.quantity;
+      quantity_source = "from the model's outputs";
+    }
+  }
+
+  ModalIdentification& result = run.result;
+  try {
+    result = identify_modes(data, run.options);
+  } catch (const std::invalid_argument& e) {  // an order or a selected frequency the data cannot serve
+    progress_done();
+    throw DataError(request.data_paths.front(), 0, 0, e.what());
+  }
+  progress_done();
+  if (comparison) comparison->pairing = pair_modes(result.modes, comparison->modes);
+
+  return run;
+}
 
 int run_modal(int argc, char** argv) {
   CLI::App app{
@@ -66,59 +123,18 @@ int run_modal(int argc, char** argv) {
     if (!model_path.empty()) plan.inputs.push_back(model_path);
     plan.check();
 
-    std::unique_ptr<Model> model;
-    if (!model_path.empty()) {
-      symbolic::DeriveOptions derive;
-      derive.set = parse_set_options(sets);
-      model = evaluator::make_evaluator(frontend::parse_file(model_path), derive);
-    }
-    std::vector<FrfData> frfs;
-    FrfQuantity quantity = FrfQuantity::Unknown;
-    std::string quantity_source;
-    for (std::size_t d = 0; d < data_paths.size(); ++d) {
-      const std::string& path = data_paths[d];
-      DataSet file = model ? read_data_file(path, model->info().inputs, model->info().outputs) : read_data_file(path);
-      if (!file.is_frf()) throw DataError(path, 0, 0, "modal analysis needs FRFs, but this is a time record");
-      frfs.push_back(std::get<FrfData>(std::move(file.content)));
-      // From the records as read: by the file's name it missed UFF on standard input, through a pipe or under
-      // another extension (the modes and their std then differed), and it read the file a second time.
-      const FrfQuantity here = uff_frf_quantity(frfs.back());
-      quantity = d == 0 || here == quantity ? here : FrfQuantity::Unknown;
-    }
-    if (quantity != FrfQuantity::Unknown) quantity_source = "from the UFF ordinate type";
-    if (quantity_text != "auto") {
-      quantity = quantity_text == "receptance" ? FrfQuantity::Receptance
-                 : quantity_text == "mobility" ? FrfQuantity::Mobility
-                                               : FrfQuantity::Accelerance;
-      quantity_source = "given by --quantity";
-    }
-    ModalData data = modal_data(frfs, band, quantity);
-
-    std::optional<ModelComparison> comparison;
-    if (model) {
-      comparison.emplace();
-      comparison->model_file = model_path;
-      comparison->modes = model_modes(*model, model->info().default_values(), data);
-      if (data.quantity == FrfQuantity::Unknown && comparison->modes.quantity != FrfQuantity::Unknown) {
-        data.quantity = comparison->modes.quantity;
-        quantity_source = "from the model's outputs";
-      }
-    }
-
-    options.lscf.progress = [](int order, int max_order) {
+    ModalRequest request;
+    request.data_paths = data_paths;
+    request.band = band;
+    request.model_path = model_path;
+    request.sets = sets;
+    request.options = options;
+    request.options.lscf.progress = [](int order, int max_order) {
       progress_line("modal: order " + std::to_string(order) + "/" + std::to_string(max_order));
     };
-    ModalIdentification result;
-    try {
-      result = identify_modes(data, options);
-    } catch (const std::invalid_argument& e) {  // an order or a selected frequency the data cannot serve
-      progress_done();
-      throw DataError(data_paths.front(), 0, 0, e.what());
-    }
-    progress_done();
-    if (comparison) comparison->pairing = pair_modes(result.modes, comparison->modes);
-
-    const ModalReportInput in{data, result, options, comparison ? &*comparison : nullptr, quantity_source};
+    request.quantity = quantity_text;
+    const ModalRun run = modal_identification(std::move(request));
+    const ModalReportInput in = run.input();
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, modal_result_json(in));
     if (!report_dir.empty()) write_modal_report(out.stage_directory(report_dir), in);

@@ -1,0 +1,214 @@
+// mbgen.fit, mbgen.diagnose and mbgen.modal: the commands' own functions (cli/command_runs.hpp) with their options
+// given as keyword arguments, returning the content of the JSON the command writes with --json (docs/interfaces.md:
+// mbgen-fit/1, mbgen-diagnosis/1, mbgen-modal/1), made by the same code and read back by Python's json module.
+#include <pybind11/stl.h>
+
+#include <mbgen/dynamics_error.hpp>
+#include <mbgen/fit_report.hpp>
+
+#include <cmath>
+
+#include "bindings.hpp"
+#include "cli/command_runs.hpp"
+#include "cli/commands.hpp"
+#include "cli/load_data.hpp"
+#include "cli/number_checks.hpp"
+#include "cli/seed_option.hpp"
+#include "cli/starts_option.hpp"
+#include "diagnosis/engine/diagnosis_json.hpp"
+#include "frontend/diagnostics.hpp"
+
+namespace mbgen::python {
+
+namespace {
+
+// An option's value checked by the validator the command line applies to it (its message is the command's).
+void check(const std::string& option, CLI::Validator validator, std::string text) {
+  if (const std::string problem = validator(text); !problem.empty()) usage_error(option, problem);
+}
+
+void member(const std::string& option, const std::string& value, const std::vector<std::string>& allowed) {
+  for (const std::string& a : allowed)
+    if (value == a) return;
+  std::string list;
+  for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+  usage_error(option, "`" + value + "` is none of " + list);
+}
+
+// A band as "LO:HI" (either side may be empty) or (LO, HI) with None for an open side, as --band's text.
+std::string band_text(const py::object& band) {
+  if (py::isinstance<py::str>(band)) return band.cast<std::string>();
+  const py::sequence s = py::reinterpret_borrow<py::sequence>(band);
+  if (!py::isinstance<py::sequence>(band) || py::len(s) != 2) usage_error("--band", "a band is \"LO:HI\" or (LO, HI)");
+  return (s[0].is_none() ? "" : option_text(s[0])) + ":" + (s[1].is_none() ? "" : option_text(s[1]));
+}
+
+// The model file and its options: a path with the options given here, or a mbgen.Model with those it was loaded
+// with and those given here after them (the command then refuses a parameter set twice, as it does).
+std::string model_file(const py::object& model, ModelOptions& options) {
+  if (!is_model(model)) return path_text(model);
+  ModelOptions merged = model_options_of(model);
+  merged.sets.insert(merged.sets.end(), options.sets.begin(), options.sets.end());
+  const auto append = [](std::vector<std::string>& to, const std::vector<std::string>& from) {
+    to.insert(to.end(), from.begin(), from.end());
+  };
+  append(merged.roles.fix, options.roles.fix);
+  append(merged.roles.free, options.roles.free);
+  append(merged.roles.bound, options.roles.bound);
+  options = std::move(merged);
+  return model_path(model);
+}
+
+// The model's file named in the message when its numeric dynamics fail, as the command does (run_guarded.hpp).
+template <typename F>
+auto guarded(const std::string& model, F f) {
+  try {
+    return released(f);  // a fit takes long
+  } catch (const DynamicsError& e) {
+    if (model.empty()) throw;
+    throw frontend::ModelError(model, {}, e.what());
+  }
+}
+
+void search_options(FitOptions& fit, const py::object& starts, const py::object& seed) {
+  if (!starts.is_none()) {
+    check("--starts", cli::starts_range(), py::str(starts));
+    fit.starts = starts.cast<int>();
+  }
+  if (!seed.is_none()) {
+    check("--seed", cli::seed_check(), py::str(seed));
+    fit.seed = std::stoull(py::str(seed).cast<std::string>());
+  }
+}
+
+py::object fit_command(const py::object& model, const py::object& data, const std::string& method,
+                       const py::object& set, const py::object& fix, const py::object& free, const py::object& bound,
+                       const py::object& starts, const py::object& seed, bool start_from_modes,
+                       const py::object& band, const std::string& two_step_route, const py::object& two_step_model,
+                       const py::object& two_step_criterion, const py::object& two_step_weighting,
+                       const py::object& ekf_drift) {
+  member("--method", method, {"auto", "frf-output-error", "time-output-error", "direct", "two-step", "hybrid", "ekf",
+                              "arx-two-stage", "modal"});
+  member("--two-step-route", two_step_route, {"auto", "analytical", "numerical", "minimisation"});
+  ModelOptions options = model_options(set, fix, free, bound);
+  cli::FitRequest request;
+  request.model_path = model_file(model, options);
+  request.set = cli::parse_set_options(options.sets);
+  request.roles = options.roles;
+  request.data_paths = paths(data, "--data");
+  request.method = method;
+  search_options(request.options, starts, seed);
+  request.start_from_modes = start_from_modes;
+  if (!band.is_none()) request.band = band_text(band);
+  request.two_step_route = two_step_route;
+  if (!two_step_model.is_none()) {
+    request.two_step.model = two_step_model.cast<std::string>();
+    member("--two-step-model", request.two_step.model, {"armax", "arx"});
+  }
+  if (!two_step_criterion.is_none()) {
+    request.two_step.criterion = two_step_criterion.cast<std::string>();
+    member("--two-step-criterion", request.two_step.criterion, {"aic", "bic", "fpe"});
+  }
+  if (!two_step_weighting.is_none()) {
+    request.two_step.weighting = two_step_weighting.cast<std::string>();
+    member("--two-step-weighting", request.two_step.weighting, {"normalised", "covariance"});
+  }
+  if (!ekf_drift.is_none()) {
+    check("--ekf-drift", cli::non_negative_number(), option_text(ekf_drift));
+    request.ekf.drift = ekf_drift.cast<double>();
+  }
+  const std::string path = request.model_path;
+  const std::string json = guarded(path, [&] { return fit_result_json(cli::fit_model(std::move(request)).result); });
+  return json_to_python(json);
+}
+
+py::object diagnose_command(const py::object& model, const py::object& data, const py::object& set,
+                            const py::object& fix, const py::object& free, const py::object& bound,
+                            const py::object& starts, const py::object& seed, bool start_from_modes,
+                            const py::object& full_fits,
+                            const py::object& fit_band) {
+  ModelOptions options = model_options(set, fix, free, bound);
+  cli::DiagnoseRequest request;
+  request.model_path = model_file(model, options);
+  request.options.set = cli::parse_set_options(options.sets);
+  request.roles = options.roles;
+  request.data_paths = paths(data, "--data");
+  search_options(request.options.fit, starts, seed);
+  request.options.start_from_modes = start_from_modes;
+  if (!full_fits.is_none()) {
+    check("--full-fits", cli::non_negative_number(), py::str(full_fits));
+    request.options.full_fits = full_fits.cast<int>();
+  }
+  if (!fit_band.is_none()) request.fit_band = band_text(fit_band);
+  const std::string path = request.model_path;
+  // As the command without --extended: no extended model is written, and the JSON's `extended_model` is empty.
+  const std::string json =
+      guarded(path, [&] { return diagnosis::diagnosis_json(cli::diagnose_model(std::move(request)).result, ""); });
+  return json_to_python(json);
+}
+
+py::object modal_command(const py::object& data, const py::object& band, const py::object& model,
+                         const py::object& set, const py::object& max_order, const py::object& select, bool refine,
+                         const std::string& quantity) {
+  member("--quantity", quantity, {"auto", "receptance", "mobility", "accelerance"});
+  cli::ModalRequest request;
+  request.data_paths = paths(data, "--data");
+  if (!band.is_none()) {
+    const cli::Band b = cli::parse_band("--band", band_text(band));
+    request.band = {b.lo, b.hi};
+  }
+  ModelOptions options = model_options(set, py::none(), py::none(), py::none());
+  if (!model.is_none()) {
+    request.model_path = model_file(model, options);
+    // modal takes no roles: a value --fix gave is the value it compares at.
+    for (const std::string& f : options.roles.fix)
+      if (f.find('=') != std::string::npos) options.sets.push_back(f);
+  } else if (!options.sets.empty()) {
+    usage_error("--set", "needs --model");
+  }
+  request.sets = options.sets;
+  if (!max_order.is_none()) {
+    check("--max-order", cli::positive_number(), py::str(max_order));
+    request.options.lscf.max_order = max_order.cast<int>();
+  }
+  if (!select.is_none())
+    for (const py::handle& f : select) {
+      check("--select", cli::positive_number(), option_text(f));
+      request.options.select_hz.push_back(f.cast<double>());
+    }
+  request.options.refine = refine;
+  request.quantity = quantity;
+  const std::string path = request.model_path;
+  const std::string json = guarded(path, [&] {
+    const cli::ModalRun run = cli::modal_identification(std::move(request));
+    return modal_result_json(run.input());
+  });
+  return json_to_python(json);
+}
+
+}  // namespace
+
+void register_commands(py::module_& m) {
+  m.def("fit", &fit_command, py::arg("model"), py::arg("data"), py::arg("method") = "auto", py::kw_only(),
+        py::arg("set") = py::none(), py::arg("fix") = py::none(), py::arg("free") = py::none(),
+        py::arg("bound") = py::none(), py::arg("starts") = py::none(), py::arg("seed") = py::none(),
+        py::arg("start_from_modes") = false, py::arg("band") = py::none(), py::arg("two_step_route") = "auto", py::arg("two_step_model") = py::none(),
+        py::arg("two_step_criterion") = py::none(), py::arg("two_step_weighting") = py::none(),
+        py::arg("ekf_drift") = py::none(),
+        "`mbgen fit`: estimates the model's `estimate` parameters from data files; returns the mbgen-fit/1 JSON "
+        "as Python objects. model: a path or a mbgen.Model; data: a path or a list of paths.");
+  m.def("diagnose", &diagnose_command, py::arg("model"), py::arg("data"), py::kw_only(), py::arg("set") = py::none(),
+        py::arg("fix") = py::none(), py::arg("free") = py::none(), py::arg("bound") = py::none(),
+        py::arg("starts") = py::none(), py::arg("seed") = py::none(), py::arg("start_from_modes") = false,
+        py::arg("full_fits") = py::none(),
+        py::arg("fit_band") = py::none(),
+        "`mbgen diagnose`: what the model gets wrong and which extension explains it; returns the "
+        "mbgen-diagnosis/1 JSON as Python objects.");
+  m.def("modal", &modal_command, py::arg("data"), py::kw_only(), py::arg("band") = py::none(),
+        py::arg("model") = py::none(), py::arg("set") = py::none(), py::arg("max_order") = py::none(),
+        py::arg("select") = py::none(), py::arg("refine") = true, py::arg("quantity") = "auto",
+        "`mbgen modal`: experimental modal analysis of measured FRFs; returns the mbgen-modal/1 JSON as Python "
+        "objects.");
+}
+
+}  // namespace mbgen::python
