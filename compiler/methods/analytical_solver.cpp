@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 
+#include "emit/infix_printer.hpp"
 #include "methods/elimination.hpp"
 #include "symbolic/transfer_functions.hpp"
 
@@ -13,10 +13,39 @@ namespace mbgen::analytical {
 
 namespace {
 
+// Deterministic text. GiNaC orders operands by hash values, which follow addresses and so differ from run to run: its
+// own printer gave the two-step's method_details in another order on each run of the same binary, and the
+// elimination's results themselves came out in different but equal forms (a sign moved between numerator and
+// denominator). So: the reduced fraction, numerator and denominator expanded, the sign fixed by the denominator's
+// term whose monomial prints first, each printed by infix_text.
 std::string text(const GiNaC::ex& e) {
-  std::ostringstream os;
-  os << e;
-  return os.str();
+  const GiNaC::ex nd = GiNaC::normal(e).numer_denom();
+  GiNaC::ex numerator = GiNaC::expand(nd.op(0)), denominator = GiNaC::expand(nd.op(1));
+  if (denominator.is_equal(GiNaC::ex(1))) return emit::infix_text(numerator);
+  // The sign: the denominator's term whose monomial (the term without its numeric factor) prints first is positive.
+  const auto coefficient = [](const GiNaC::ex& term) {
+    if (GiNaC::is_a<GiNaC::numeric>(term)) return GiNaC::ex_to<GiNaC::numeric>(term);
+    if (GiNaC::is_a<GiNaC::mul>(term) && GiNaC::is_a<GiNaC::numeric>(term.op(term.nops() - 1)))
+      return GiNaC::ex_to<GiNaC::numeric>(term.op(term.nops() - 1));
+    return GiNaC::numeric(1);
+  };
+  std::string first_monomial;
+  bool negative = false;
+  const std::size_t count = GiNaC::is_a<GiNaC::add>(denominator) ? denominator.nops() : 1;
+  for (std::size_t k = 0; k < count; ++k) {
+    const GiNaC::ex term = count == 1 ? denominator : denominator.op(k);
+    const GiNaC::numeric c = coefficient(term);
+    const std::string monomial = emit::infix_text(term / c);
+    if (k == 0 || monomial < first_monomial) {
+      first_monomial = monomial;
+      negative = c.is_negative();
+    }
+  }
+  if (negative) {
+    numerator = GiNaC::expand(-numerator);
+    denominator = GiNaC::expand(-denominator);
+  }
+  return "(" + emit::infix_text(numerator) + ")/(" + emit::infix_text(denominator) + ")";
 }
 
 // For the report: a closed form or an exact value, shortened past `limit` characters.
