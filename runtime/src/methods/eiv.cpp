@@ -2,6 +2,7 @@
 #include "mbgen/methods/eiv.hpp"
 
 #include "../estimation/fit_setup.hpp"
+#include "mbgen/parameterization.hpp"
 #include "../estimation/levenberg_marquardt.hpp"
 #include "eiv_problem.hpp"
 #include "method_result.hpp"
@@ -170,6 +171,17 @@ FitResult fit_eiv(const Model& model, const std::vector<DataSet>& data, const Fi
     if (std::find(start.estimated.begin(), start.estimated.end(), e.name) != start.estimated.end())
       j["output_error_std"][e.name] = e.std;
   }
+  // The bounds transforms keep the estimate inside; one pressed onto a bound has no meaningful std (as in output
+  // error), which the summary says rather than hides.
+  std::vector<std::string> pressed;
+  for (std::size_t jj = 0; jj < free.size(); ++jj) {
+    const int i = free[jj];
+    const auto col = static_cast<Eigen::Index>(jj);
+    const double sd = std::sqrt(std::max(cov(col, col), 0.0));
+    if (!bound_reached(setup.transforms[static_cast<std::size_t>(i)], values[i], sd).empty())
+      pressed.push_back(info.parameters[static_cast<std::size_t>(i)].name);
+  }
+  j["at_bound"] = pressed;
   std::string summary = "errors in variables (white force and output noise, levels from the data):";
   const nlohmann::json& n0 = j["noise"][0];
   for (const auto& [name, snr] : n0["input_snr_db"].items()) {
@@ -180,6 +192,7 @@ FitResult fit_eiv(const Model& model, const std::vector<DataSet>& data, const Fi
   }
   if (data.size() > 1) summary += " in " + data[0].file() + " (the others in method_details.eiv.noise)";
   summary += "; started from the output-error estimate";
+  for (const std::string& name : pressed) summary += "; " + name + " ended at a bound: its std means nothing";
   j["summary"] = summary;
   result.method_details["eiv"] = j.dump();
   return result;
