@@ -62,27 +62,53 @@ Eigen::MatrixXd psd_pinv(const Eigen::MatrixXd& H) {
 
 }  // namespace
 
-// One record's model at the lines and the unknowns eliminated at given noise weights.
+// One record's model (discretised, its derivatives, the noise weights) and its transient at its least-squares value.
+// Nothing per line is kept: a line's terms are recomputed where they are needed (line()), so that a long record
+// costs memory per sample only in its spectra and the Jacobian.
 struct EivProblem::Lines {
   bool ok = false;
   Eigen::Index ns = 0, no = 0, ni = 0;
-  DiscreteStateSpace dss;
-  std::vector<DiscreteStateSpace> dds;  // per free parameter (empty without derivatives)
-  Eigen::VectorXd w, v;                 // whitening of outputs and inputs: 1 / sigma
-  std::vector<Eigen::MatrixXcd> Finv;   // (z I - Phi)^-1
-  std::vector<Eigen::MatrixXcd> G;      // outputs x inputs
-  std::vector<Eigen::MatrixXcd> A;      // [w G; diag(v)]: the latent force's columns
-  std::vector<Eigen::MatrixXcd> AHAinv;
-  std::vector<Eigen::VectorXcd> r0;     // projected whitened data at t = 0
-  std::vector<Eigen::MatrixXcd> Jt;     // projected columns of t
-  Eigen::MatrixXd Ht;                   // sum Re(Jt^H Jt)
-  Eigen::VectorXd t;                    // the transient at its least-squares value
+  Eigen::MatrixXcd Phi, Gamma0, Gamma1, C, D;
+  std::vector<Eigen::MatrixXcd> dPhi, dGamma0, dGamma1, dC, dD;  // per free parameter (empty without derivatives)
+  Eigen::VectorXd w, v;  // whitening of outputs and inputs: 1 / sigma
+  Eigen::MatrixXd Ht;    // sum over lines of Re(Jt^H Jt)
+  Eigen::VectorXd t;     // the transient at its least-squares value
 
-  Eigen::VectorXcd project(std::size_t k, const Eigen::VectorXcd& y) const {
-    return y - A[k] * (AHAinv[k] * (A[k].adjoint() * y));
-  }
-  Eigen::MatrixXcd project(std::size_t k, const Eigen::MatrixXcd& y) const {
-    return y - A[k] * (AHAinv[k] * (A[k].adjoint() * y));
+  // The terms of line k.
+  struct Line {
+    Eigen::MatrixXcd Finv;    // (z I - Phi)^-1
+    Eigen::MatrixXcd Q;       // C (z I - Phi)^-1
+    Eigen::MatrixXcd G;       // outputs x inputs
+    Eigen::MatrixXcd A;       // [w G; diag(v)]: the true force's columns
+    Eigen::MatrixXcd AHAinv;  // (A^H A)^-1
+    Eigen::VectorXcd b;       // whitened data [w Y; v U]
+    Eigen::VectorXcd r0;      // b projected off A
+    Eigen::MatrixXcd Jt;      // the transient's columns, -[w z Q; 0], projected off A
+    bool ok = false;
+
+    Eigen::MatrixXcd project(const Eigen::MatrixXcd& y) const { return y - A * (AHAinv * (A.adjoint() * y)); }
+  };
+  Line line(const Record& rec, Eigen::Index k) const {
+    Line l;
+    const cd z = rec.z[k];
+    Eigen::MatrixXcd F = -Phi;
+    F.diagonal().array() += z;
+    l.Finv = Eigen::PartialPivLU<Eigen::MatrixXcd>(F).inverse();
+    l.Q = C * l.Finv;
+    l.G = l.Q * (Gamma0 + z * Gamma1) + D;
+    l.A.resize(no + ni, ni);
+    l.A.topRows(no) = w.asDiagonal() * l.G;
+    l.A.bottomRows(ni) = v.cast<cd>().asDiagonal();
+    l.AHAinv = (l.A.adjoint() * l.A).inverse();
+    l.b.resize(no + ni);
+    l.b.head(no) = w.asDiagonal() * rec.Y.row(k).transpose();
+    l.b.tail(ni) = v.asDiagonal() * rec.U.row(k).transpose();
+    l.r0 = l.project(l.b);
+    Eigen::MatrixXcd Bt = Eigen::MatrixXcd::Zero(no + ni, ns);
+    Bt.topRows(no) = -(z * (w.asDiagonal() * l.Q));
+    l.Jt = l.project(Bt);
+    l.ok = l.Finv.allFinite() && l.AHAinv.allFinite();
+    return l;
   }
 };
 
@@ -170,52 +196,35 @@ EivProblem::Lines EivProblem::solve_lines(const Record& rec, const Eigen::Vector
     const estimation::ReducedModel red =
         estimation::reduce_to_excited_block(m, derivatives ? &md : nullptr, inputs_, rec.outputs, column);
     const StateSpace ss = state_space(red.m);
-    L.dss = discretize(ss, rec.dt, input_hold(rec.hold));
+    const DiscreteStateSpace dss = discretize(ss, rec.dt, input_hold(rec.hold));
+    if (!dss.Phi.allFinite()) return L;
+    L.Phi = dss.Phi.cast<cd>(), L.Gamma0 = dss.Gamma0.cast<cd>(), L.Gamma1 = dss.Gamma1.cast<cd>();
+    L.C = dss.C.cast<cd>(), L.D = dss.D.cast<cd>();
     if (derivatives)
-      L.dds = discretize_derivatives(ss, state_space_derivatives(red.m, red.d, static_cast<int>(free_.size())),
-                                     rec.dt, input_hold(rec.hold));
+      for (const DiscreteStateSpace& d :
+           discretize_derivatives(ss, state_space_derivatives(red.m, red.d, static_cast<int>(free_.size())), rec.dt,
+                                  input_hold(rec.hold))) {
+        L.dPhi.push_back(d.Phi.cast<cd>());
+        L.dGamma0.push_back(d.Gamma0.cast<cd>());
+        L.dGamma1.push_back(d.Gamma1.cast<cd>());
+        L.dC.push_back(d.C.cast<cd>());
+        L.dD.push_back(d.D.cast<cd>());
+      }
   } catch (const std::runtime_error&) {  // DynamicsError: no model at these values (a trial step's failure)
     return L;
   }
-  if (!L.dss.Phi.allFinite()) return L;
-  L.ns = L.dss.Phi.rows();
+  L.ns = L.Phi.rows();
   L.no = static_cast<Eigen::Index>(rec.outputs.size());
   L.ni = rec.U.cols();
   L.w = noise.output.cwiseSqrt().cwiseInverse();
   L.v = noise.input.cwiseSqrt().cwiseInverse();
-  const Eigen::Index lines = rec.z.size(), ns = L.ns, no = L.no, ni = L.ni;
-  L.Finv.resize(static_cast<std::size_t>(lines));
-  L.G = L.A = L.AHAinv = L.Finv;
-  L.r0.resize(static_cast<std::size_t>(lines));
-  L.Jt.resize(static_cast<std::size_t>(lines));
-  L.Ht = Eigen::MatrixXd::Zero(ns, ns);
-  Eigen::VectorXd gt = Eigen::VectorXd::Zero(ns);
-  const Eigen::MatrixXcd Phi = L.dss.Phi.cast<cd>(), C = L.dss.C.cast<cd>(), D = L.dss.D.cast<cd>();
-  const Eigen::MatrixXcd G0 = L.dss.Gamma0.cast<cd>(), G1 = L.dss.Gamma1.cast<cd>();
-  for (Eigen::Index k = 0; k < lines; ++k) {
-    const auto kk = static_cast<std::size_t>(k);
-    const cd z = rec.z[k];
-    Eigen::MatrixXcd F = -Phi;
-    F.diagonal().array() += z;
-    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(F);
-    L.Finv[kk] = lu.inverse();
-    if (!L.Finv[kk].allFinite()) return Lines{};
-    const Eigen::MatrixXcd Q = C * L.Finv[kk];
-    L.G[kk] = Q * (G0 + z * G1) + D;
-    Eigen::MatrixXcd A(no + ni, ni);
-    A.topRows(no) = L.w.asDiagonal() * L.G[kk];
-    A.bottomRows(ni) = L.v.cast<cd>().asDiagonal();
-    L.AHAinv[kk] = (A.adjoint() * A).inverse();
-    L.A[kk] = A;
-    Eigen::VectorXcd b(no + ni);
-    b.head(no) = L.w.asDiagonal() * rec.Y.row(k).transpose();
-    b.tail(ni) = L.v.asDiagonal() * rec.U.row(k).transpose();
-    Eigen::MatrixXcd Bt = Eigen::MatrixXcd::Zero(no + ni, ns);
-    Bt.topRows(no) = -(z * (L.w.asDiagonal() * Q));
-    L.r0[kk] = L.project(kk, b);
-    L.Jt[kk] = L.project(kk, Bt);
-    L.Ht += (L.Jt[kk].adjoint() * L.Jt[kk]).real();
-    gt += (L.Jt[kk].adjoint() * L.r0[kk]).real();
+  L.Ht = Eigen::MatrixXd::Zero(L.ns, L.ns);
+  Eigen::VectorXd gt = Eigen::VectorXd::Zero(L.ns);
+  for (Eigen::Index k = 0; k < rec.z.size(); ++k) {
+    const Lines::Line l = L.line(rec, k);
+    if (!l.ok) return Lines{};
+    L.Ht += (l.Jt.adjoint() * l.Jt).real();
+    gt += (l.Jt.adjoint() * l.r0).real();
   }
   L.t = -(psd_pinv(L.Ht) * gt);
   L.ok = L.t.allFinite();
@@ -232,42 +241,32 @@ bool EivProblem::evaluate(const Eigen::VectorXd& values, const std::vector<EivNo
     const Lines L = solve_lines(rec, values, noise[ri], J != nullptr);
     if (!L.ok) return false;
     const Eigen::Index lines = rec.z.size(), ns = L.ns, no = L.no, ni = L.ni, width = 2 * (no + ni);
+    const Eigen::VectorXcd t = L.t.cast<cd>();
     Eigen::MatrixXd Jt_real(J ? width * lines : 0, ns);
-    const Eigen::MatrixXcd C = L.dss.C.cast<cd>(), Gamma0 = L.dss.Gamma0.cast<cd>(), Gamma1 = L.dss.Gamma1.cast<cd>();
-    std::vector<Eigen::MatrixXcd> dPhi, dGamma0, dGamma1, dC, dD;  // per free parameter
-    for (const DiscreteStateSpace& d : L.dds) {
-      dPhi.push_back(d.Phi.cast<cd>());
-      dGamma0.push_back(d.Gamma0.cast<cd>());
-      dGamma1.push_back(d.Gamma1.cast<cd>());
-      dC.push_back(d.C.cast<cd>());
-      dD.push_back(d.D.cast<cd>());
-    }
     for (Eigen::Index k = 0; k < lines; ++k) {
-      const auto kk = static_cast<std::size_t>(k);
+      const Lines::Line l = L.line(rec, k);
       const Eigen::Index row = rec.offset + k * width;
-      const Eigen::VectorXcd res = L.r0[kk] + L.Jt[kk] * L.t.cast<cd>();
+      const Eigen::VectorXcd res = l.r0 + l.Jt * t;
       r.segment(row, no + ni) = res.real();
       r.segment(row + no + ni, no + ni) = res.imag();
       if (!J) continue;
-      Jt_real.block(k * width, 0, no + ni, ns) = L.Jt[kk].real();
-      Jt_real.block(k * width + no + ni, 0, no + ni, ns) = L.Jt[kk].imag();
+      Jt_real.block(k * width, 0, no + ni, ns) = l.Jt.real();
+      Jt_real.block(k * width + no + ni, 0, no + ni, ns) = l.Jt.imag();
       // The true force at its least-squares value, and the state spectrum it and the transient give.
       const cd z = rec.z[k];
-      const Eigen::MatrixXcd Q = C * L.Finv[kk];
-      Eigen::VectorXcd b(no + ni);
-      b.head(no) = L.w.asDiagonal() * (rec.Y.row(k).transpose() - z * (Q * L.t.cast<cd>()));
-      b.tail(ni) = L.v.asDiagonal() * rec.U.row(k).transpose();
-      const Eigen::VectorXcd U0_ls = L.AHAinv[kk] * (L.A[kk].adjoint() * b);
-      const Eigen::MatrixXcd Gam = Gamma0 + z * Gamma1;
-      const Eigen::VectorXcd x = L.Finv[kk] * (Gam * U0_ls + z * L.t.cast<cd>());
+      Eigen::VectorXcd b = l.b;
+      b.head(no) -= z * (L.w.asDiagonal() * (l.Q * t));
+      const Eigen::VectorXcd U0 = l.AHAinv * (l.A.adjoint() * b);
+      const Eigen::VectorXcd x = l.Finv * ((L.Gamma0 + z * L.Gamma1) * U0 + z * t);
+      // Each parameter's column at fixed U0 and t, then projected off U0's (Kaufman).
       Eigen::MatrixXcd cols = Eigen::MatrixXcd::Zero(no + ni, nk);
       for (Eigen::Index j = 0; j < nk; ++j) {
         const auto jj = static_cast<std::size_t>(j);
-        const Eigen::VectorXcd dstate = dPhi[jj] * x + (dGamma0[jj] + z * dGamma1[jj]) * U0_ls;
-        const Eigen::VectorXcd dy = dC[jj] * x + Q * dstate + dD[jj] * U0_ls;
+        const Eigen::VectorXcd dstate = L.dPhi[jj] * x + (L.dGamma0[jj] + z * L.dGamma1[jj]) * U0;
+        const Eigen::VectorXcd dy = L.dC[jj] * x + l.Q * dstate + L.dD[jj] * U0;
         cols.col(j).head(no) = -(L.w.cast<cd>().asDiagonal() * dy);
       }
-      const Eigen::MatrixXcd proj = L.project(kk, cols);
+      const Eigen::MatrixXcd proj = l.project(cols);
       J->block(row, 0, no + ni, nk) = proj.real();
       J->block(row + no + ni, 0, no + ni, nk) = proj.imag();
     }
@@ -289,16 +288,16 @@ std::vector<EivNoise> EivProblem::estimate_noise(const Eigen::VectorXd& values,
     const Lines L = solve_lines(rec, values, noise[ri], false);
     if (!L.ok) throw FitError("fit --method eiv: the model cannot be evaluated at the estimate");
     const Eigen::Index lines = rec.z.size(), no = L.no, ni = L.ni;
+    const Eigen::VectorXcd t = L.t.cast<cd>();
     // Observations |e_o|^2 and the regressors |G_oi|^2 of the variance model.
     Eigen::MatrixXd e2(lines, no);
     std::vector<Eigen::MatrixXd> g2(static_cast<std::size_t>(ni), Eigen::MatrixXd(lines, no));
     for (Eigen::Index k = 0; k < lines; ++k) {
-      const auto kk = static_cast<std::size_t>(k);
-      const cd z = rec.z[k];
-      const Eigen::VectorXcd T = z * (L.dss.C.cast<cd>() * (L.Finv[kk] * L.t.cast<cd>()));
-      const Eigen::VectorXcd e = rec.Y.row(k).transpose() - L.G[kk] * rec.U.row(k).transpose() - T;
+      const Lines::Line l = L.line(rec, k);
+      const Eigen::VectorXcd e =
+          rec.Y.row(k).transpose() - l.G * rec.U.row(k).transpose() - rec.z[k] * (l.Q * t);
       e2.row(k) = e.cwiseAbs2().transpose();
-      for (Eigen::Index i = 0; i < ni; ++i) g2[static_cast<std::size_t>(i)].row(k) = L.G[kk].col(i).cwiseAbs2().transpose();
+      for (Eigen::Index i = 0; i < ni; ++i) g2[static_cast<std::size_t>(i)].row(k) = l.G.col(i).cwiseAbs2().transpose();
     }
     // Fisher scoring for exponential observations with mean a_o + sum_i b_i g2_i (identity link): weighted least
     // squares with weights 1 / mean^2, repeated. Floors: 1e-10 of the signals' mean line power.
