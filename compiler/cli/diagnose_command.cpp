@@ -84,6 +84,8 @@ int run_diagnose(int argc, char** argv) {
   app.add_option("--starts", options.fit.starts, "starts of the nominal fit's global search (default 16)")
       ->check(starts_range());
   app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)")->check(seed_check());
+  app.add_flag("--start-from-modes", options.start_from_modes, "the nominal fit also starts where the model's modes "
+               "match the data's own (LSCF modes paired by MAC; docs/estimation.md)");
   app.add_option("--full-fits", options.full_fits,
                  "candidates fitted fully after the screening (default 6; 0: every candidate)")
       ->check(non_negative_number());

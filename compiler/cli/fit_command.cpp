@@ -13,11 +13,13 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
 #include "cli/data_checks.hpp"
 #include "cli/load_data.hpp"
+#include "cli/modal_start_option.hpp"
 #include "cli/output_files.hpp"
 #include "cli/parameter_roles.hpp"
 #include "cli/number_checks.hpp"
@@ -44,7 +46,7 @@ std::string summary(const FitResult& r) {
   if (at_bound >= 2 && 2 * at_bound > static_cast<long>(r.parameters.size()))
     out += "warning: " + std::to_string(at_bound) + " of the " + std::to_string(r.parameters.size()) +
            " estimated parameters ended at a bound: the model does not fit these data as it is (a start far from the "
-           "truth, a sign or unit of the data, or a structure the model lacks)\n";
+           "truth: try --start-from-modes; a sign or unit of the data; or a structure the model lacks)\n";
   char line[256];
   std::snprintf(line, sizeof line, "%-12s %14s %14s %12s  %s\n", "parameter", "prior", "estimate", "std", "");
   out += line;
@@ -118,6 +120,9 @@ int run_fit(int argc, char** argv) {
   app.add_option("--starts", options.starts, "number of starts of the global search (default 16)")
       ->check(starts_range());
   app.add_option("--seed", options.seed, "seed of the global search (default 1)")->check(seed_check());
+  bool from_modes = false;
+  app.add_flag("--start-from-modes", from_modes, "output error: also start the search where the model's modes "
+               "match the data's own (LSCF modes paired by MAC; docs/estimation.md)");
   app.add_option("--band", band, "fit only the FRF lines within LO:HI Hz (the band the model is meant to represent)");
   TwoStepOptions two_step;
   std::string two_step_route = "auto";
@@ -158,6 +163,12 @@ int run_fit(int argc, char** argv) {
         throw FitError(
             frontend::error_text(d.file(), "--method time-output-error needs time records, but this file holds FRFs"));
     }
+    const bool output_error = method == "auto" || method == "frf-output-error" || method == "time-output-error";
+    if (from_modes && !output_error)
+      throw FitError("fit: error: --start-from-modes starts the output-error search; --method " + method +
+                     " has its own starts (drop --start-from-modes or use --method auto)");
+    std::optional<ModalStart> modal_start;
+    if (from_modes) modal_start = add_start_from_modes(*evaluator, data, options, "fit");
     options.progress = [](const FitProgress& p) {
       progress_line("fit: " + p.stage + " start " + std::to_string(p.start + 1) + "/" + std::to_string(p.starts) +
                     ", iteration " + std::to_string(p.iteration) + ", cost " + std::to_string(p.cost));
@@ -172,6 +183,7 @@ int run_fit(int argc, char** argv) {
     else if (method == "eiv") result = fit_eiv(*evaluator, data, options);
     else result = fit(*evaluator, data, options);
     progress_done();
+    if (modal_start) result.method_details["start_from_modes"] = start_from_modes_details(*modal_start);
     result.model = model_path;
     result.seed = options.seed;
     result.warnings = passivity_warnings(model, data);

@@ -12,6 +12,7 @@
 #include <mbgen/channel_residuals.hpp>
 #include <mbgen/data_split.hpp>
 #include <mbgen/frf.hpp>
+#include <mbgen/methods/modal_start.hpp>
 #include <mbgen/parallel.hpp>
 #include <mbgen/same_response.hpp>
 #include <mbgen/spectral_companion.hpp>
@@ -314,7 +315,16 @@ class Diagnoser {
   // screened on themselves).
   ModelState assess_nominal(const ir::ModelIr& model, const std::string& text) {
     say("nominal model: fitting " + std::to_string(model.parameters.size()) + " parameters");
-    ModelState nominal = assess(model, text, {}, options_.fit.starts);
+    ModelState nominal;
+    if (options_.start_from_modes) {
+      const std::unique_ptr<mbgen::Model> evaluator = derive_model(model);
+      ModalStart from_modes = start_from_modes(*evaluator, split_.fit, options_.fit);
+      say("nominal model: start from the data's modes: " + from_modes.summary);
+      nominal = assess(*evaluator, model, text, {}, std::max(options_.fit.starts, 2),
+                       Workers{options_.fit.threads, nullptr, nullptr}, from_modes.values);
+    } else {
+      nominal = assess(model, text, {}, options_.fit.starts);
+    }
     sensor_outputs_ = outputs_missed_alone(nominal.channels);
     if (has_records_) {
       if (const auto companion = estimation::spectral_companion(nominal.info, split_.fit)) {

@@ -35,6 +35,9 @@ namespace mbgen::diagnosis {
 struct DiagnoseOptions {
   std::map<std::string, std::string> set;  // --set overrides (decimal text)
   FitOptions fit;                          // the nominal fit (starts, seed, threads, weighting)
+  // The nominal fit also starts where the model's modes match the data's own (mbgen/methods/modal_start.hpp): for
+  // priors so far off that the search from them misses every mode.
+  bool start_from_modes = false;
   int candidate_starts = 2;                // starts per search of a candidate (start 0: the search's centre)
   // Screening: every candidate is first fitted more cheaply (two local fits, from the current estimate and from
   // the priors, without random starts, validation or residual analysis, on FRFs: the measured ones or the records'

@@ -4,15 +4,14 @@
 // optimisation of each subproblem, the damping least squares, and the result.
 #include "mbgen/methods/modal.hpp"
 
-#include "../estimation/levenberg_marquardt.hpp"
 #include "method_result.hpp"
 #include "modal_configurations.hpp"
 #include "modal_objectives.hpp"
+#include "modal_solve.hpp"
 
 #include "mbgen/modal_pairing.hpp"
 #include "mbgen/sensitivity.hpp"
 
-#include <Eigen/QR>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -26,7 +25,10 @@ namespace mbgen {
 
 namespace {
 
+using methods::LocalOptimum;
 using methods::ModalComparison;
+using methods::local_fit;
+using methods::residuals_at;
 
 constexpr int kSobolSamples = 256;
 constexpr int kMaxSweeps = 30;
@@ -46,108 +48,11 @@ using methods::hz_list;
 using methods::in_configuration;
 using methods::set_label;
 
-bool within_bounds(const ModelInfo& info, const Eigen::VectorXd& p, const std::vector<int>& which) {
-  for (int i : which) {
-    const ParameterInfo& q = info.parameters[static_cast<std::size_t>(i)];
-    if (!(p[i] >= q.lower && p[i] <= q.upper)) return false;
-  }
-  return true;
-}
-
-// The objectives of `modes` at `base` with parameters `which` = exp(x); false outside the bounds or when the model's
-// modes cannot be paired.
-bool residuals_at(const Problem& pr, const Eigen::VectorXd& base, const std::vector<int>& which,
-                  const std::vector<int>& modes, const Eigen::VectorXd& x, Eigen::VectorXd& r) {
-  Eigen::VectorXd p = base;
-  for (std::size_t j = 0; j < which.size(); ++j) p[which[j]] = std::exp(x[static_cast<Eigen::Index>(j)]);
-  if (!within_bounds(pr.model.info(), p, which)) return false;
-  return methods::objectives_at(pr, p, modes, r);
-}
-
-struct LocalOptimum {
-  Eigen::VectorXd p;  // all parameters
-  double cost = 0;
-  bool converged = false;
-  int iterations = 0;
-};
-
-// Levenberg-Marquardt on log(parameters `which`), Jacobian by forward differences (backward at a bound).
-LocalOptimum local_fit(const Problem& pr, const Eigen::VectorXd& base, const Eigen::VectorXd& start,
-                       const std::vector<int>& which, const std::vector<int>& modes, const FitOptions& options) {
-  const estimation::ResidualFunction f = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
-    if (!residuals_at(pr, base, which, modes, x, r)) return false;
-    if (J) {
-      J->resize(r.size(), x.size());
-      Eigen::VectorXd rh;
-      for (Eigen::Index j = 0; j < x.size(); ++j) {
-        constexpr double h = 1e-7;
-        Eigen::VectorXd xh = x;
-        xh[j] += h;
-        double step = h;
-        if (!residuals_at(pr, base, which, modes, xh, rh)) {
-          xh[j] = x[j] - h;
-          step = -h;
-          if (!residuals_at(pr, base, which, modes, xh, rh)) return false;
-        }
-        J->col(j) = (rh - r) / step;
-      }
-    }
-    return true;
-  };
-  Eigen::VectorXd x0(static_cast<Eigen::Index>(which.size()));
-  for (std::size_t j = 0; j < which.size(); ++j) x0[static_cast<Eigen::Index>(j)] = std::log(start[which[j]]);
-  estimation::LmOptions lm;
-  lm.max_iterations = options.max_iterations;
-  lm.cost_tolerance = options.cost_tolerance;
-  lm.step_tolerance = options.step_tolerance;
-  lm.gradient_tolerance = options.gradient_tolerance;
-  const estimation::LmResult res = estimation::levenberg_marquardt(f, x0, lm);
-  LocalOptimum o;
-  o.p = base;
-  for (std::size_t j = 0; j < which.size(); ++j) o.p[which[j]] = std::exp(res.x[static_cast<Eigen::Index>(j)]);
-  o.cost = res.cost;
-  o.converged = res.converged;
-  o.iterations = res.iterations;
-  return o;
-}
-
 // The range a parameter is sampled and restarted in: within a factor `spread` of `centre`, cut to its bounds.
 std::pair<double, double> log_range(const ParameterInfo& q, double centre, double spread) {
   const double lo = std::max(centre / spread, q.lower > 0 ? q.lower : centre / spread);
   const double hi = std::min(centre * spread, q.upper);
   return {std::log(lo), std::log(std::max(hi, lo))};
-}
-
-// Which parameters act on M or K, which on C only: the partition of the paper's assumption A1/A4.
-void classify(const Model& model, const Eigen::VectorXd& prior, const std::vector<int>& candidates,
-              std::vector<int>& structural, std::vector<int>& damping) {
-  ModelDerivatives d;
-  model.derivatives(prior, d);
-  const ModelInfo& info = model.info();
-  auto touches = [](const std::vector<DerivativeEntry>& list, int i) {
-    return std::any_of(list.begin(), list.end(),
-                       [&](const DerivativeEntry& e) { return e.param == i && e.value != 0; });
-  };
-  for (int i : candidates) {
-    const std::string& name = info.parameters[static_cast<std::size_t>(i)].name;
-    const bool mk = touches(d.M, i) || touches(d.K, i), c = touches(d.C, i);
-    if (touches(d.B, i) || touches(d.Cd, i) || touches(d.Cv, i) || touches(d.Ca, i))
-      throw FitError("fit: error: --method modal fits mass, stiffness and damping parameters to modes, but " + name +
-                     " enters the input or output map");
-    if (mk && c)
-      throw FitError(
-          "fit: error: --method modal needs each parameter to act on damping alone or on mass/stiffness "
-          "alone (Ellinger & Zaeh's assumption A1), but " +
-          name + " acts on both");
-    if (!mk && !c)
-      throw FitError("fit: error: --method modal: " + name + " acts on none of M, C, K at its prior value");
-    if (mk && !(prior[i] > 0))
-      throw FitError(
-          "fit: error: --method modal searches mass/stiffness parameters on a log scale and needs a "
-          "positive prior, but " +
-          name + " = " + std::to_string(prior[i]));
-    (mk ? structural : damping).push_back(i);
-  }
 }
 
 struct Subproblem {
@@ -215,8 +120,9 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   }
   if (active.empty())
     throw FitError("fit: error: --method modal: every parameter to estimate is set by `# set` in every data set");
-  std::vector<int> structural, damping, uninfluential;
-  classify(model, prior, active, structural, damping);
+  methods::ParameterClasses classes = methods::classify_parameters(model, prior, active);
+  if (!classes.other.empty()) throw FitError(classes.other.front().second);
+  std::vector<int> structural = classes.structural, damping = classes.damping, uninfluential;
 
   // 1. Reference modes per configuration: the experimental modal analysis of its FRFs (automatic pole selection), in
   //    the quantity the model's outputs are.
@@ -439,62 +345,10 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   for (int r = 0; r < nr; ++r) all_modes[static_cast<std::size_t>(r)] = r;
   nlohmann::json jdamp;
   const std::vector<bool> every(configurations.size(), true);
-  // Every mode's damping ratio at q (global order); false when a configuration's modes cannot be paired.
-  auto damping_ratios = [&](const Eigen::VectorXd& q, Eigen::VectorXd& zeta) {
-    const std::vector<ModalComparison> cmp = compare_all(pr, q, every);
-    for (const ModalComparison& c : cmp)
-      if (!c.ok) return false;
-    zeta.resize(nr);
-    for (int m = 0; m < nr; ++m) {
-      const ModeRef& mr = modes[static_cast<std::size_t>(m)];
-      zeta[m] = cmp[static_cast<std::size_t>(mr.configuration)].zeta[static_cast<std::size_t>(mr.mode)];
-    }
-    return true;
-  };
   auto solve_damping = [&]() {
     if (damping.empty()) return;
-    const auto kd = static_cast<Eigen::Index>(damping.size());
     nlohmann::json iterations = nlohmann::json::array();
-    for (int it = 0; it < kDampingIterations; ++it) {
-      Eigen::VectorXd z0, z1;
-      if (!damping_ratios(p, z0))
-        throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
-      Eigen::MatrixXd Q(nr, kd);
-      Eigen::VectorXd rhs(nr), c(kd);
-      for (Eigen::Index j = 0; j < kd; ++j) {
-        const int i = damping[static_cast<std::size_t>(j)];
-        c[j] = p[i];
-        const double h = 1e-3 * std::max({std::abs(p[i]), std::abs(prior[i]), 1e-6});
-        Eigen::VectorXd q = p;
-        q[i] += h;
-        if (!damping_ratios(q, z1))
-          throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
-        Q.col(j) = (z1 - z0) / h;
-      }
-      Eigen::VectorXd residual_share(nr);
-      for (int r = 0; r < nr; ++r) {
-        const double zeta_ref = reference_of(r).zeta;
-        residual_share[r] = z0[r] - Q.row(r).dot(c);
-        rhs[r] = (zeta_ref - residual_share[r]) / zeta_ref;
-        Q.row(r) /= zeta_ref;
-      }
-      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Q);
-      if (qr.rank() < kd)
-        throw FitError("fit: error: --method modal: the modal damping ratios of the " + std::to_string(nr) +
-                       " identified modes (" + hz_list(configurations) +
-                       ") cannot separate the damping parameters (rank " + std::to_string(qr.rank()) + " of " +
-                       std::to_string(kd) + ")");
-      const Eigen::VectorXd sol = qr.solve(rhs);
-      double step = 0;
-      for (Eigen::Index j = 0; j < kd; ++j) {
-        const int i = damping[static_cast<std::size_t>(j)];
-        const ParameterInfo& q = info.parameters[static_cast<std::size_t>(i)];
-        const double v = std::min(std::max(sol[j], q.lower), q.upper);
-        step = std::max(step, std::abs(v - p[i]) / std::max(std::abs(v), 1e-300));
-        p[i] = v;
-      }
-      iterations.push_back({{"relative_step", step}, {"ndd_residual_norm", (Q * sol - rhs).norm()}});
-    }
+    methods::solve_damping(pr, damping, prior, kDampingIterations, p, iterations);
     jdamp["iterations"] = iterations;
   };
   solve_damping();

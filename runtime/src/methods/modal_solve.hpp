@@ -1,0 +1,52 @@
+// The modal objectives solved for parameters: a Levenberg-Marquardt fit of mass/stiffness parameters (on a log
+// scale) to the reference modes' frequencies, shapes and scales, and the linear least squares of damping parameters
+// on the modal damping ratios. Shared by the modal method (modal_fit.cpp) and the start from the data's modes
+// (modal_start.cpp). Internal header.
+#pragma once
+
+#include "modal_configurations.hpp"
+
+#include "mbgen/fit.hpp"
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <vector>
+
+namespace mbgen::methods {
+
+struct LocalOptimum {
+  Eigen::VectorXd p;  // all parameters
+  double cost = 0;
+  bool converged = false;
+  int iterations = 0;
+};
+
+// The objectives of `modes` at `base` with parameters `which` = exp(x); false outside the bounds or when the model's
+// modes cannot be paired.
+bool residuals_at(const ModalProblem& pr, const Eigen::VectorXd& base, const std::vector<int>& which,
+                  const std::vector<int>& modes, const Eigen::VectorXd& x, Eigen::VectorXd& r);
+
+// Levenberg-Marquardt on log(parameters `which`) from `start` (the others at `base`), Jacobian by forward
+// differences (backward at a bound), with FitOptions' stopping rules.
+LocalOptimum local_fit(const ModalProblem& pr, const Eigen::VectorXd& base, const Eigen::VectorXd& start,
+                       const std::vector<int>& which, const std::vector<int>& modes, const FitOptions& options);
+
+// Which parameters act on M or K (structural), which on C only (damping); the others (acting on the input or
+// output map, on both, on none, or structural with a non-positive prior) in `other` with the reason, for the modal
+// method's refusals (Ellinger & Zaeh's assumption A1).
+struct ParameterClasses {
+  std::vector<int> structural, damping;
+  std::vector<std::pair<int, std::string>> other;
+};
+ParameterClasses classify_parameters(const Model& model, const Eigen::VectorXd& prior, const std::vector<int>& candidates);
+
+// The damping parameters `damping` in p by least squares on the modal damping ratios of every reference mode, at
+// fixed M and K: zeta_r = zeta_res,r + sum_j q_rj c_j, rows divided by zeta_ref (the NDD); q by differences
+// (steps relative to p and `prior`), relinearised `iterations` times, each value clipped to its bounds. Appends
+// {relative_step, ndd_residual_norm} per iteration to `log`. Throws FitError when the modes cannot be paired or the
+// ratios cannot separate the parameters.
+void solve_damping(const ModalProblem& pr, const std::vector<int>& damping, const Eigen::VectorXd& prior,
+                   int iterations, Eigen::VectorXd& p, nlohmann::json& log);
+
+}  // namespace mbgen::methods
