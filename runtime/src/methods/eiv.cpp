@@ -138,7 +138,10 @@ FitResult fit_eiv(const Model& model, const std::vector<DataSet>& data, const Fi
   for (ParameterEstimate& e : result.parameters) {
     const int i = info.parameter_index(e.name);
     e.value = values[i];
-    if (std::find(free.begin(), free.end(), i) != free.end()) e.pull_chi2 = 0, e.toward = 0;  // interior optimum
+    if (std::find(free.begin(), free.end(), i) != free.end()) {  // an interior optimum: no pull
+      e.pull_chi2 = 0;
+      e.toward = 0;
+    }
   }
   methods::set_covariance(cov, result);
   const int fitted = static_cast<int>(std::count_if(start.parameters.begin(), start.parameters.end(),

@@ -198,8 +198,11 @@ EivProblem::Lines EivProblem::solve_lines(const Record& rec, const Eigen::Vector
     const StateSpace ss = state_space(red.m);
     const DiscreteStateSpace dss = discretize(ss, rec.dt, input_hold(rec.hold));
     if (!dss.Phi.allFinite()) return L;
-    L.Phi = dss.Phi.cast<cd>(), L.Gamma0 = dss.Gamma0.cast<cd>(), L.Gamma1 = dss.Gamma1.cast<cd>();
-    L.C = dss.C.cast<cd>(), L.D = dss.D.cast<cd>();
+    L.Phi = dss.Phi.cast<cd>();
+    L.Gamma0 = dss.Gamma0.cast<cd>();
+    L.Gamma1 = dss.Gamma1.cast<cd>();
+    L.C = dss.C.cast<cd>();
+    L.D = dss.D.cast<cd>();
     if (derivatives)
       for (const DiscreteStateSpace& d :
            discretize_derivatives(ss, state_space_derivatives(red.m, red.d, static_cast<int>(free_.size())), rec.dt,
