@@ -88,7 +88,7 @@ py::object fit_command(const py::object& model, const py::object& data, const st
                        const py::object& two_step_criterion, const py::object& two_step_weighting,
                        const py::object& ekf_drift) {
   member("--method", method, {"auto", "frf-output-error", "time-output-error", "direct", "two-step", "hybrid", "ekf",
-                              "arx-two-stage", "modal"});
+                              "arx-two-stage", "modal", "eiv"});
   member("--two-step-route", two_step_route, {"auto", "analytical", "numerical", "minimisation"});
   ModelOptions options = model_options(set, fix, free, bound);
   cli::FitRequest request;

@@ -3,6 +3,7 @@
 #include <mbgen/fit_report.hpp>
 #include <mbgen/methods/arx_two_stage.hpp>
 #include <mbgen/methods/direct.hpp>
+#include <mbgen/methods/eiv.hpp>
 #include <mbgen/methods/ekf.hpp>
 #include <mbgen/methods/hybrid.hpp>
 #include <mbgen/methods/modal.hpp>
@@ -132,6 +133,7 @@ FitRun fit_model(FitRequest request) {
   else if (method == "ekf") result = fit_ekf(evaluator, data, options, request.ekf);
   else if (method == "arx-two-stage") result = fit_arx_two_stage(evaluator, data, options);
   else if (method == "modal") result = fit_modal(evaluator, data, options);
+  else if (method == "eiv") result = fit_eiv(evaluator, data, options);
   else result = fit(evaluator, data, options);
   if (modal_start) result.method_details["start_from_modes"] = start_from_modes_details(*modal_start);
   result.model = request.model_path;
@@ -151,9 +153,9 @@ int run_fit(int argc, char** argv) {
   app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable, fitted jointly")->required();
   app.add_option("--method", method, "auto (by the data), frf-output-error, time-output-error, direct, two-step, "
-                 "hybrid, ekf, arx-two-stage or modal (docs/methods.md)")
+                 "hybrid, ekf, arx-two-stage, modal or eiv (errors in variables: a noisy measured force; docs/methods.md)")
       ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "direct", "two-step", "hybrid", "ekf",
-                             "arx-two-stage", "modal"}));
+                             "arx-two-stage", "modal", "eiv"}));
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");

@@ -752,6 +752,40 @@ def scaled(got, base, factor, rel):
     return bool(np.all(np.abs(got - want) <= rel * np.abs(want) + 1e-300))
 
 
+def check_input_noise():
+    """--input-snr-db: the written force minus the same record's force without it is white noise at the stated
+    level (read back from the CSVs); the outputs are byte-identical (the structure is driven by the clean force and
+    the output noise keeps its stream); the truth JSON records the level; FRFs refuse the option."""
+    with tempfile.TemporaryDirectory() as tmp:
+        base = "--example mdof2 --case nominal --kind time --seed 12 --duration 4".split()
+        check(run_cli_here(base + ["-o", "clean.csv"], tmp) == 0, "--input-snr-db: record without it")
+        check(run_cli_here(base + ["--input-snr-db", "30", "-o", "noisy.csv"], tmp) == 0, "--input-snr-db 30")
+        clean, noisy = read_csv(tmp, "clean"), read_csv(tmp, "noisy")
+        f_clean, f_noisy = numbers(clean, "F1"), numbers(noisy, "F1")
+        rms_clean = np.sqrt(np.mean(f_clean ** 2))
+        diff = f_noisy - f_clean
+        want = rms_clean / 10 ** (30 / 20.0)
+        n = len(diff)
+        # The sample std of n Gaussian draws is within 5 of its standard errors (sigma / sqrt(2n)) of sigma.
+        check(abs(np.std(diff) - want) < 5 * want / np.sqrt(2 * n),
+              "--input-snr-db 30: force noise std %.5g, stated %.5g" % (np.std(diff), want))
+        check(abs(np.mean(diff)) < 5 * want / np.sqrt(n), "--input-snr-db: the force noise has zero mean")
+        lag1 = np.sum(diff[1:] * diff[:-1]) / np.sum(diff ** 2)
+        check(abs(lag1) < 5 / np.sqrt(n), "--input-snr-db: the force noise is white (lag-1 correlation %.3g)" % lag1)
+        check(column(clean, "d1") == column(noisy, "d1") and column(clean, "d2") == column(noisy, "d2"),
+              "--input-snr-db: outputs identical to the record without it (driven by the clean force)")
+        with open(os.path.join(tmp, "noisy.truth.json")) as f:
+            doc = json.load(f)
+        check(doc["noise"]["input_snr_db"] == 30 and close(doc["noise"]["input_sigma"]["F1"], want, 1e-4),
+              "--input-snr-db: truth JSON records the level and sigma")
+        with open(os.path.join(tmp, "clean.truth.json")) as f:
+            check("input_sigma" not in json.load(f)["noise"], "without --input-snr-db: no input noise in the JSON")
+        bad = subprocess.run([sys.executable, os.path.join(HERE, "truthgen.py"), "--example", "mdof2", "--case",
+                              "nominal", "--kind", "frf", "--input-snr-db", "40", "-o", os.path.join(tmp, "x.csv")],
+                             capture_output=True, text=True)
+        check(bad.returncode == 1 and "--input-snr-db" in bad.stderr, "--input-snr-db on FRFs is an error")
+
+
 def check_measurement_chain():
     """Each chain option against the file without it, read back from the CSVs (not through truthlib.chain)."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -968,6 +1002,7 @@ def main():
         check_noise_and_files()
         check_averages_and_options()
         check_measurement_chain()
+        check_input_noise()
         if "--effects" in args:
             check_effects()
         if "--corners" in args:

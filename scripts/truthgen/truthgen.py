@@ -39,6 +39,9 @@ def parse_args(argv):
     ap.add_argument("--case", help="truth case (see --list)")
     ap.add_argument("--kind", choices=["frf", "time"], default="frf")
     ap.add_argument("--snr-db", default="40", help="signal-to-noise ratio in dB per channel, or inf (default 40)")
+    ap.add_argument("--input-snr-db", type=float, metavar="DB",
+                    help="time: the written force carries white measurement noise at this SNR (sigma = RMS(force) / "
+                         "10^(DB/20), its own stream from --seed); the structure is driven by the clean force")
     ap.add_argument("--seed", type=int, default=1, help="seed of numpy.random.default_rng (default 1)")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                     help="set a model parameter for this data set; written as `# set NAME=VALUE`")
@@ -161,6 +164,12 @@ def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs,
                        "amplitude": args.amplitude, "hold": "zoh", "initial_state": "at rest"}
         for oi, o in enumerate(outputs):
             doc["noise"]["sigma"][o] = float(data["sigma"][oi])
+        if "input_sigma" in data:  # only with --input-snr-db: documents without it stay as they were
+            doc["noise"]["input_snr_db"] = args.input_snr_db
+            doc["noise"]["input_sigma"] = {i: float(data["input_sigma"][ii]) for ii, i in enumerate(inputs)}
+            doc["noise"]["definition"] = doc["noise"]["definition"].replace(
+                "inputs exact", "each written input with white Gaussian noise, sigma = RMS(clean input) / "
+                "10^(input_snr/20) (an independent stream), the structure driven by the clean input")
     return doc
 
 
@@ -181,6 +190,8 @@ def run(argv):
         raise UsageError("--averages and --no-coherence apply to FRFs only")
     if args.averages < 1:
         raise UsageError("--averages %d: must be at least 1" % args.averages)
+    if args.input_snr_db is not None and (args.kind != "time" or not math.isfinite(args.input_snr_db)):
+        raise UsageError("--input-snr-db applies to time records only and needs a finite number")
     if args.draw is not None and args.draw < 0:
         raise UsageError("--draw %d: must be a non-negative integer" % args.draw)
     if args.draw is not None:
@@ -216,6 +227,8 @@ def run(argv):
         args.amplitude = args.amplitude or generate.AMPLITUDE[case.example]
         data = generate.make_time(mats, fs, args.duration or generate.DURATION[case.example], snr_db, rng,
                                   args.amplitude, args.excitation)
+        if args.input_snr_db is not None:
+            generate.add_input_noise(data, args.input_snr_db, args.seed)
         chain.apply_time(data, measurement_chain, outputs, inputs)
         datafiles.write_time_csv(args.output, data, outputs, inputs, settings)
     base = args.output[:-4] if args.output.endswith(".csv") else args.output

@@ -67,6 +67,18 @@ def excitation(kind, count, inputs, amplitude, rng):
     raise ValueError("unknown excitation %r (binary, gaussian)" % kind)
 
 
+def add_input_noise(data, snr_db, seed):
+    """The written force with white measurement noise at `snr_db` per input (sigma = RMS of the clean force /
+    10^(snr/20)), drawn from its own stream (seed, 0x5eed) so that the output noise and the excitation are those of
+    the same record without it. The structure stays driven by the clean force (data["u_clean"])."""
+    rng = np.random.default_rng([seed, 0x5eed])
+    u = data["u"]
+    sigma = np.array([noise_sigma(np.sqrt(np.mean(u[:, i] ** 2)), snr_db) for i in range(u.shape[1])])
+    data["u_clean"] = u
+    data["u"] = u + rng.standard_normal(u.shape) * sigma
+    data["input_sigma"] = sigma
+
+
 def make_time(mats, fs, duration, snr_db, rng, amplitude, kind="binary"):
     """Time record from rest at t = 0: inputs held over each sample interval, outputs sampled at t_k.
 
