@@ -79,11 +79,48 @@ foreach(p m1 k12 c22)
   endif()
 endforeach()
 
+# Modes as UFF 55 at the sensor points (with UFF 15 nodes), and the modes `modal --uff` identifies in the exported UFF
+# FRFs: both checked by a reader written from the specification (uff55_check.py) against the JSON modes.
+expect_run(STATUS 0 ARGS export ${MDOF2} --what modes --format uff -o modes.uff)
+expect_run(STATUS 0 ARGS export ${MDOF2} --what modes --format uff -o modes_again.uff)
+file(SHA256 "${WORK}/modes.uff" first)
+file(SHA256 "${WORK}/modes_again.uff" second)
+if(NOT first STREQUAL second)
+  message(SEND_ERROR "export --what modes --format uff is not deterministic")
+endif()
+file(READ "${WORK}/modes.uff.map" map)
+if(NOT map MATCHES "\n1:[+]X = d1\n2:[+]X = d2\n")
+  message(SEND_ERROR "modes.uff.map does not name the points d1 and d2:\n${map}")
+endif()
+expect_run(STATUS 0 ARGS modal --data frf.uff --uff modal_modes.uff)
+file(READ "${WORK}/modal_modes.uff.map" map)
+if(NOT map MATCHES "\n1:[+]X = d1\n2:[+]X = d2\n")
+  message(SEND_ERROR "modal --uff's map does not keep the points of frf.uff.map:\n${map}")
+endif()
+execute_process(COMMAND /usr/bin/python3 "${CMAKE_CURRENT_LIST_DIR}/uff55_check.py" matrices.json modes.json modes.uff
+                        modal_modes.uff
+                WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(SEND_ERROR "UFF 55 modes disagree with the JSON modes:\n${out}${err}")
+endif()
+# CSV FRFs name no points: modal places them by the model's sensor points, or refuses naming the output.
+expect_run(STATUS 0 ARGS modal --data frf.csv --model ${MDOF2} --uff modal_csv.uff)
+expect_run(STATUS 1 STDERR "frf.csv: error: --uff: the output `d1` has no UFF node and direction"
+  ARGS modal --data frf.csv --uff refused.uff)
+if(EXISTS "${WORK}/refused.uff" OR EXISTS "${WORK}/refused.uff.map")
+  message(SEND_ERROR "a refused modal --uff left a file behind")
+endif()
+# A sensor along no global axis has no place in dataset 55.
+write_model(oblique "output y2 displacement of b along (1, 1, 0)")
+expect_run(STATUS 1 STDERR "oblique.mdl:9:.*output `y2` measures along a direction that is not a global axis"
+  ARGS export oblique.mdl --what modes --format uff -o oblique.uff)
+
 # Refusals.
 expect_run(STATUS 2 STDERR "--what frf needs the grid: --frf LO:HI:N" ARGS export ${MDOF2} --what frf)
 expect_run(STATUS 2 STDERR "--frf: expected LO:HI:N" ARGS export ${MDOF2} --what frf --frf 10:5:3)
 expect_run(STATUS 2 STDERR "--format: csv holds one table" ARGS export ${MDOF2} --format csv)
-expect_run(STATUS 2 STDERR "--format: uff holds FRFs: --what frf" ARGS export ${MDOF2} --format uff -o m.uff)
+expect_run(STATUS 2 STDERR "--format: uff holds FRFs \\(--what frf, UFF 58\\) or modes" ARGS export ${MDOF2} --format uff
+  -o m.uff)
 expect_run(STATUS 2 STDERR "-o: a UFF file comes with its mapping file" ARGS export ${MDOF2} --what frf --frf 10:20:3
   --format uff)
 expect_run(STATUS 1 STDERR "matrices.json: .*not a fit result" ARGS export ${MDOF2} --fit-result matrices.json)
