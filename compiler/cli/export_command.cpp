@@ -1,4 +1,4 @@
-// `mbgen export MODEL.mdl [--what matrices|state-space|modes|frf] [--frf LO:HI:N] [--format json|csv]
+// `mbgen export MODEL.mdl [--what matrices|state-space|modes|frf] [--frf LO:HI:N] [--format json|csv|uff|mat]
 // [--fit-result FIT.json] [--set ...] [-o OUT]`: the model's numbers at its values or at an estimate, for another
 // tool (docs/interfaces.md, "mbgen-export/1"). Deterministic: the same input gives the same bytes.
 #include <mbgen/csv.hpp>
@@ -15,6 +15,8 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/export_mat.hpp"
+#include "cli/mat_file.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
 #include "cli/uff_modes.hpp"
@@ -241,8 +243,9 @@ int run_export(int argc, char** argv) {
   app.add_option("--frf", grid, "with --what frf: the frequency grid LO:HI:N (Hz; N lines, both ends included)");
   app.add_option("--format", format, "json (default, schema mbgen-export/1), csv (frf: the FRF CSV layout mbgen "
                                      "reads; modes: one row per mode) or uff (frf: UFF 58; modes: UFF 55 at the sensor "
-                                     "points with their UFF 15 nodes; the .map beside it names the points)")
-      ->check(CLI::IsMember({"json", "csv", "uff"}));
+                                     "points with their UFF 15 nodes; the .map beside it names the points) or mat (MATLAB "
+                                     "variables, the JSON's content)")
+      ->check(CLI::IsMember({"json", "csv", "uff", "mat"}));
   app.add_option("--fit-result", fit_result, "the parameters' values from a `mbgen fit --json` result");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("-o,--output", output, "file to write (default: standard output)");
@@ -256,6 +259,10 @@ int run_export(int argc, char** argv) {
       throw CLI::ValidationError("--format", "uff holds FRFs (--what frf, UFF 58) or modes (--what modes, UFF 55)");
     if (format == "uff" && output == "-")
       throw CLI::ValidationError("-o", "a UFF file comes with its mapping file (OUT.map): name a file");
+    if (format == "mat" && !mat_file_available())
+      throw CLI::ValidationError("--format", "mat needs libmatio, and this mbgen was built without it (install "
+                                             "libmatio-dev, scripts/setup does, and build again)");
+    if (format == "mat" && output == "-") throw CLI::ValidationError("-o", "a .mat file is binary: name a file");
     const std::vector<double> f = what == "frf" ? frequency_grid(grid) : std::vector<double>{};
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(sets);
@@ -273,7 +280,10 @@ int run_export(int argc, char** argv) {
     evaluator->evaluate(p, m);
 
     std::string text;
-    if (format == "uff") {
+    if (format == "mat") {
+      const FrfResult frfs = what == "frf" ? frf(*evaluator, p, f) : FrfResult{};
+      text = export_mat(model_path, what, info, p, m, what == "frf" ? &frfs : nullptr);
+    } else if (format == "uff") {
       const UffFiles files = what == "modes" ? modes_uff(model, model_path, info, p, derive.set, m)
                                              : frf_uff(model, model_path, info, frf(*evaluator, p, f));
       OutputFiles out;
@@ -281,8 +291,7 @@ int run_export(int argc, char** argv) {
       out.add(output + ".map", files.mapping);
       out.commit();
       return 0;
-    }
-    if (format == "csv") {
+    } else if (format == "csv") {
       text = what == "frf" ? frf_csv(info, frf(*evaluator, p, f)) : modes_csv(info, modal_analysis(m.M, m.C, m.K));
     } else {
       Json j;

@@ -7,8 +7,19 @@ foreach(what matrices state-space modes)
   expect_run(STATUS 0 ARGS export ${MDOF2} --what ${what} -o ${what}.json)
 endforeach()
 expect_run(STATUS 0 ARGS export ${MDOF2} --what frf --frf 10:400:40 -o frf.json)
+# The same as MATLAB .mat files (libmatio), which export_check.py reads back with scipy and compares with the JSON.
+foreach(what matrices state-space modes)
+  expect_run(STATUS 0 ARGS export ${MDOF2} --what ${what} --format mat -o ${what}.mat)
+endforeach()
+expect_run(STATUS 0 ARGS export ${MDOF2} --what frf --frf 10:400:40 --format mat -o frf.mat)
+expect_run(STATUS 0 ARGS export ${MDOF2} --what frf --frf 10:400:40 --format mat -o frf_again.mat)
+file(SHA256 "${WORK}/frf.mat" first)
+file(SHA256 "${WORK}/frf_again.mat" second)
+if(NOT first STREQUAL second)
+  message(SEND_ERROR "export --format mat is not deterministic")
+endif()
 execute_process(COMMAND /usr/bin/python3 "${CMAKE_CURRENT_LIST_DIR}/export_check.py" matrices.json state-space.json
-                        modes.json frf.json
+                        modes.json frf.json matrices.mat state-space.mat modes.mat frf.mat
                 WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT status EQUAL 0)
   message(SEND_ERROR "export's numbers disagree with each other:\n${out}${err}")
@@ -116,6 +127,7 @@ expect_run(STATUS 1 STDERR "oblique.mdl:9:.*output `y2` measures along a directi
   ARGS export oblique.mdl --what modes --format uff -o oblique.uff)
 
 # Refusals.
+expect_run(STATUS 2 STDERR "-o: a .mat file is binary: name a file" ARGS export ${MDOF2} --format mat)
 expect_run(STATUS 2 STDERR "--what frf needs the grid: --frf LO:HI:N" ARGS export ${MDOF2} --what frf)
 expect_run(STATUS 2 STDERR "--frf: expected LO:HI:N" ARGS export ${MDOF2} --what frf --frf 10:5:3)
 expect_run(STATUS 2 STDERR "--format: csv holds one table" ARGS export ${MDOF2} --format csv)
