@@ -114,6 +114,23 @@ execute_process(COMMAND /usr/bin/python3 "${CMAKE_CURRENT_LIST_DIR}/uff55_check.
 if(NOT status EQUAL 0)
   message(SEND_ERROR "UFF 55 modes disagree with the JSON modes:\n${out}${err}")
 endif()
+# A UFF file without a mapping names its points by the 58 headers (node1:+X, ...), and its nodes (dataset 15, here
+# before the FRFs) go with the modes: the two response nodes, not the reference node 1001.
+file(READ "${WORK}/frf.uff" frfs)
+set(nodes "    -1\n    15\n")
+foreach(node 1 2 1001)
+  string(APPEND nodes "         ${node}         0         0         0  0.00000E+00  ${node}.00000E+00  0.00000E+00\n")
+endforeach()
+file(WRITE "${WORK}/bare.uff" "${nodes}    -1\n${frfs}")
+expect_run(STATUS 0 ARGS modal --data bare.uff --uff bare_modes.uff)
+file(READ "${WORK}/bare_modes.uff.map" map)
+if(NOT map MATCHES "\n1:[+]X = node1:[+]X\n2:[+]X = node2:[+]X\n$")
+  message(SEND_ERROR "modal --uff on UFF FRFs without a mapping: the points are not the headers' nodes:\n${map}")
+endif()
+file(READ "${WORK}/bare_modes.uff" modes)
+if(NOT modes MATCHES "^    -1\n    15 *\n         1         0         0         0  0.00000E[+]00  1.00000E[+]00[^\n]*\n         2 [^\n]*\n    -1\n    -1\n    55")
+  message(SEND_ERROR "modal --uff did not carry the data's nodes 1 and 2 (dataset 15) before the modes")
+endif()
 # CSV FRFs name no points: modal places them by the model's sensor points, or refuses naming the output.
 expect_run(STATUS 0 ARGS modal --data frf.csv --model ${MDOF2} --uff modal_csv.uff)
 expect_run(STATUS 1 STDERR "frf.csv: error: --uff: the output `d1` has no UFF node and direction"
