@@ -1,5 +1,6 @@
 // Reading datasets 55 (mode shapes at nodes) and 15 (nodes) from a UFF file; every other dataset is skipped, binary
 // 58b by its declared byte count (runtime/include/mbgen/uff55.hpp names the layout and where it comes from).
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -159,7 +160,10 @@ void read_15(Lines& c, std::vector<Uff15Node>& nodes) {
     if (is_delimiter(line)) return;
     if (trim(line).empty()) continue;
     const std::vector<double> v = numbers(c, line, "UFF 15 record 1", 7, false);
-    if (v.size() != 7 || v[0] != std::floor(v[0]) || std::abs(v[0]) > 2e9)
+    const bool integers = std::all_of(v.begin(), v.begin() + 4, [](double x) {
+      return x == std::floor(x) && std::abs(x) <= 2e9;  // fits an int
+    });
+    if (v.size() != 7 || !integers)
       throw DataError(c.file(), c.line(), 0,
                       "UFF 15 record 1: expected node, two coordinate systems, colour, x, y, z; found " + shown(line));
     Uff15Node n;
