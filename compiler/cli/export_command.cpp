@@ -184,8 +184,11 @@ UffFiles modes_uff(const ir::ModelIr& model, const std::string& model_path, cons
   for (const auto& [name, text] : sets) values[name] = std::stod(text);
   for (std::size_t i = 0; i < info.parameters.size(); ++i)
     values[info.parameters[i].name] = p[static_cast<Eigen::Index>(i)];
+  if (info.outputs.empty())
+    throw DataError(model_path, 0, 0, "UFF modes are written at the model's outputs (its sensor points), and it has none");
   const SensorGeometry geometry = sensor_geometry(model, values);
   const std::vector<Mode> modes = modal_analysis(m.M, m.C, m.K);
+  if (modes.empty()) throw DataError(model_path, 0, 0, "the model has no oscillating mode to write as UFF 55");
   std::vector<UffPoint> points;
   for (const std::string& name : info.outputs) points.push_back(geometry.outputs.at(name));
   const Eigen::MatrixXd maps = m.Cd + m.Cv + m.Ca;

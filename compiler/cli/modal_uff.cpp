@@ -37,6 +37,7 @@ int specific_data_type(FrfQuantity q) {
 UffText identified_modes_uff(const ModalData& data, const ModalIdentification& result,
                              const std::vector<std::string>& data_paths, const ir::ModelIr* model,
                              const std::map<std::string, std::string>& sets) {
+  if (result.modes.empty()) throw DataError(data_paths.front(), 0, 0, "--uff: no mode was identified to write");
   // The reference: the input with the most channels.
   std::vector<int> count(data.inputs.size(), 0);
   for (const ModalData::Channel& c : data.channels) ++count[static_cast<std::size_t>(c.input)];
