@@ -138,6 +138,11 @@ expect_run(STATUS 1 STDERR "frf.csv: error: --uff: the output `d1` has no UFF no
 if(EXISTS "${WORK}/refused.uff" OR EXISTS "${WORK}/refused.uff.map")
   message(SEND_ERROR "a refused modal --uff left a file behind")
 endif()
+# No outputs, no points to write modes at.
+file(WRITE "${WORK}/blind.mdl" "model blind\nparam m1 = 2\nparam k = 1000; param c = 1\nground g\nbody b { mass m1; dof x }\n"
+  "spring s { from g; to b; along x; stiffness k; damping c }\ninput F force on b along x\n")
+expect_run(STATUS 1 STDERR "blind.mdl: error: UFF modes are written at the model's outputs.*it has none"
+  ARGS export blind.mdl --what modes --format uff -o blind.uff)
 # A sensor along no global axis has no place in dataset 55.
 write_model(oblique "output y2 displacement of b along (1, 1, 0)")
 expect_run(STATUS 1 STDERR "oblique.mdl:9:.*output `y2` measures along a direction that is not a global axis"
