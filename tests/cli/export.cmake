@@ -138,6 +138,19 @@ expect_run(STATUS 1 STDERR "frf.csv: error: --uff: the output `d1` has no UFF no
 if(EXISTS "${WORK}/refused.uff" OR EXISTS "${WORK}/refused.uff.map")
   message(SEND_ERROR "a refused modal --uff left a file behind")
 endif()
+# Sensor points: one node per place (frame and point) with its coordinates, the direction from the axis (-Y for a
+# sensor along (0, -1, 0)); two sensors at one place share its node.
+write_model(placed "output y2 displacement of b at (0.5, 0.25, -1) along (0, -1, 0)"
+  "output y3 acceleration of b at (0.5, 0.25, -1) along z")
+expect_run(STATUS 0 ARGS export placed.mdl --what modes --format uff -o placed.uff)
+file(READ "${WORK}/placed.uff.map" map)
+if(NOT map MATCHES "\n1:[+]X = y\n2:-Y = y2\n2:[+]Z = y3\n$")
+  message(SEND_ERROR "placed.uff.map: the sensor points are not nodes 1 and 2 with their axes:\n${map}")
+endif()
+file(READ "${WORK}/placed.uff" placed)
+if(NOT placed MATCHES "\n         2         0         0         0  5.00000E-01  2.50000E-01 -1.00000E[+]00\n")
+  message(SEND_ERROR "placed.uff: node 2 is not at (0.5, 0.25, -1):\n${placed}")
+endif()
 # No outputs, no points to write modes at.
 file(WRITE "${WORK}/blind.mdl" "model blind\nparam m1 = 2\nparam k = 1000; param c = 1\nground g\nbody b { mass m1; dof x }\n"
   "spring s { from g; to b; along x; stiffness k; damping c }\ninput F force on b along x\n")
