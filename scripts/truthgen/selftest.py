@@ -654,6 +654,26 @@ def check_tower5():
           "accelerometers match the truth's model")
 
 
+def check_pairs():
+    """A pair of effects is both singles' effects at once: at the same truth parameters its effects are the union of
+    theirs, and its FRF differs from the nominal model's where each single's does (neither effect is lost)."""
+    for (example, name), c in cases.CASES.items():
+        if not hasattr(c, "parts"):
+            continue
+        singles = [cases.CASES[(example, part)] for part in c.parts]
+        p = c.truth_parameters()
+        keys = set(c.effects(p))
+        check(len(singles) == 2 and keys == set(singles[0].effects(p)) | set(singles[1].effects(p)),
+              "%s/%s: effects %s are both singles' (%s)" % (example, name, sorted(keys),
+                                                           ", ".join(s.name for s in singles)))
+        f = generate.frequency_grid(*generate.FRF_GRID[example])
+        H_pair = response.frf(c.build(p).matrices(), f)
+        for single in singles:
+            H_single = response.frf(single.build(p).matrices(), f)
+            check(np.max(np.abs(H_pair - H_single)) > 1e-6 * np.max(np.abs(H_single)),
+                  "%s/%s: differs from %s alone (the other effect is there)" % (example, name, single.name))
+
+
 def check_draws():
     """--draw: sizes inside their ranges, offsets 3-10 %, deterministic, different draws differ, and the
     default truth untouched."""
@@ -996,6 +1016,7 @@ def main():
         check_frame3()
         check_tower5()
         check_draws()
+        check_pairs()
         check_time_vs_frf()
         check_delay_from_rest()
         check_sensor_records()

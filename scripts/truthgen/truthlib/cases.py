@@ -478,7 +478,64 @@ def _tower5_cases():
     ]
 
 
-CASES = {(c.example, c.name): c for c in _mdof2_cases() + _spindle_cases() + _frame3_cases() + _tower5_cases()}
+# ---- two effects at once ---------------------------------------------------------------------------------------
+def paired(a, b, name):
+    """Case `name`: the hidden effects of cases a and b of one example together (their effects, sizes and values
+    merged; each keeps its own sizes' names and its own from_draw). The expected result is both operators, in any
+    order ("A+B"). The offsets of the estimable parameters are the pair's own (seeded by its name)."""
+    names_a = {sz.name for sz in a.sizes}
+    if names_a & {sz.name for sz in b.sizes}:
+        raise ValueError("paired cases %s and %s share a size's name" % (a.name, b.name))
+
+    def split(values):
+        return ({k: v for k, v in values.items() if k in a.defaults or k in names_a},
+                {k: v for k, v in values.items() if not (k in a.defaults or k in names_a)})
+
+    def make(values):
+        va, vb = split(values)
+        sa, sb = a.make(va), b.make(vb)
+        ea, eb = sa.get("effects", lambda p: {}), sb.get("effects", lambda p: {})
+        xa, xb = sa.get("extra", {}), sb.get("extra", {})
+
+        def effects(p):
+            both = dict(ea(p))
+            for key, value in eb(p).items():
+                if key in both:
+                    raise ValueError("paired cases %s and %s change the same part (%s)" % (a.name, b.name, key))
+                both[key] = value
+            return both
+
+        def extra(p):
+            return dict(xa(p) if callable(xa) else xa, **(xb(p) if callable(xb) else xb))
+
+        hz = [h for h in (sa.get("effect_hz"), sb.get("effect_hz")) if h is not None]
+        return {"hidden": sa["hidden"] + "; and " + sb["hidden"], "effects": effects, "extra": extra,
+                "effect_hz": hz[0] if hz else None,
+                "hidden_values": dict(sa.get("hidden_values", {}), **sb.get("hidden_values", {}))}
+
+    def from_draw(drawn):
+        da, db = split(drawn)
+        return dict(a.from_draw(da), **b.from_draw(db))
+
+    pair = Case(a.example, name, "%s+%s" % (a.operator, b.operator), make, dict(a.defaults, **b.defaults),
+                list(a.sizes) + list(b.sizes), from_draw,
+                kinds=tuple(k for k in a.kinds if k in b.kinds),
+                notes="Two effects at once: %s and %s; both are to be named." % (a.name, b.name))
+    pair.parts = (a.name, b.name)
+    return pair
+
+
+def _paired_cases(single):
+    by = {(c.example, c.name): c for c in single}
+    return [
+        paired(by[("spindle", "untie_parameter")], by[("spindle", "added_mass")], "mount_and_mass"),
+        paired(by[("spindle", "compliant_ground")], by[("spindle", "sensor_lowpass")], "base_and_lowpass"),
+        paired(by[("mdof2", "compliant_ground")], by[("mdof2", "sensor_lowpass")], "wall_and_lowpass"),
+    ]
+
+
+_SINGLE = _mdof2_cases() + _spindle_cases() + _frame3_cases() + _tower5_cases()
+CASES = {(c.example, c.name): c for c in _SINGLE + _paired_cases(_SINGLE)}
 
 
 def get(example, name):
