@@ -72,6 +72,9 @@ struct SsiCovDiagram {
   StabilizationDiagram diagram;
   int block_rows = 0;
   Eigen::VectorXd singular_values;  // of the block Toeplitz matrix, for the choice of the order
+  // Per diagram pole: its resonance peak |phi| |g| / |1 - |mu|| (R_k = sum phi mu^(k-1) g^T) relative to the
+  // largest of its order: how much of the responses it explains.
+  std::vector<double> contribution;
 };
 SsiCovDiagram ssi_cov(const ResponseData& data, const SsiCovOptions& options = {});
 
@@ -113,7 +116,14 @@ const char* output_only_method_name(OutputOnlyMethod m);  // "ssi-cov", "fdd"
 struct OutputOnlyOptions {
   OutputOnlyMethod method = OutputOnlyMethod::SsiCov;
   SsiCovOptions ssi;
-  SelectionOptions selection;
+  // A physical pole of SSI-cov is in the diagram from the order that makes room for it up to the highest, so its
+  // cluster must span half the orders (LSCF's 30 % let clusters of the correlations' estimation error through).
+  SelectionOptions selection = {StabilizationCriteria{}, 0.5};
+  // SSI-cov: a selected cluster whose median contribution (SsiCovDiagram::contribution) is below this is dropped:
+  // the correlations' own estimation error forms clusters stable over many orders but explaining almost nothing
+  // (on mdof2 up to 1.1e-5 of the strongest mode's peak, true modes with a tenth of the truth's strongest response
+  // 0.01 have 1e-4: docs/modal.md).
+  double min_contribution = 3e-5;
   FddOptions fdd;
 };
 
@@ -125,6 +135,7 @@ struct OperationalMode {
   int support = 0;          // SSI-cov: orders in the cluster; FDD: lines in the bell
   double f_scatter_hz = 0;  // SSI-cov: standard deviation of f over the cluster (not an uncertainty); FDD: NaN
   double zeta_scatter = 0;
+  double contribution = 0;  // SSI-cov: the median over the cluster of SsiCovDiagram::contribution; FDD: NaN
 };
 
 struct OutputOnlyIdentification {
@@ -132,6 +143,7 @@ struct OutputOnlyIdentification {
   SsiCovDiagram ssi;  // SSI-cov only
   FddResult fdd;      // FDD only
   std::vector<OperationalMode> modes;  // by frequency
+  std::vector<RejectedPole> rejected;  // SSI-cov: selected clusters dropped, with the reason
   Eigen::MatrixXd auto_mac;
 };
 

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <limits>
 #include <stdexcept>
 
@@ -22,13 +24,21 @@ double scatter(const std::vector<double>& v) {
   return std::sqrt(sum / static_cast<double>(v.size() - 1));
 }
 
+double median_contribution(const std::vector<double>& contribution, const SelectedPole& p) {
+  std::vector<double> c;
+  for (int i : p.members) c.push_back(contribution[static_cast<std::size_t>(i)]);
+  std::sort(c.begin(), c.end());
+  return c.size() % 2 ? c[c.size() / 2] : 0.5 * (c[c.size() / 2 - 1] + c[c.size() / 2]);
+}
+
 void fill_indicators(OperationalMode& m) {
   m.shape = normalize_shape(m.shape);
   m.mpc = modal_phase_collinearity(m.shape);
   m.mpd_deg = mean_phase_deviation_deg(m.shape);
 }
 
-std::vector<OperationalMode> ssi_modes(const StabilizationDiagram& d, const std::vector<SelectedPole>& poles) {
+std::vector<OperationalMode> ssi_modes(const StabilizationDiagram& d, const std::vector<double>& contribution,
+                                       const std::vector<SelectedPole>& poles) {
   std::vector<OperationalMode> modes;
   for (const SelectedPole& p : poles) {
     OperationalMode m;
@@ -47,6 +57,7 @@ std::vector<OperationalMode> ssi_modes(const StabilizationDiagram& d, const std:
       if (!nearest || std::abs(q.lambda - p.lambda) < std::abs(nearest->lambda - p.lambda)) nearest = &q;
     }
     m.shape = nearest->shape;
+    m.contribution = median_contribution(contribution, p);
     m.f_scatter_hz = scatter(f);
     m.zeta_scatter = scatter(zeta);
     fill_indicators(m);
@@ -66,7 +77,7 @@ std::vector<OperationalMode> fdd_modes(const FddResult& r) {
                                      : std::complex<double>(std::numeric_limits<double>::quiet_NaN(), w);
     m.shape = p.shape;
     m.support = p.bell_lines;
-    m.f_scatter_hz = m.zeta_scatter = std::numeric_limits<double>::quiet_NaN();
+    m.f_scatter_hz = m.zeta_scatter = m.contribution = std::numeric_limits<double>::quiet_NaN();
     fill_indicators(m);
     modes.push_back(std::move(m));
   }
@@ -95,7 +106,19 @@ OutputOnlyIdentification identify_output_only(const ResponseData& data, const Ou
       throw std::invalid_argument("SSI-cov needs at least 2 response channels (this has 1; FDD works with one)");
     out.ssi = ssi_cov(data, options.ssi);
     label_stability(out.ssi.diagram, options.selection.criteria);
-    out.modes = ssi_modes(out.ssi.diagram, select_physical_poles(out.ssi.diagram, options.selection));
+    std::vector<SelectedPole> kept;
+    for (SelectedPole& p : select_physical_poles(out.ssi.diagram, options.selection)) {
+      const double c = median_contribution(out.ssi.contribution, p);
+      if (c >= options.min_contribution) {
+        kept.push_back(std::move(p));
+        continue;
+      }
+      std::ostringstream why;
+      why << std::setprecision(3) << "it explains too little of the responses: contribution " << c << " < "
+          << options.min_contribution;
+      out.rejected.push_back({std::move(p), why.str()});
+    }
+    out.modes = ssi_modes(out.ssi.diagram, out.ssi.contribution, kept);
   } else {
     out.fdd = fdd(data, options.fdd);
     out.modes = fdd_modes(out.fdd);

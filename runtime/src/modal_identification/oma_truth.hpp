@@ -5,6 +5,7 @@
 
 #include "mbgen/data_set.hpp"
 #include "mbgen/output_only_modal.hpp"
+#include "mbgen_test/files.hpp"
 #include "mbgen_test/paths.hpp"
 #include "shape_metrics.hpp"
 
@@ -44,7 +45,8 @@ inline OmaTruth oma_truth(const std::string& example, int draw, int seed) {
   REQUIRE(!file.is_frf());
   OmaTruth t{response_data({std::get<TimeRecord>(std::move(file.content))}), {}};
   std::ifstream in(stem + ".truth.json");
-  for (const nlohmann::json& m : nlohmann::json::parse(in).at("truth_modes")) {
+  const nlohmann::json document = nlohmann::json::parse(in);
+  for (const nlohmann::json& m : document.at("truth_modes")) {
     TruthMode mode{m.at("f_hz").get<double>(), m.at("zeta").get<double>(), m.at("visibility").get<double>(), {}};
     const auto& shape = m.at("shape");
     mode.shape.resize(static_cast<Eigen::Index>(shape.size()));
@@ -61,7 +63,9 @@ inline OmaTruth oma_truth(const std::string& example, int draw, int seed) {
 inline void check_against_truth(const std::vector<OperationalMode>& found, const std::vector<TruthMode>& truth,
                                 bool check_damping = true) {
   constexpr double kVisible = 0.01;
-  for (const OperationalMode& m : found) INFO("identified " << m.f_hz << " Hz, zeta " << m.zeta);
+  for (const OperationalMode& m : found)
+    UNSCOPED_INFO("identified " << m.f_hz << " Hz, zeta " << m.zeta << ", support " << m.support << ", MPC "
+                                << m.mpc << ", contribution " << m.contribution);
   for (const TruthMode& t : truth) {
     if (t.visibility < kVisible) continue;
     const OperationalMode* best = nullptr;

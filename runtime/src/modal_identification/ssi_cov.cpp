@@ -46,7 +46,7 @@ SsiCovDiagram ssi_cov(const ResponseData& data, const SsiCovOptions& options) {
   SsiCovDiagram out;
   out.block_rows = i;
   const std::vector<Eigen::MatrixXd> R = output_correlations(data, 2 * i);
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(block_toeplitz(R, i), Eigen::ComputeThinU);
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(block_toeplitz(R, i), Eigen::ComputeThinU | Eigen::ComputeThinV);
   out.singular_values = svd.singularValues();
   StabilizationDiagram& d = out.diagram;
   d.references = r;
@@ -61,7 +61,12 @@ SsiCovDiagram ssi_cov(const ResponseData& data, const SsiCovOptions& options) {
     const Eigen::MatrixXd C = O.topRows(l);
     const Eigen::MatrixXd A = O.topRows(l * (i - 1)).colPivHouseholderQr().solve(O.bottomRows(l * (i - 1)));
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(A);
-    std::vector<DiagramPole> poles;
+    // G = E[x_(t+1) y_ref,t^T] is the last block column of the controllability factor S^(1/2) V^T; the modal
+    // factors of R_k = sum_m phi_m mu_m^(k-1) g_m^T are phi = C psi and g^T = psi^-1 G.
+    const Eigen::MatrixXd G = svd.singularValues().head(n).cwiseSqrt().asDiagonal() *
+                              svd.matrixV().leftCols(n).bottomRows(r).transpose();
+    const Eigen::MatrixXcd g = eig.eigenvectors().fullPivLu().solve(G.cast<std::complex<double>>());
+    std::vector<std::pair<DiagramPole, double>> poles;
     for (Eigen::Index k = 0; k < n; ++k) {
       const std::complex<double> mu = eig.eigenvalues()[k];
       if (mu.imag() <= 0 || std::abs(mu) <= 0) continue;  // one of each pair; real poles are no vibration
@@ -72,10 +77,17 @@ SsiCovDiagram ssi_cov(const ResponseData& data, const SsiCovOptions& options) {
       p.zeta = -p.lambda.real() / std::abs(p.lambda);
       if (!(p.f_hz > 0 && p.f_hz < nyquist)) continue;
       p.shape = C.cast<std::complex<double>>() * eig.eigenvectors().col(k);
-      poles.push_back(std::move(p));
+      // The mode's resonance peak in the correlations' spectrum: |phi| |g| / |1 - |mu||.
+      const double peak = p.shape.norm() * g.row(k).norm() / std::max(std::abs(1 - std::abs(mu)), 1e-300);
+      poles.emplace_back(std::move(p), peak);
     }
-    std::sort(poles.begin(), poles.end(), [](const DiagramPole& a, const DiagramPole& b) { return a.f_hz < b.f_hz; });
-    for (DiagramPole& p : poles) d.poles.push_back(std::move(p));
+    std::sort(poles.begin(), poles.end(), [](const auto& a, const auto& b) { return a.first.f_hz < b.first.f_hz; });
+    double top = 0;
+    for (const auto& p : poles) top = std::max(top, p.second);
+    for (auto& p : poles) {
+      d.poles.push_back(std::move(p.first));
+      out.contribution.push_back(top > 0 ? p.second / top : 0.0);
+    }
     if (options.progress) options.progress(n, max_order);
   }
   return out;
