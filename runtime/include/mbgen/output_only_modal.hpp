@@ -87,6 +87,7 @@ struct FddOptions {
   double window_s = 0;
   double prominence_db = 10;  // a peak of the first singular value stands this far above the lower valleys
   double bell_mac = 0.8;      // EFDD: the mode's bell is the lines around the peak whose vector has this MAC
+  double bell_db = 20;        // with the peak's, and whose first singular value is within this of the peak's
   double lo_hz = 0, hi_hz = 0;  // peaks searched in lo..hi (0: from the third line to 0.95 Nyquist)
 };
 

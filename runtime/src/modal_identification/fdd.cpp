@@ -99,14 +99,19 @@ std::pair<double, double> vertex(double a, double b, double c) {
 // back to the lag domain is the mode's correlation function r(tau) ~ exp(-sigma' tau) cos(w_d tau), sigma' its
 // decay plus the lag window's 1 / Tw. The decay from the logarithmic decrement of its extrema between 0.8 and 0.2
 // of r(0), w_d from its zero crossings, both by least squares.
-void enhance(const Spectra& s, Eigen::Index peak, double dt, double window_s, double bell_mac, FddPeak& out) {
+void enhance(const Spectra& s, Eigen::Index peak, double dt, double window_s, double bell_mac, double bell_db,
+             FddPeak& out) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   out.efdd_f_hz = out.zeta = nan;
   const Eigen::Index lines = s.f_hz.size(), K = lines - 1;
   const Eigen::VectorXcd& u = s.vectors[static_cast<std::size_t>(peak)];
   Eigen::Index a = peak, b = peak;
-  while (a > 1 && modal_detail::shape_mac(s.vectors[static_cast<std::size_t>(a - 1)], u) >= bell_mac) --a;
-  while (b < K - 1 && modal_detail::shape_mac(s.vectors[static_cast<std::size_t>(b + 1)], u) >= bell_mac) ++b;
+  const double floor = s.singular(peak, 0) * std::pow(10.0, -bell_db / 10);
+  const auto in_bell = [&](Eigen::Index j) {
+    return s.singular(j, 0) >= floor && modal_detail::shape_mac(s.vectors[static_cast<std::size_t>(j)], u) >= bell_mac;
+  };
+  while (a > 1 && in_bell(a - 1)) --a;
+  while (b < K - 1 && in_bell(b + 1)) ++b;
   out.bell_lines = static_cast<int>(b - a + 1);
   Eigen::VectorXcd half = Eigen::VectorXcd::Zero(lines);
   for (Eigen::Index j = a; j <= b; ++j) half[j] = s.singular(j, 0);
@@ -117,11 +122,12 @@ void enhance(const Spectra& s, Eigen::Index peak, double dt, double window_s, do
     return;
   }
   std::vector<double> ext_t, ext_log, zero_t;
+  // Up to the first extremum below 0.2 of r(0): the envelope, not |r| itself, which passes 0 every half period.
   for (Eigen::Index m = 1; m + 1 < K; ++m) {
-    if (std::abs(r[m]) < kEnvelopeLow * r[0]) break;
     if ((r[m] > 0) != (r[m + 1] > 0)) zero_t.push_back((static_cast<double>(m) + r[m] / (r[m] - r[m + 1])) * dt);
     if (std::abs(r[m]) >= std::abs(r[m - 1]) && std::abs(r[m]) > std::abs(r[m + 1])) {
       const auto [x, value] = vertex(std::abs(r[m - 1]), std::abs(r[m]), std::abs(r[m + 1]));
+      if (value < kEnvelopeLow * r[0]) break;
       if (value <= kEnvelopeHigh * r[0]) {
         ext_t.push_back((static_cast<double>(m) + x) * dt);
         ext_log.push_back(std::log(value));
@@ -178,7 +184,7 @@ FddResult fdd(const ResponseData& data, const FddOptions& options) {
     p.f_hz = s.f_hz[j];
     p.shape = s.vectors[static_cast<std::size_t>(j)];
     p.sv_db = db(s.singular(j, 0));
-    enhance(s, j, data.dt, out.window_s, options.bell_mac, p);
+    enhance(s, j, data.dt, out.window_s, options.bell_mac, options.bell_db, p);
     out.peaks.push_back(std::move(p));
   }
   return out;

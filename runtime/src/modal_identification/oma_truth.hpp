@@ -60,8 +60,12 @@ inline OmaTruth oma_truth(const std::string& example, int draw, int seed) {
 // The targets of issue 34 for every truth mode the responses show (visibility >= 0.01: its peak in the output
 // spectrum within 40 dB of the strongest mode's): an identified mode within 1 % in frequency, its damping ratio
 // within 25 %, MAC > 0.95 with the truth's shape at the sensors; and no identified mode that is no truth mode.
+struct Targets {
+  bool frequency = true, damping = true, shape = true, no_spurious = true;
+};
+
 inline void check_against_truth(const std::vector<OperationalMode>& found, const std::vector<TruthMode>& truth,
-                                bool check_damping = true) {
+                                const Targets& targets = {}) {
   constexpr double kVisible = 0.01;
   for (const OperationalMode& m : found)
     UNSCOPED_INFO("identified " << m.f_hz << " Hz, zeta " << m.zeta << ", support " << m.support << ", MPC "
@@ -76,11 +80,12 @@ inline void check_against_truth(const std::vector<OperationalMode>& found, const
     const double mac = modal_detail::shape_mac(best->shape, t.shape);
     INFO("identified " << best->f_hz << " Hz (" << 100 * (best->f_hz / t.f_hz - 1) << " %), zeta " << best->zeta
                        << " (" << 100 * (best->zeta / t.zeta - 1) << " %), MAC " << mac);
-    CHECK(std::abs(best->f_hz / t.f_hz - 1) < 0.01);
-    if (check_damping) CHECK(std::abs(best->zeta / t.zeta - 1) < 0.25);
-    CHECK(mac > 0.95);
+    if (targets.frequency) CHECK(std::abs(best->f_hz / t.f_hz - 1) < 0.01);
+    if (targets.damping) CHECK(std::abs(best->zeta / t.zeta - 1) < 0.25);
+    if (targets.shape) CHECK(mac > 0.95);
   }
   for (const OperationalMode& m : found) {
+    if (!targets.no_spurious) break;
     bool near = false;
     for (const TruthMode& t : truth) near = near || std::abs(m.f_hz / t.f_hz - 1) < 0.01;
     INFO("identified " << m.f_hz << " Hz, zeta " << m.zeta << ": no truth mode within 1 %");
