@@ -21,13 +21,13 @@
    solve (no matrix exponential): agreement to 1e-6 for every case with time records, filters and delays
    included. A delayed record from rest equals a record simulated 4 times finer and shifted. Then Welch H1 of
    long noisy records agrees with the sampled-system FRF within the predicted random error.
-6. Output-only records (--kind oma): no force column; the truth modes are the damped modes and their shapes those
-   of the hand-solved quadratic eigenproblem (M s^2 + C s + K) phi = 0 at the outputs; the clean responses'
-   covariance and lag-1 covariance agree with the stationary covariance of the discrete Lyapunov equation
-   P = Ad P Ad^T + Bd Q Bd^T (Q = force RMS^2 I): the record is stationary; the noise has the defined sigma.
 5. Noise: FRF noise has the defined sigma, also averaged; coherence as defined; same seed, same data; the CLI
    writes files in the documented formats. The measurement chain (--gain, --input-gain, --force-sign, --swap,
    --unit, --frf-form): each file against the one without the option, read back from the CSVs.
+7. Output-only records (--kind oma): no force column; the truth modes are the damped modes and their shapes those
+   of the hand-solved quadratic eigenproblem (M s^2 + C s + K) phi = 0 at the outputs; the clean responses'
+   covariance and lag-1 covariance agree with the stationary covariance of the discrete Lyapunov equation
+   P = Ad P Ad^T + Bd Q Bd^T (Q = force RMS^2 I): the record is stationary; the noise has the defined sigma.
 """
 import hashlib
 import json
@@ -980,7 +980,7 @@ def check_corners(snr_db=40.0, only=None):
                          " at " + ", ".join("%s=%g" % kv for kv in sorted(sizes.items())))
 
 
-# ---- 6. output-only records ----------------------------------------------------------------------------
+# ---- 7. output-only records ----------------------------------------------------------------------------
 def check_oma():
     from truthlib import operational
     with tempfile.TemporaryDirectory() as tmp:
