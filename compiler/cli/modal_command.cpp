@@ -23,6 +23,10 @@
 
 namespace mbgen::cli {
 
+namespace {
+constexpr int kMaxOutputOnlyOrder = 400;
+}  // namespace
+
 ModalRun modal_identification(ModalRequest request) {
   ModalRun run;
   std::string& quantity_source = run.quantity_source;
@@ -37,7 +41,9 @@ ModalRun modal_identification(ModalRequest request) {
   for (std::size_t d = 0; d < request.data_paths.size(); ++d) {
     const std::string& path = request.data_paths[d];
     DataSet file = model ? read_data_file(path, model->info().inputs, model->info().outputs) : read_data_file(path);
-    if (!file.is_frf()) throw DataError(path, 0, 0, "modal analysis needs FRFs, but this is a time record (--output-only analyses response records)");
+    if (!file.is_frf())
+      throw DataError(path, 0, 0,
+                      "modal analysis needs FRFs, but this is a time record (--output-only analyses response records)");
     frfs.push_back(std::get<FrfData>(std::move(file.content)));
     // From the records as read: by the file's name it missed UFF on standard input, through a pipe or under
     // another extension (the modes and their std then differed), and it read the file a second time.
@@ -138,6 +144,10 @@ int run_modal(int argc, char** argv) {
       oma.options.ssi.max_order = options.lscf.max_order;
       if (oma.options.method == OutputOnlyMethod::Fdd && options.lscf.max_order > 0)
         throw CLI::ValidationError("--max-order", "SSI-cov only (not with --method fdd)");
+      // The block Toeplitz matrix grows with the order: 400 states is ~200 modes, and an SVD of minutes.
+      if (options.lscf.max_order > kMaxOutputOnlyOrder)
+        throw CLI::ValidationError("--max-order", "at most " + std::to_string(kMaxOutputOnlyOrder) +
+                                                      " with --output-only");
       oma.json_path = json_path;
       oma.report_dir = report_dir;
       OutputPlan plan;

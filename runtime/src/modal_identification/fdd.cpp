@@ -74,7 +74,8 @@ std::vector<Eigen::Index> find_peaks(const Spectra& s, Eigen::Index lo, Eigen::I
   const double df = s.f_hz[1] - s.f_hz[0];
   std::vector<Eigen::Index> peaks;
   for (Eigen::Index j = lo; j < hi; ++j) {
-    const Eigen::Index h = std::max<Eigen::Index>(2, static_cast<Eigen::Index>(std::ceil(kPeakWindow * s.f_hz[j] / df)));
+    const Eigen::Index h =
+        std::max<Eigen::Index>(2, static_cast<Eigen::Index>(std::ceil(kPeakWindow * s.f_hz[j] / df)));
     bool highest = true;
     for (Eigen::Index m = std::max(lo, j - h); m <= std::min(hi - 1, j + h) && highest; ++m)
       highest = m == j || s1[m] < s1[j] || (s1[m] == s1[j] && m > j);
@@ -177,8 +178,9 @@ FddResult fdd(const ResponseData& data, const FddOptions& options) {
   out.singular = s.singular;
   const double df = s.f_hz[1];
   const Eigen::Index lo = options.lo_hz > 0 ? static_cast<Eigen::Index>(std::ceil(options.lo_hz / df)) : 2;
-  const Eigen::Index hi = options.hi_hz > 0 ? std::min<Eigen::Index>(K, static_cast<Eigen::Index>(options.hi_hz / df) + 1)
-                                            : static_cast<Eigen::Index>(0.95 * static_cast<double>(K));
+  const Eigen::Index hi = options.hi_hz > 0
+                               ? std::min<Eigen::Index>(K, static_cast<Eigen::Index>(options.hi_hz / df) + 1)
+                               : static_cast<Eigen::Index>(0.95 * static_cast<double>(K));
   for (const Eigen::Index j : find_peaks(s, std::max<Eigen::Index>(lo, 1), hi, options.prominence_db)) {
     FddPeak p;
     p.f_hz = s.f_hz[j];

@@ -73,8 +73,9 @@ std::vector<OperationalMode> fdd_modes(const FddResult& r) {
     m.f_hz = std::isfinite(p.efdd_f_hz) ? p.efdd_f_hz : p.f_hz;
     m.zeta = p.zeta;
     const double w = kTwoPi * m.f_hz;
-    m.lambda = std::isfinite(m.zeta) ? std::complex<double>(-m.zeta * w, w * std::sqrt(std::max(0.0, 1 - m.zeta * m.zeta)))
-                                     : std::complex<double>(std::numeric_limits<double>::quiet_NaN(), w);
+    m.lambda = std::isfinite(m.zeta)
+                   ? std::complex<double>(-m.zeta * w, w * std::sqrt(std::max(0.0, 1 - m.zeta * m.zeta)))
+                   : std::complex<double>(std::numeric_limits<double>::quiet_NaN(), w);
     m.shape = p.shape;
     m.support = p.bell_lines;
     m.f_scatter_hz = m.zeta_scatter = m.contribution = std::numeric_limits<double>::quiet_NaN();

@@ -36,7 +36,8 @@ struct OmaTruth {
 inline OmaTruth oma_truth(const std::string& example, int draw, int seed) {
   const std::filesystem::path folder = std::filesystem::path(mbgen_binary_dir()) / "oma_truth";
   std::filesystem::create_directories(folder);
-  const std::string stem = (folder / (example + "_draw" + std::to_string(draw) + "_seed" + std::to_string(seed))).string();
+  const std::string stem =
+      (folder / (example + "_draw" + std::to_string(draw) + "_seed" + std::to_string(seed))).string();
   const std::string command = "/usr/bin/python3 " + source_path("scripts/truthgen/truthgen.py") + " --example " +
                               example + " --case nominal --kind oma --draw " + std::to_string(draw) + " --seed " +
                               std::to_string(seed) + " -o " + stem + ".csv";

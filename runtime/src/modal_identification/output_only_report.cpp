@@ -76,7 +76,8 @@ std::string stabilization_plot(const OutputOnlyReportInput& in, bool background)
   for (const OperationalMode& m : in.result.modes)
     gp << "set arrow from " << m.f_hz << ", graph 0 to " << m.f_hz << ", graph 1 nohead lc rgb '#2ca02c' dt 3\n";
   gp << "plot ";
-  if (background) gp << "'singular.dat' using 1:2 axes x1y2 with lines lc rgb '#888888' title 'first singular value', \\\n     ";
+  if (background)
+    gp << "'singular.dat' using 1:2 axes x1y2 with lines lc rgb '#888888' title 'first singular value', \\\n     ";
   gp << "'stabilization.dat' using 1:($3 == 0 ? $2 : 1/0) with points pt 7 ps 0.25 lc rgb '#bbbbbb' title 'new', \\\n"
      << "     '' using 1:($3 == 1 ? $2 : 1/0) with points pt 1 ps 0.5 lc rgb '#1f77b4' title 'f', \\\n"
      << "     '' using 1:($3 == 2 ? $2 : 1/0) with points pt 2 ps 0.5 lc rgb '#9467bd' title 'f, zeta', \\\n"
@@ -89,7 +90,8 @@ std::string singular_plot(const OutputOnlyReportInput& in) {
   std::ostringstream gp;
   gp << "set terminal svg size 1000,560 dynamic font 'sans,11'\nset output 'singular.svg'\n"
      << "set title 'Singular values of the output spectral matrix (FDD)' noenhanced\nset xlabel 'f [Hz]'\n"
-     << "set xrange [0:" << in.result.fdd.f_hz[in.result.fdd.f_hz.size() - 1] << "]\nset ylabel 'singular value'\nset logscale y\nset format y '%.0e'\nset grid\nset key top right\n";
+     << "set xrange [0:" << in.result.fdd.f_hz[in.result.fdd.f_hz.size() - 1] << "]\n"
+     << "set ylabel 'singular value'\nset logscale y\nset format y '%.0e'\nset grid\nset key top right\n";
   for (const OperationalMode& m : in.result.modes)
     gp << "set arrow from " << m.f_hz << ", graph 0 to " << m.f_hz << ", graph 1 nohead lc rgb '#2ca02c' dt 3\n";
   gp << "plot for [c=2:" << in.result.fdd.singular.cols() + 1
