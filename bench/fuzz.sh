@@ -7,14 +7,14 @@ cd "$(dirname "$0")/.."
 seconds=${1:-600}
 cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
   -DMBGEN_SANITIZE=ON -DMBGEN_FUZZ=ON -DMBGEN_BUILD_BENCH=OFF -DMBGEN_WERROR=ON >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target model_parser_fuzz data_csv_fuzz data_uff_fuzz
+cmake --build build-fuzz -j"$(nproc)" --target model_parser_fuzz data_csv_fuzz data_uff_fuzz data_uff55_fuzz
 source=$PWD
 # CLN's one-time start-up allocation is not a leak of ours (scripts/lsan.supp, as the ctest fuzz:TARGET runs use):
 # without this, every model-parser job ended in a "leak" that wrote an empty crash-* input.
 export LSAN_OPTIONS="suppressions=$source/scripts/lsan.supp:print_suppressions=0"
 cd build-fuzz  # libFuzzer writes its job logs (fuzz-N.log) into the working directory
 status=0
-for target in model_parser data_csv data_uff; do
+for target in model_parser data_csv data_uff data_uff55; do
   corpus=fuzz-corpus/$target
   mkdir -p "$corpus"
   echo "fuzz: $target for $seconds s"

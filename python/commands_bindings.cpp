@@ -199,7 +199,7 @@ void register_commands(py::module_& m) {
         "as Python objects. model: a path or a mbgen.Model; data: a path or a list of paths.");
   m.def("diagnose", &diagnose_command, py::arg("model"), py::arg("data"), py::kw_only(), py::arg("set") = py::none(),
         py::arg("fix") = py::none(), py::arg("free") = py::none(), py::arg("bound") = py::none(),
-        py::arg("starts") = py::none(), py::arg("seed") = py::none(), py::arg("start_from_modes") = false,
+        py::arg("starts") = py::none(), py::arg("seed") = py::none(), py::arg("start_from_modes") = true,
         py::arg("full_fits") = py::none(),
         py::arg("fit_band") = py::none(),
         "`mbgen diagnose`: what the model gets wrong and which extension explains it; returns the "

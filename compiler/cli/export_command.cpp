@@ -1,4 +1,4 @@
-// `mbgen export MODEL.mdl [--what matrices|state-space|modes|frf] [--frf LO:HI:N] [--format json|csv]
+// `mbgen export MODEL.mdl [--what matrices|state-space|modes|frf] [--frf LO:HI:N] [--format json|csv|uff|mat]
 // [--fit-result FIT.json] [--set ...] [-o OUT]`: the model's numbers at its values or at an estimate, for another
 // tool (docs/interfaces.md, "mbgen-export/1"). Deterministic: the same input gives the same bytes.
 #include <mbgen/csv.hpp>
@@ -15,8 +15,11 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/export_mat.hpp"
+#include "cli/mat_file.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
+#include "cli/uff_modes.hpp"
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
@@ -172,6 +175,36 @@ UffFiles frf_uff(const ir::ModelIr& model, const std::string& model_path, const 
   return out;
 }
 
+// The model's modes at its sensor points as UFF 55, the points' coordinates as UFF 15 before them, and the mapping
+// file that names the points. A shape at an output is the motion of its point along its axis: the output map's row
+// (displacement, velocity or acceleration map; one of them holds the output) applied to the mode's coordinates.
+UffFiles modes_uff(const ir::ModelIr& model, const std::string& model_path, const ModelInfo& info,
+                   const Eigen::VectorXd& p, const std::map<std::string, std::string>& sets, const ModelMatrices& m) {
+  std::map<std::string, double> values;
+  for (const auto& [name, text] : sets) values[name] = std::stod(text);
+  for (std::size_t i = 0; i < info.parameters.size(); ++i)
+    values[info.parameters[i].name] = p[static_cast<Eigen::Index>(i)];
+  if (info.outputs.empty())
+    throw DataError(model_path, 0, 0, "UFF modes are written at the model's outputs (its sensor points), and it has none");
+  const SensorGeometry geometry = sensor_geometry(model, values);
+  const std::vector<Mode> modes = modal_analysis(m.M, m.C, m.K);
+  if (modes.empty()) throw DataError(model_path, 0, 0, "the model has no oscillating mode to write as UFF 55");
+  std::vector<UffPoint> points;
+  for (const std::string& name : info.outputs) points.push_back(geometry.outputs.at(name));
+  const Eigen::MatrixXd maps = m.Cd + m.Cv + m.Ca;
+  Eigen::MatrixXcd shapes(static_cast<Eigen::Index>(points.size()), static_cast<Eigen::Index>(modes.size()));
+  std::vector<std::complex<double>> eigenvalues;
+  for (std::size_t k = 0; k < modes.size(); ++k) {
+    eigenvalues.push_back(modes[k].eigenvalue);
+    shapes.col(static_cast<Eigen::Index>(k)) = maps.cast<std::complex<double>>() * modes[k].shape;
+  }
+  UffFiles out;
+  out.data = uff55_modes_text(points, eigenvalues, shapes, 8, "mbgen export " + model_path, "model modes",
+                              geometry.nodes);
+  out.mapping = uff_points_mapping("mbgen export " + model_path, info.outputs, points);
+  return out;
+}
+
 std::string modes_csv(const ModelInfo& info, const std::vector<Mode>& modes) {
   std::ostringstream out;
   out << "mode,f_hz,zeta";
@@ -212,8 +245,10 @@ int run_export(int argc, char** argv) {
       ->check(CLI::IsMember({"matrices", "state-space", "modes", "frf"}));
   app.add_option("--frf", grid, "with --what frf: the frequency grid LO:HI:N (Hz; N lines, both ends included)");
   app.add_option("--format", format, "json (default, schema mbgen-export/1), csv (frf: the FRF CSV layout mbgen "
-                                     "reads; modes: one row per mode) or uff (frf: UFF 58 and its .map beside it)")
-      ->check(CLI::IsMember({"json", "csv", "uff"}));
+                                     "reads; modes: one row per mode) or uff (frf: UFF 58; modes: UFF 55 at the sensor "
+                                     "points with their UFF 15 nodes; the .map beside it names the points) or mat (MATLAB "
+                                     "variables, the JSON's content)")
+      ->check(CLI::IsMember({"json", "csv", "uff", "mat"}));
   app.add_option("--fit-result", fit_result, "the parameters' values from a `mbgen fit --json` result");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   app.add_option("-o,--output", output, "file to write (default: standard output)");
@@ -223,9 +258,14 @@ int run_export(int argc, char** argv) {
     if (what != "frf" && !grid.empty()) throw CLI::ValidationError("--frf", "only with --what frf");
     if (format == "csv" && (what == "matrices" || what == "state-space"))
       throw CLI::ValidationError("--format", "csv holds one table: frf or modes; matrices and the state space are json");
-    if (format == "uff" && what != "frf") throw CLI::ValidationError("--format", "uff holds FRFs: --what frf");
+    if (format == "uff" && what != "frf" && what != "modes")
+      throw CLI::ValidationError("--format", "uff holds FRFs (--what frf, UFF 58) or modes (--what modes, UFF 55)");
     if (format == "uff" && output == "-")
       throw CLI::ValidationError("-o", "a UFF file comes with its mapping file (OUT.map): name a file");
+    if (format == "mat" && !mat_file_available())
+      throw CLI::ValidationError("--format", "mat needs libmatio, and this mbgen was built without it (install "
+                                             "libmatio-dev, scripts/setup does, and build again)");
+    if (format == "mat" && output == "-") throw CLI::ValidationError("-o", "a .mat file is binary: name a file");
     const std::vector<double> f = what == "frf" ? frequency_grid(grid) : std::vector<double>{};
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(sets);
@@ -243,15 +283,18 @@ int run_export(int argc, char** argv) {
     evaluator->evaluate(p, m);
 
     std::string text;
-    if (format == "uff") {
-      const UffFiles files = frf_uff(model, model_path, info, frf(*evaluator, p, f));
+    if (format == "mat") {
+      const FrfResult frfs = what == "frf" ? frf(*evaluator, p, f) : FrfResult{};
+      text = export_mat(model_path, what, info, p, m, what == "frf" ? &frfs : nullptr);
+    } else if (format == "uff") {
+      const UffFiles files = what == "modes" ? modes_uff(model, model_path, info, p, derive.set, m)
+                                             : frf_uff(model, model_path, info, frf(*evaluator, p, f));
       OutputFiles out;
       out.add(output, files.data);
       out.add(output + ".map", files.mapping);
       out.commit();
       return 0;
-    }
-    if (format == "csv") {
+    } else if (format == "csv") {
       text = what == "frf" ? frf_csv(info, frf(*evaluator, p, f)) : modes_csv(info, modal_analysis(m.M, m.C, m.K));
     } else {
       Json j;

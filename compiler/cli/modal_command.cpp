@@ -1,4 +1,5 @@
-// `mbgen modal --data FILE [--data FILE ...] [--band LO:HI] [--model MODEL.mdl] [--json OUT] [--report DIR]`:
+// `mbgen modal --data FILE [--data FILE ...] [--band LO:HI] [--model MODEL.mdl] [--json OUT] [--report DIR]
+// [--uff OUT.uff]`:
 // experimental modal analysis of measured FRFs (runtime/include/mbgen/modal_identification.hpp, docs/modal.md);
 // with --output-only, of response records (cli/modal_output_only.cpp).
 #include <mbgen/data_error.hpp>
@@ -17,6 +18,7 @@
 #include "cli/output_files.hpp"
 #include "cli/number_checks.hpp"
 #include "cli/run_guarded.hpp"
+#include "cli/uff_modes.hpp"
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
@@ -92,7 +94,7 @@ int run_modal(int argc, char** argv) {
       "selection of the physical poles and their refinement, residues by LSFD with residual terms, and a mode table.",
       "mbgen modal"};
   std::vector<std::string> data_paths, sets;
-  std::string band_text, model_path, json_path, report_dir, quantity_text = "auto";
+  std::string band_text, model_path, json_path, report_dir, uff_path, quantity_text = "auto";
   ModalOptions options;
   app.add_option("--data", data_paths,
                  "measured FRFs: CSV or UFF 58/58b; repeatable (same frequency lines); with --output-only time "
@@ -104,6 +106,9 @@ int run_modal(int argc, char** argv) {
   app.add_option("--json", json_path, "write the result (schema mbgen-modal/1); - for standard output");
   app.add_option("--report", report_dir,
                  "write a report directory (Markdown with the stabilization diagram, MAC, FRFs)");
+  app.add_option("--uff", uff_path,
+                 "write the modes as UFF 55 (complex shapes at the measured nodes and directions, UFF 15 nodes where "
+                 "known) and OUT.map beside it naming the points");
   app.add_option("--max-order", options.lscf.max_order,
                  "highest model order (default: from the data, about 64 / references; with --output-only the "
                  "states of SSI-cov, default 48)")
@@ -137,7 +142,8 @@ int run_modal(int argc, char** argv) {
     if (output_only) {
       for (const auto& [given, option] : {std::pair{!band_text.empty(), "--band"}, {!model_path.empty(), "--model"},
                                           {!sets.empty(), "--set"}, {!options.select_hz.empty(), "--select"},
-                                          {no_refine, "--no-refine"}, {quantity_text != "auto", "--quantity"}})
+                                          {no_refine, "--no-refine"}, {quantity_text != "auto", "--quantity"},
+                                          {!uff_path.empty(), "--uff"}})
         if (given) throw CLI::ValidationError(option, "not with --output-only (FRF analysis only)");
       oma.data_paths = data_paths;
       oma.options.method = method_text == "fdd" ? OutputOnlyMethod::Fdd : OutputOnlyMethod::SsiCov;
@@ -169,7 +175,11 @@ int run_modal(int argc, char** argv) {
     }
     if (!sets.empty() && model_path.empty()) throw CLI::ValidationError("--set", "needs --model");
     OutputPlan plan;
-    plan.files = {{"--json", json_path}};
+    if (uff_path == "-")
+      throw CLI::ValidationError("--uff", "a UFF file comes with its mapping file (OUT.map): name a file");
+    plan.files = {{"--json", json_path},
+                  {"--uff", uff_path},
+                  {"--uff (its mapping file)", uff_path.empty() ? "" : uff_path + ".map"}};
     plan.report_dir = report_dir;
     plan.inputs = data_paths;
     if (!model_path.empty()) plan.inputs.push_back(model_path);
@@ -190,6 +200,14 @@ int run_modal(int argc, char** argv) {
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, modal_result_json(in));
     if (!report_dir.empty()) write_modal_report(out.stage_directory(report_dir), in);
+    if (!uff_path.empty()) {
+      const std::optional<ir::ModelIr> model =
+          model_path.empty() ? std::nullopt : std::optional<ir::ModelIr>(frontend::parse_file(model_path));
+      const UffText uff = identified_modes_uff(run.data, run.result, data_paths, model ? &*model : nullptr,
+                                               parse_set_options(sets));
+      out.add(uff_path, uff.data);
+      out.add(uff_path + ".map", uff.mapping);
+    }
     out.commit();
     if (json_path != "-") std::cout << modal_summary(in);
     return 0;

@@ -299,8 +299,17 @@ class Diagnoser {
     reversed_ = reversed_driving_points(model, data_);
     result.nominal = assess_nominal(model, text);
     ModelState current = result.nominal;
-    for (int round = 1; round <= options_.max_extensions; ++round)
+    // The stopping rule: a model that shows no finding is adequate, and no candidate is fitted. The findings'
+    // threshold holds the family-wise false-alarm rate over every window of lines judged at 0.05
+    // (residual_analysis.hpp, finding_threshold), so a right model is extended, or called unexplained, at most that
+    // often (docs/diagnosis.md, "The stopping rule").
+    for (int round = 1; round <= options_.max_extensions; ++round) {
+      if (current.residual.discrepancies.empty()) {
+        if (round == 1) say("nominal model: no finding beyond the noise; nothing to extend");
+        break;
+      }
       if (!extend_once(round, result, current)) break;
+    }
     keep_only_full_explanations(result, current);
     if (!result.selected.empty()) current.text = with_estimates(current.text, current.values, added_parameters(result));
     result.final = current;

@@ -162,4 +162,25 @@ std::string format_double(double v) {
   return std::string(buffer, end);
 }
 
+std::vector<std::pair<std::string_view, int>> fortran_number_tokens(std::string_view line) {
+  std::vector<std::pair<std::string_view, int>> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    if (i >= line.size()) break;
+    std::size_t start = i;
+    ++i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t') {
+      const char prev = line[i - 1];
+      if ((line[i] == '-' || line[i] == '+') && ((prev >= '0' && prev <= '9') || prev == '.')) {
+        tokens.emplace_back(line.substr(start, i - start), static_cast<int>(start) + 1);
+        start = i;
+      }
+      ++i;
+    }
+    tokens.emplace_back(line.substr(start, i - start), static_cast<int>(start) + 1);
+  }
+  return tokens;
+}
+
 }  // namespace mbgen::data_detail

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "mbgen/data_settings.hpp"
@@ -40,6 +41,10 @@ std::vector<std::string_view> split_fields(std::string_view line);
 // The whole of `text` as a decimal number (a leading '+' allowed; with `fortran_exponent` also 'D' as the
 // exponent letter). Returns nullopt when it is not one; the value may be non-finite ("nan", "inf").
 std::optional<double> parse_number(std::string_view text, bool fortran_exponent = false);
+
+// Whitespace-separated tokens with their 1-based columns. Fortran writes fixed-width fields that may run
+// together ("1.5E+00-2.5E+00"): a sign right after a digit or '.' starts a new number.
+std::vector<std::pair<std::string_view, int>> fortran_number_tokens(std::string_view line);
 
 // Measured values larger than this in magnitude are rejected: their squares (spectra, sums of squares in a fit)
 // would overflow a double and give NaN results. No physical measurement comes near it.

@@ -62,29 +62,6 @@ long long parse_integer(std::string_view text, const LineContext& at, int column
   return static_cast<long long>(*v);
 }
 
-// Whitespace-separated tokens with their 1-based columns. Fortran writes fixed-width fields that may run
-// together ("1.5E+00-2.5E+00"): a sign right after a digit or '.' starts a new number.
-std::vector<std::pair<std::string_view, int>> number_tokens(std::string_view line) {
-  std::vector<std::pair<std::string_view, int>> tokens;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    if (i >= line.size()) break;
-    std::size_t start = i;
-    ++i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') {
-      const char prev = line[i - 1];
-      if ((line[i] == '-' || line[i] == '+') && ((prev >= '0' && prev <= '9') || prev == '.')) {
-        tokens.emplace_back(line.substr(start, i - start), static_cast<int>(start) + 1);
-        start = i;
-      }
-      ++i;
-    }
-    tokens.emplace_back(line.substr(start, i - start), static_cast<int>(start) + 1);
-  }
-  return tokens;
-}
-
 bool host_is_little_endian() {
   const std::uint16_t one = 1;
   unsigned char first = 0;
@@ -129,7 +106,7 @@ void parse_header_records(const std::vector<std::string>& lines, int first_line,
   // Record 7: Format(3I10,3E13.5); read as numbers separated by blanks (some writers widen the exponent).
   {
     const LineContext at{file, first_line + 6, "record 7"};
-    const auto tokens = number_tokens(lines[6]);
+    const auto tokens = fortran_number_tokens(lines[6]);
     if (tokens.size() < 5)
       throw DataError(file, at.line, 0,
                       "UFF 58 record 7 needs data type, number of points, spacing, abscissa minimum and increment");
@@ -194,7 +171,7 @@ void read_ascii_body(Cursor& c, const std::string& file, Uff58Record& r) {
     // The end of the file closes the last dataset as well as a delimiter would.
     if (!c.next_line(line)) break;
     if (is_delimiter(line)) break;
-    for (const auto& [token, column] : number_tokens(line)) {
+    for (const auto& [token, column] : fortran_number_tokens(line)) {
       const auto v = parse_number(token, true);
       if (!v) throw DataError(file, c.line(), column, "UFF 58 data: " + shown(token) + " is not a number");
       if (!std::isfinite(*v))
@@ -275,7 +252,7 @@ void read_binary_body(Cursor& c, const std::string& file, Uff58Record& r, bool l
 Uff58Record read_dataset_58(Cursor& c, const std::string& file, std::string_view number_line) {
   Uff58Record r;
   r.line = c.line();
-  const auto tokens = number_tokens(number_line);
+  const auto tokens = fortran_number_tokens(number_line);
   r.binary = trim(tokens[0].first) == "58b";
   bool little_endian = true;
   long long bytes = 0;
@@ -328,7 +305,7 @@ std::vector<Uff58Record> read_uff58(std::istream& in, const std::string& file_na
     if (!is_delimiter(line))
       throw DataError(file_name, c.line(), 1, "expected '    -1' (start of a UFF dataset), found " + shown(line));
     if (!c.next_line(line)) break;  // a lone trailing delimiter
-    const auto tokens = number_tokens(line);
+    const auto tokens = fortran_number_tokens(line);
     if (tokens.empty())
       throw DataError(file_name, c.line(), 1, "expected a UFF dataset number after '    -1'");
     const std::string number(tokens[0].first);  // the line's text is gone after the next line is read

@@ -1,35 +1,19 @@
 // Writing dataset 58 in ASCII (runtime/include/mbgen/uff.hpp, docs/data.md): the fixed columns of the UFF
 // specification, which other readers (pyuff, commercial analysers) parse by column.
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <ostream>
 #include <stdexcept>
 #include <string>
 
 #include "mbgen/uff.hpp"
+#include "uff_fields.hpp"
 
 namespace mbgen {
 
 namespace {
 
-// A field of `width` characters: text cut to `width`, right-aligned numbers.
-std::string text_field(const std::string& text, std::size_t width) {
-  std::string t = text.substr(0, width);
-  return t + std::string(width - t.size(), ' ');
-}
-
-std::string format(const char* spec, double v) {
-  char out[64];
-  std::snprintf(out, sizeof out, spec, v == 0 ? 0.0 : v);  // no -0
-  return out;
-}
-
-std::string integer(long v, int width) {
-  char out[32];
-  std::snprintf(out, sizeof out, "%*ld", width, v);
-  return out;
-}
+using namespace uff_detail;
 
 // Record 8 to 11: specific data type, length, force and temperature unit exponents, label and units.
 std::string axis_line(int type, const std::string& label, const std::string& units) {
