@@ -43,8 +43,8 @@ struct ResponseSelection {
   std::vector<std::string> references;  // empty: every channel is a reference
 };
 
-// A record needs this many samples (and at least 20 periods of its lowest analysable frequency, which the
-// algorithms check for their own lags).
+// A record needs this many samples; each method also needs the record longer than the lags it uses (SSI-cov
+// 2 x block rows; FDD 16 or more).
 constexpr Eigen::Index kMinResponseSamples = 256;
 
 // Collects the records' signals (all but `ignore`). Throws DataError naming the file for: no records, no response
@@ -60,7 +60,7 @@ std::vector<Eigen::MatrixXd> output_correlations(const ResponseData& data, Eigen
 // ---- SSI-cov --------------------------------------------------------------------------------------------------
 
 struct SsiCovOptions {
-  int max_order = 0;   // highest model order (states; even); 0: 2 * 24, at most channels * block_rows
+  int max_order = 0;   // highest model order (states; odd ones rounded up); 0: 48
   int block_rows = 0;  // i: the Toeplitz matrix holds R_1..R_(2i-1); 0: enough for max_order, at least 32
   std::function<void(int order, int max_order)> progress;
 };
