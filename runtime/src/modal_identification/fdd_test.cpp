@@ -31,7 +31,7 @@ OutputOnlyIdentification run_fdd(const test::OmaTruth& t) {
 
 // Frequencies and no spurious peak; with `shapes` also MAC > 0.95.
 void check_fdd(const std::string& example, int draw, int seed, bool shapes) {
-  const test::OmaTruth t = test::oma_truth(example, draw, seed);
+  const test::OmaTruth t = test::oma_truth("fdd_truth", example, draw, seed);
   test::Targets targets;
   targets.damping = false;
   targets.shape = shapes;
@@ -40,7 +40,7 @@ void check_fdd(const std::string& example, int draw, int seed, bool shapes) {
 
 // Every target, damping by EFDD included.
 void check_all_targets(const std::string& example, int draw, int seed) {
-  const test::OmaTruth t = test::oma_truth(example, draw, seed);
+  const test::OmaTruth t = test::oma_truth("fdd_truth_all", example, draw, seed);
   test::check_against_truth(run_fdd(t).modes, t.modes);
 }
 

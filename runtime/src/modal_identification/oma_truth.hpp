@@ -32,9 +32,10 @@ struct OmaTruth {
   std::vector<TruthMode> modes;
 };
 
-// truthgen --kind oma on EXAMPLE's nominal case, truth draw `draw`, noise seed `seed`, at the default 40 dB.
-inline OmaTruth oma_truth(const std::string& example, int draw, int seed) {
-  const std::filesystem::path folder = std::filesystem::path(mbgen_binary_dir()) / "oma_truth";
+// truthgen --kind oma on EXAMPLE's nominal case, truth draw `draw`, noise seed `seed`, at the default 40 dB, written
+// under BUILD/DIR (one directory per test program: ctest runs them in parallel).
+inline OmaTruth oma_truth(const std::string& dir, const std::string& example, int draw, int seed) {
+  const std::filesystem::path folder = std::filesystem::path(mbgen_binary_dir()) / dir;
   std::filesystem::create_directories(folder);
   const std::string stem =
       (folder / (example + "_draw" + std::to_string(draw) + "_seed" + std::to_string(seed))).string();

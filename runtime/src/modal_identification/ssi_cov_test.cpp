@@ -10,7 +10,7 @@ using namespace mbgen;
 namespace {
 
 void check_ssi(const std::string& example, int draw, int seed) {
-  const test::OmaTruth t = test::oma_truth(example, draw, seed);
+  const test::OmaTruth t = test::oma_truth("ssi_cov_truth", example, draw, seed);
   const OutputOnlyIdentification r = identify_output_only(t.data);
   CHECK(r.method == OutputOnlyMethod::SsiCov);
   CHECK(r.ssi.diagram.orders.size() == 24);  // orders 2..48
