@@ -150,6 +150,9 @@ int run_modal(int argc, char** argv) {
       oma.options.ssi.max_order = options.lscf.max_order;
       if (oma.options.method == OutputOnlyMethod::Fdd && options.lscf.max_order > 0)
         throw CLI::ValidationError("--max-order", "SSI-cov only (not with --method fdd)");
+      // FDD decomposes the full spectral matrix: every channel is a reference.
+      if (oma.options.method == OutputOnlyMethod::Fdd && !oma.selection.references.empty())
+        throw CLI::ValidationError("--references", "SSI-cov only (not with --method fdd)");
       // The block Toeplitz matrix grows with the order: 400 states is ~200 modes, and an SVD of minutes.
       if (options.lscf.max_order > kMaxOutputOnlyOrder)
         throw CLI::ValidationError("--max-order", "at most " + std::to_string(kMaxOutputOnlyOrder) +
