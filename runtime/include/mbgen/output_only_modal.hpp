@@ -150,6 +150,30 @@ struct OutputOnlyIdentification {
 
 OutputOnlyIdentification identify_output_only(const ResponseData& data, const OutputOnlyOptions& options = {});
 
+// ---- several setups: roving sensors with shared references ---------------------------------------------------
+
+// The records grouped by their responses (after `ignore`), one ResponseData per group (setup), in order of first
+// appearance. The references are selection.references, or else the responses every setup has (with one setup:
+// all, as response_data). Throws DataError naming a file when setups share no response or a reference is missing
+// from one, and for what response_data refuses.
+std::vector<ResponseData> response_setups(const std::vector<TimeRecord>& records,
+                                          const ResponseSelection& selection = {});
+
+struct MergedSetups {
+  ResponseData data;  // all files, the union of the responses (by first appearance), references the shared ones;
+                      // no records (the setups were not measured together)
+  std::vector<ResponseData> setups;
+  std::vector<OutputOnlyIdentification> per_setup;
+  OutputOnlyIdentification result;  // the merged modes (no diagram or spectrum of its own)
+};
+
+// Each setup identified on its own; a mode of the first setup is kept when every other setup has a mode within
+// criteria.frequency of it (the nearest). Its f and zeta are the means over the setups (f_scatter_hz and
+// zeta_scatter their standard deviations over the setups), its shape the first setup's, extended by each other
+// setup's shape scaled to it by least squares on the reference responses (complex factor). Modes missing from a
+// setup are listed in result.rejected. Throws std::invalid_argument as identify_output_only.
+MergedSetups identify_setups(std::vector<ResponseData> setups, const OutputOnlyOptions& options = {});
+
 // The shape scaled as the mode table gives it: unit norm, its largest component real and positive.
 Eigen::VectorXcd normalize_shape(const Eigen::VectorXcd& shape);
 

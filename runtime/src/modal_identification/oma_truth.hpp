@@ -32,9 +32,14 @@ struct OmaTruth {
   std::vector<TruthMode> modes;
 };
 
+struct OmaRecord {
+  TimeRecord record;
+  std::vector<TruthMode> modes;
+};
+
 // truthgen --kind oma on EXAMPLE's nominal case, truth draw `draw`, noise seed `seed`, at the default 40 dB, written
 // under BUILD/DIR (one directory per test program: ctest runs them in parallel).
-inline OmaTruth oma_truth(const std::string& dir, const std::string& example, int draw, int seed) {
+inline OmaRecord oma_record(const std::string& dir, const std::string& example, int draw, int seed) {
   const std::filesystem::path folder = std::filesystem::path(mbgen_binary_dir()) / dir;
   std::filesystem::create_directories(folder);
   const std::string stem =
@@ -45,7 +50,7 @@ inline OmaTruth oma_truth(const std::string& dir, const std::string& example, in
   REQUIRE(std::system(command.c_str()) == 0);
   DataSet file = read_data_file(stem + ".csv");
   REQUIRE(!file.is_frf());
-  OmaTruth t{response_data({std::get<TimeRecord>(std::move(file.content))}), {}};
+  OmaRecord r{std::get<TimeRecord>(std::move(file.content)), {}};
   std::ifstream in(stem + ".truth.json");
   const nlohmann::json document = nlohmann::json::parse(in);
   for (const nlohmann::json& m : document.at("truth_modes")) {
@@ -54,9 +59,14 @@ inline OmaTruth oma_truth(const std::string& dir, const std::string& example, in
     mode.shape.resize(static_cast<Eigen::Index>(shape.size()));
     for (std::size_t c = 0; c < shape.size(); ++c)
       mode.shape[static_cast<Eigen::Index>(c)] = {shape[c][0].get<double>(), shape[c][1].get<double>()};
-    t.modes.push_back(mode);
+    r.modes.push_back(mode);
   }
-  return t;
+  return r;
+}
+
+inline OmaTruth oma_truth(const std::string& dir, const std::string& example, int draw, int seed) {
+  OmaRecord r = oma_record(dir, example, draw, seed);
+  return {response_data({std::move(r.record)}), std::move(r.modes)};
 }
 
 // The targets of issue 34 for every truth mode the responses show (visibility >= 0.01: its peak in the output
