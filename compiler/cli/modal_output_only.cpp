@@ -7,6 +7,7 @@
 #include <mbgen/output_only_report.hpp>
 
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 
 #include "cli/load_data.hpp"
@@ -23,23 +24,30 @@ int run_output_only(const OutputOnlyRequest& request) {
                                   "(leave out --output-only)");
     records.push_back(std::get<TimeRecord>(std::move(file.content)));
   }
-  const ResponseData data = response_data(records, request.selection);
+  std::vector<ResponseData> setups = response_setups(records, request.selection);
   OutputOnlyOptions options = request.options;
   options.ssi.progress = [](int order, int max_order) {
     progress_line("modal: order " + std::to_string(order) + "/" + std::to_string(max_order));
   };
-  OutputOnlyIdentification result;
-  FddResult spectrum;  // the report's background for SSI-cov
+  // One setup, or several (roving sensors with shared references) identified one by one and merged.
+  std::optional<MergedSetups> merged;
+  OutputOnlyIdentification single;
+  FddResult spectrum;  // the report's background for SSI-cov (the first setup's)
   try {
-    result = identify_output_only(data, options);
-    if (!request.report_dir.empty() && options.method == OutputOnlyMethod::SsiCov) spectrum = fdd(data, options.fdd);
+    if (setups.size() == 1)
+      single = identify_output_only(setups.front(), options);
+    else
+      merged = identify_setups(setups, options);  // a setup's error names its file (DataError)
+    if (!request.report_dir.empty() && options.method == OutputOnlyMethod::SsiCov)
+      spectrum = fdd(setups.front(), options.fdd);
   } catch (const std::invalid_argument& e) {  // records too short for the lags, too few channels for the order
     progress_done();
-    throw DataError(request.data_paths.front(), 0, 0, e.what());
+    throw DataError(setups.front().files.front(), 0, 0, e.what());
   }
   progress_done();
-  const OutputOnlyReportInput in{data, result, options,
-                                 options.method == OutputOnlyMethod::SsiCov ? &spectrum : nullptr};
+  const OutputOnlyReportInput in{merged ? merged->data : setups.front(), merged ? merged->result : single, options,
+                                 options.method == OutputOnlyMethod::SsiCov ? &spectrum : nullptr,
+                                 merged ? &*merged : nullptr};
   OutputFiles out;
   if (!request.json_path.empty()) out.add(request.json_path, output_only_json(in));
   if (!request.report_dir.empty()) write_output_only_report(out.stage_directory(request.report_dir), in);

@@ -171,7 +171,8 @@ struct MergedSetups {
 // criteria.frequency of it (the nearest). Its f and zeta are the means over the setups (f_scatter_hz and
 // zeta_scatter their standard deviations over the setups), its shape the first setup's, extended by each other
 // setup's shape scaled to it by least squares on the reference responses (complex factor). Modes missing from a
-// setup are listed in result.rejected. Throws std::invalid_argument as identify_output_only.
+// setup are listed in result.rejected. Throws DataError naming a setup's first file where identify_output_only
+// throws std::invalid_argument.
 MergedSetups identify_setups(std::vector<ResponseData> setups, const OutputOnlyOptions& options = {});
 
 // The shape scaled as the mode table gives it: unit norm, its largest component real and positive.

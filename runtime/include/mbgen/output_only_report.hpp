@@ -13,7 +13,13 @@ struct OutputOnlyReportInput {
   const OutputOnlyIdentification& result;
   const OutputOnlyOptions& options;
   const FddResult* spectrum = nullptr;  // the singular values behind SSI-cov's stabilization diagram (report only)
+  const MergedSetups* setups = nullptr;  // several setups: `data` and `result` are the merged ones
 };
+
+// The run whose diagram, spectrum and settings the outputs show: the first setup's when setups were merged.
+inline const OutputOnlyIdentification& method_run(const OutputOnlyReportInput& in) {
+  return in.setups ? in.setups->per_setup.front() : in.result;
+}
 
 // Keys sorted, numbers in shortest round-trip form: the same input gives the same bytes.
 std::string output_only_json(const OutputOnlyReportInput& in);

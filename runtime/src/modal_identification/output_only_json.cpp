@@ -31,6 +31,7 @@ json matrix(const Eigen::MatrixXd& m) {
 std::string output_only_json(const OutputOnlyReportInput& in) {
   const ResponseData& data = in.data;
   const OutputOnlyIdentification& r = in.result;
+  const OutputOnlyIdentification& run = method_run(in);  // settings: the first setup's when merged
   const bool ssi = r.method == OutputOnlyMethod::SsiCov;
   json j;
   j["schema"] = "mbgen-modal/1";
@@ -52,7 +53,7 @@ std::string output_only_json(const OutputOnlyReportInput& in) {
       entry["f_scatter_hz"] = number(mode.f_scatter_hz);
       entry["zeta_scatter"] = number(mode.zeta_scatter);
       entry["contribution"] = number(mode.contribution);
-    } else {
+    } else if (!in.setups) {
       const FddPeak& p = r.fdd.peaks[m];
       entry["peak_f_hz"] = number(p.f_hz);
       entry["peak_db"] = number(p.sv_db);
@@ -70,13 +71,24 @@ std::string output_only_json(const OutputOnlyReportInput& in) {
   j["sample_rate_hz"] = number(1 / data.dt);
   json samples = json::array();
   for (const Eigen::MatrixXd& y : data.records) samples.push_back(y.rows());
+  if (in.setups) {
+    json setups = json::array();
+    for (std::size_t s = 0; s < in.setups->setups.size(); ++s) {
+      const ResponseData& setup = in.setups->setups[s];
+      json f = json::array();
+      for (const OperationalMode& mode : in.setups->per_setup[s].modes) f.push_back(number(mode.f_hz));
+      setups.push_back({{"files", setup.files}, {"channels", setup.channels}, {"modes_f_hz", f}});
+      for (const Eigen::MatrixXd& y : setup.records) samples.push_back(y.rows());
+    }
+    j["setups"] = setups;
+  }
   j["samples"] = samples;
   j["notes"] = data.notes;
   j["auto_mac"] = matrix(r.auto_mac);
   if (ssi) {
     const StabilizationCriteria& c = in.options.selection.criteria;
-    j["max_order"] = r.ssi.diagram.orders.empty() ? 0 : r.ssi.diagram.orders.back();
-    j["block_rows"] = r.ssi.block_rows;
+    j["max_order"] = run.ssi.diagram.orders.empty() ? 0 : run.ssi.diagram.orders.back();
+    j["block_rows"] = run.ssi.block_rows;
     j["stability_criteria"] = {{"frequency", number(c.frequency)},
                                {"damping", number(c.damping)},
                                {"shape", number(c.shape)},
@@ -92,9 +104,9 @@ std::string output_only_json(const OutputOnlyReportInput& in) {
                           {"reason", p.reason}});
     j["rejected_poles"] = rejected;
   } else {
-    j["window_s"] = number(r.fdd.window_s);
-    j["lines"] = r.fdd.f_hz.size();
-    j["df_hz"] = number(r.fdd.f_hz.size() > 1 ? r.fdd.f_hz[1] : 0.0);
+    j["window_s"] = number(run.fdd.window_s);
+    j["lines"] = run.fdd.f_hz.size();
+    j["df_hz"] = number(run.fdd.f_hz.size() > 1 ? run.fdd.f_hz[1] : 0.0);
     j["prominence_db"] = number(in.options.fdd.prominence_db);
     j["bell"] = {{"mac", number(in.options.fdd.bell_mac)}, {"db", number(in.options.fdd.bell_db)}};
   }

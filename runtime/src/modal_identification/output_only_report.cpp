@@ -65,7 +65,7 @@ std::string singular_dat(const FddResult& s) {
 }
 
 std::string stabilization_plot(const OutputOnlyReportInput& in, bool background) {
-  const StabilizationDiagram& d = in.result.ssi.diagram;
+  const StabilizationDiagram& d = method_run(in).ssi.diagram;
   std::ostringstream gp;
   gp << "set terminal svg size 1000,600 dynamic font 'sans,11'\nset output 'stabilization.svg'\n"
      << "set title 'Stabilization diagram (SSI-cov)' noenhanced\nset xlabel 'f [Hz]'\nset ylabel 'model order'\n"
@@ -90,11 +90,11 @@ std::string singular_plot(const OutputOnlyReportInput& in) {
   std::ostringstream gp;
   gp << "set terminal svg size 1000,560 dynamic font 'sans,11'\nset output 'singular.svg'\n"
      << "set title 'Singular values of the output spectral matrix (FDD)' noenhanced\nset xlabel 'f [Hz]'\n"
-     << "set xrange [0:" << in.result.fdd.f_hz[in.result.fdd.f_hz.size() - 1] << "]\n"
+     << "set xrange [0:" << method_run(in).fdd.f_hz[method_run(in).fdd.f_hz.size() - 1] << "]\n"
      << "set ylabel 'singular value'\nset logscale y\nset format y '%.0e'\nset grid\nset key top right\n";
   for (const OperationalMode& m : in.result.modes)
     gp << "set arrow from " << m.f_hz << ", graph 0 to " << m.f_hz << ", graph 1 nohead lc rgb '#2ca02c' dt 3\n";
-  gp << "plot for [c=2:" << in.result.fdd.singular.cols() + 1
+  gp << "plot for [c=2:" << method_run(in).fdd.singular.cols() + 1
      << "] 'singular.dat' using 1:c with lines title sprintf('s%d', c - 1)\n";
   return gp.str();
 }
@@ -103,16 +103,18 @@ std::string singular_plot(const OutputOnlyReportInput& in) {
 
 std::string output_only_summary(const OutputOnlyReportInput& in) {
   const OutputOnlyIdentification& r = in.result;
+  const OutputOnlyIdentification& run = method_run(in);
   const bool ssi = r.method == OutputOnlyMethod::SsiCov;
+  const bool peaks = !ssi && !in.setups;  // FDD's peaks are the modes (not when setups were merged)
   std::ostringstream out;
   out << r.modes.size() << (r.modes.size() == 1 ? " mode" : " modes") << " from " << in.data.channels.size()
       << (in.data.channels.size() == 1 ? " response" : " responses") << " (output-only), "
       << output_only_method_name(r.method);
   if (ssi)
-    out << ", orders 2.." << (r.ssi.diagram.orders.empty() ? 0 : r.ssi.diagram.orders.back()) << ", "
-        << r.ssi.block_rows << " block rows";
+    out << ", orders 2.." << (run.ssi.diagram.orders.empty() ? 0 : run.ssi.diagram.orders.back()) << ", "
+        << run.ssi.block_rows << " block rows";
   else
-    out << ", lag window " << num(r.fdd.window_s) << " s";
+    out << ", lag window " << num(run.fdd.window_s) << " s";
   out << "; shapes unit-norm\n";
   for (const std::string& note : in.data.notes) out << "note: " << note << "\n";
   out << detail::format("%4s %12s %10s %7s %9s %7s\n", "mode", "f [Hz]", "zeta [%]", "MPC", "MPD [deg]",
@@ -121,18 +123,21 @@ std::string output_only_summary(const OutputOnlyReportInput& in) {
     const OperationalMode& mode = r.modes[m];
     out << detail::format("%4zu %12.4f %10.4f %7.4f %9.2f %7d", m + 1, mode.f_hz, 100 * mode.zeta, mode.mpc,
                           mode.mpd_deg, mode.support);
-    if (!ssi && !r.fdd.peaks[m].note.empty()) out << "  (EFDD: " << r.fdd.peaks[m].note << ")";
+    if (peaks && !r.fdd.peaks[m].note.empty()) out << "  (EFDD: " << r.fdd.peaks[m].note << ")";
     out << "\n";
   }
   for (const RejectedPole& p : r.rejected)
-    out << detail::format("dropped: a pole at %.4f Hz (%d orders): ", p.pole.f_hz, p.pole.support) << p.reason << "\n";
+    out << detail::format("dropped: a pole at %.4f Hz (%d %s): ", p.pole.f_hz, p.pole.support, ssi ? "orders" : "lines")
+        << p.reason << "\n";
   return out.str();
 }
 
 void write_output_only_report(const std::string& dir, const OutputOnlyReportInput& in) {
   const ResponseData& data = in.data;
   const OutputOnlyIdentification& r = in.result;
+  const OutputOnlyIdentification& run = method_run(in);
   const bool ssi = r.method == OutputOnlyMethod::SsiCov;
+  const bool peaks = !ssi && !in.setups;  // FDD's peaks are the modes (not when setups were merged)
   report::Document doc;
   doc.heading(1, "Output-only modal analysis");
   report::Inline files = "Data:";
@@ -147,8 +152,8 @@ void write_output_only_report(const std::string& dir, const OutputOnlyReportInpu
   if (ssi) {
     const StabilizationCriteria& c = in.options.selection.criteria;
     settings.push_back("method: covariance-driven stochastic subspace identification (SSI-cov), " +
-                       std::to_string(r.ssi.block_rows) + " block rows, orders 2.." +
-                       std::to_string(r.ssi.diagram.orders.empty() ? 0 : r.ssi.diagram.orders.back()));
+                       std::to_string(run.ssi.block_rows) + " block rows, orders 2.." +
+                       std::to_string(run.ssi.diagram.orders.empty() ? 0 : run.ssi.diagram.orders.back()));
     settings.push_back("stable between orders: frequency within " + num(100 * c.frequency) + " %, damping within " +
                        num(100 * c.damping) + " %, shape MAC above " + num(1 - c.shape) +
                        "; physical poles have 0 < zeta <= " + num(c.max_zeta));
@@ -158,12 +163,28 @@ void write_output_only_report(const std::string& dir, const OutputOnlyReportInpu
                        " of the strongest mode's peak");
   } else {
     settings.push_back("method: frequency-domain decomposition (FDD) of the spectral matrix (correlations times "
-                       "exp(-|tau| / " + num(r.fdd.window_s) + " s)), damping by EFDD");
+                       "exp(-|tau| / " + num(run.fdd.window_s) + " s)), damping by EFDD");
     settings.push_back("peaks: first singular value " + num(in.options.fdd.prominence_db) +
                        " dB above its valleys; bell: MAC >= " + num(in.options.fdd.bell_mac) + ", within " +
                        num(in.options.fdd.bell_db) + " dB of the peak");
   }
   doc.list(std::move(settings));
+  if (in.setups) {
+    doc.heading(2, "Setups");
+    doc.paragraph("Each setup identified on its own; a mode of the first setup is kept when every other has one "
+                  "within the frequency criterion. f and zeta are the means over the setups (*scatter* their standard "
+                  "deviations), the shape the first setup's extended by the others' scaled to it on the references. "
+                  "The diagram below is the first setup's.");
+    report::Table t{{"setup", "files", "responses", "modes [Hz]"}, {}};
+    for (std::size_t s = 0; s < in.setups->setups.size(); ++s) {
+      report::Inline files, channels, modes;
+      for (const std::string& f : in.setups->setups[s].files) files << report::code(f) << " ";
+      for (const std::string& c : in.setups->setups[s].channels) channels << report::code(c) << " ";
+      for (const OperationalMode& m : in.setups->per_setup[s].modes) modes << fixed(m.f_hz, 2) << " ";
+      t.rows.push_back({report::Inline() << s + 1, files, channels, modes});
+    }
+    doc.table(std::move(t));
+  }
 
   doc.heading(2, "Modes");
   doc.paragraph(ssi ? "f and zeta are the medians of the mode's cluster of stable poles; *scatter* is their standard "
@@ -176,7 +197,7 @@ void write_output_only_report(const std::string& dir, const OutputOnlyReportInpu
   report::Table modes{{"mode", "f [Hz]", "zeta [%]", "MPC", "MPD [deg]"}, {}};
   if (ssi)
     for (const char* h : {"scatter f [Hz]", "scatter zeta [%]", "orders", "contribution"}) modes.header.push_back(h);
-  else
+  else if (peaks)
     for (const char* h : {"peak f [Hz]", "bell lines", "EFDD note"}) modes.header.push_back(h);
   for (std::size_t m = 0; m < r.modes.size(); ++m) {
     const OperationalMode& mode = r.modes[m];
@@ -187,7 +208,7 @@ void write_output_only_report(const std::string& dir, const OutputOnlyReportInpu
       row.push_back(num(100 * mode.zeta_scatter, 2));
       row.push_back(report::Inline() << mode.support);
       row.push_back(num(mode.contribution, 3));
-    } else {
+    } else if (peaks) {
       row.push_back(fixed(r.fdd.peaks[m].f_hz, 3));
       row.push_back(report::Inline() << mode.support);
       row.push_back(r.fdd.peaks[m].note);
@@ -199,18 +220,19 @@ void write_output_only_report(const std::string& dir, const OutputOnlyReportInpu
     std::vector<report::Inline> dropped;
     for (const RejectedPole& p : r.rejected)
       dropped.push_back(report::Inline(fixed(p.pole.f_hz, 3)) << " Hz, zeta " << num(100 * p.pole.zeta, 3) << " %, "
-                                                              << p.pole.support << " orders: " << p.reason);
+                                                              << p.pole.support << (ssi ? " orders: " : " lines: ")
+                                                              << p.reason);
     doc.paragraph("Clusters dropped:");
     doc.list(std::move(dropped));
   }
 
   std::vector<std::string> stems;
-  const FddResult* spectrum = ssi ? in.spectrum : &r.fdd;
+  const FddResult* spectrum = ssi ? in.spectrum : &run.fdd;
   if (spectrum) write_file(dir, "singular.dat", singular_dat(*spectrum));
   if (ssi) {
     std::ostringstream stab;
     stab << std::setprecision(9) << "# f_hz order stability(0 new, 1 f, 2 f+zeta, 3 f+shape, 4 stable) zeta\n";
-    for (const DiagramPole& p : r.ssi.diagram.poles)
+    for (const DiagramPole& p : run.ssi.diagram.poles)
       stab << p.f_hz << ' ' << p.order << ' ' << stability_code(p.stability) << ' ' << p.zeta << '\n';
     write_file(dir, "stabilization.dat", stab.str());
     write_file(dir, "stabilization.gp", stabilization_plot(in, spectrum != nullptr));

@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 namespace mbgen {
 
@@ -90,7 +91,13 @@ std::vector<ResponseData> response_setups(const std::vector<TimeRecord>& records
 MergedSetups identify_setups(std::vector<ResponseData> setups, const OutputOnlyOptions& options) {
   MergedSetups out;
   out.setups = std::move(setups);
-  for (const ResponseData& s : out.setups) out.per_setup.push_back(identify_output_only(s, options));
+  for (const ResponseData& s : out.setups) {
+    try {
+      out.per_setup.push_back(identify_output_only(s, options));
+    } catch (const std::invalid_argument& e) {  // this setup's records cannot serve the method: say which
+      throw DataError(s.files.front(), 0, 0, e.what());
+    }
+  }
   ResponseData& data = out.data;
   for (const ResponseData& s : out.setups) {
     data.files.insert(data.files.end(), s.files.begin(), s.files.end());
@@ -103,7 +110,10 @@ MergedSetups identify_setups(std::vector<ResponseData> setups, const OutputOnlyO
   for (int r : first.references)
     data.references.push_back(index_of(data.channels, first.channels[static_cast<std::size_t>(r)]));
   data.dt = first.dt;
-  data.notes.push_back(std::to_string(out.setups.size()) + " setups merged on the references");
+  std::string references;
+  for (int r : data.references)
+    references += (references.empty() ? "" : ", ") + data.channels[static_cast<std::size_t>(r)];
+  data.notes.push_back(std::to_string(out.setups.size()) + " setups merged on the references " + references);
 
   OutputOnlyIdentification& result = out.result;
   result.method = options.method;
@@ -190,8 +200,9 @@ MergedSetups identify_setups(std::vector<ResponseData> setups, const OutputOnlyO
         p.zeta = mode.zeta;
         p.lambda = mode.lambda;
         p.support = mode.support;
-        result.rejected.push_back({p, "found in the setup of " + out.setups[s].files.front() + " only, not at " +
-                                          hz(mode.f_hz) + " in " + out.setups[0].files.front()});
+        result.rejected.push_back({p, "found in the setup of " + out.setups[s].files.front() + " but not within " +
+                                          std::to_string(static_cast<int>(100 * tolerance)) + " % of " +
+                                          hz(mode.f_hz) + " in the first setup's"});
       }
   const Eigen::Index n = static_cast<Eigen::Index>(result.modes.size());
   result.auto_mac.resize(n, n);
