@@ -98,7 +98,7 @@ int run_modal(int argc, char** argv) {
   ModalOptions options;
   app.add_option("--data", data_paths,
                  "measured FRFs: CSV or UFF 58/58b; repeatable (same frequency lines); with --output-only time "
-                 "records of responses (same channels and sample rate)")
+                 "records of responses (records with other responses are setups, merged on shared references)")
       ->required();
   app.add_option("--band", band_text, "analyse LO <= f <= HI only (Hz; either side may be left empty)");
   app.add_option("--model", model_path, "pair the identified modes with this model's modes by MAC (.mdl)");

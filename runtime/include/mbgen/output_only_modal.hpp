@@ -11,6 +11,9 @@
 //   identify_output_only
 //                     either, with the FRF path's stabilization and automatic pole selection for SSI-cov, and the
 //                     mode table (MPC, MPD, auto-MAC)
+//   response_setups, identify_setups
+//                     records of several setups (roving sensors with shared references), identified one by one and
+//                     merged
 //
 // Shapes are unscaled (no force, no modal mass): unit norm over the channels, the largest component real and
 // positive. Pinocchio-style: algorithm(data, options) -> result; no hidden state.
