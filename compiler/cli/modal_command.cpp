@@ -1,6 +1,7 @@
 // `mbgen modal --data FILE [--data FILE ...] [--band LO:HI] [--model MODEL.mdl] [--json OUT] [--report DIR]
 // [--uff OUT.uff]`:
-// experimental modal analysis of measured FRFs (runtime/include/mbgen/modal_identification.hpp, docs/modal.md).
+// experimental modal analysis of measured FRFs (runtime/include/mbgen/modal_identification.hpp, docs/modal.md);
+// with --output-only, of response records (cli/modal_output_only.cpp).
 #include <mbgen/data_error.hpp>
 #include <mbgen/data_set.hpp>
 #include <mbgen/modal_report.hpp>
@@ -13,6 +14,7 @@
 #include "cli/command_runs.hpp"
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
+#include "cli/modal_output_only.hpp"
 #include "cli/output_files.hpp"
 #include "cli/number_checks.hpp"
 #include "cli/run_guarded.hpp"
@@ -22,6 +24,10 @@
 #include "frontend/parser.hpp"
 
 namespace mbgen::cli {
+
+namespace {
+constexpr int kMaxOutputOnlyOrder = 400;
+}  // namespace
 
 ModalRun modal_identification(ModalRequest request) {
   ModalRun run;
@@ -37,7 +43,9 @@ ModalRun modal_identification(ModalRequest request) {
   for (std::size_t d = 0; d < request.data_paths.size(); ++d) {
     const std::string& path = request.data_paths[d];
     DataSet file = model ? read_data_file(path, model->info().inputs, model->info().outputs) : read_data_file(path);
-    if (!file.is_frf()) throw DataError(path, 0, 0, "modal analysis needs FRFs, but this is a time record");
+    if (!file.is_frf())
+      throw DataError(path, 0, 0,
+                      "modal analysis needs FRFs, but this is a time record (--output-only analyses response records)");
     frfs.push_back(std::get<FrfData>(std::move(file.content)));
     // From the records as read: by the file's name it missed UFF on standard input, through a pipe or under
     // another extension (the modes and their std then differed), and it read the file a second time.
@@ -88,7 +96,9 @@ int run_modal(int argc, char** argv) {
   std::vector<std::string> data_paths, sets;
   std::string band_text, model_path, json_path, report_dir, uff_path, quantity_text = "auto";
   ModalOptions options;
-  app.add_option("--data", data_paths, "measured FRFs: CSV or UFF 58/58b; repeatable (same frequency lines)")
+  app.add_option("--data", data_paths,
+                 "measured FRFs: CSV or UFF 58/58b; repeatable (same frequency lines); with --output-only time "
+                 "records of responses (records with other responses are setups, merged on shared references)")
       ->required();
   app.add_option("--band", band_text, "analyse LO <= f <= HI only (Hz; either side may be left empty)");
   app.add_option("--model", model_path, "pair the identified modes with this model's modes by MAC (.mdl)");
@@ -100,7 +110,8 @@ int run_modal(int argc, char** argv) {
                  "write the modes as UFF 55 (complex shapes at the measured nodes and directions, UFF 15 nodes where "
                  "known) and OUT.map beside it naming the points");
   app.add_option("--max-order", options.lscf.max_order,
-                 "highest model order (default: from the data, about 64 / references)")
+                 "highest model order (default: from the data, about 64 / references; with --output-only the "
+                 "states of SSI-cov, default 48)")
       ->check(positive_number());
   app.add_option("--select", options.select_hz,
                  "use the poles nearest these frequencies [Hz] instead of the automatic choice")
@@ -112,8 +123,53 @@ int run_modal(int argc, char** argv) {
                  "what the FRFs are: auto (from a UFF file's ordinate type or the model's outputs), receptance, "
                  "mobility or accelerance")
       ->check(CLI::IsMember({"auto", "receptance", "mobility", "accelerance"}));
+  // Output-only (operational) modal analysis of response records: docs/modal.md.
+  bool output_only = false;
+  std::string method_text;
+  OutputOnlyRequest oma;
+  app.add_flag("--output-only", output_only,
+               "operational modal analysis: the data are time records of responses, no force (SSI-cov or FDD)");
+  app.add_option("--method", method_text, "with --output-only: ssi-cov (default) or fdd")
+      ->check(CLI::IsMember({"ssi-cov", "fdd"}));
+  app.add_option("--references", oma.selection.references,
+                 "with --output-only: the reference responses of SSI-cov's correlations (default: all)")
+      ->delimiter(',');
+  app.add_option("--ignore", oma.selection.ignore,
+                 "with --output-only: signals that are not responses (e.g. a measured force), left out with a note")
+      ->delimiter(',');
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
+    if (output_only) {
+      for (const auto& [given, option] : {std::pair{!band_text.empty(), "--band"}, {!model_path.empty(), "--model"},
+                                          {!sets.empty(), "--set"}, {!options.select_hz.empty(), "--select"},
+                                          {no_refine, "--no-refine"}, {quantity_text != "auto", "--quantity"},
+                                          {!uff_path.empty(), "--uff"}})
+        if (given) throw CLI::ValidationError(option, "not with --output-only (FRF analysis only)");
+      oma.data_paths = data_paths;
+      oma.options.method = method_text == "fdd" ? OutputOnlyMethod::Fdd : OutputOnlyMethod::SsiCov;
+      oma.options.ssi.max_order = options.lscf.max_order;
+      if (oma.options.method == OutputOnlyMethod::Fdd && options.lscf.max_order > 0)
+        throw CLI::ValidationError("--max-order", "SSI-cov only (not with --method fdd)");
+      // FDD decomposes the full spectral matrix: every channel is a reference.
+      if (oma.options.method == OutputOnlyMethod::Fdd && !oma.selection.references.empty())
+        throw CLI::ValidationError("--references", "SSI-cov only (not with --method fdd)");
+      // The block Toeplitz matrix grows with the order: 400 states is ~200 modes, and an SVD of minutes.
+      if (options.lscf.max_order > kMaxOutputOnlyOrder)
+        throw CLI::ValidationError("--max-order", "at most " + std::to_string(kMaxOutputOnlyOrder) +
+                                                      " with --output-only");
+      oma.json_path = json_path;
+      oma.report_dir = report_dir;
+      OutputPlan plan;
+      plan.files = {{"--json", json_path}};
+      plan.report_dir = report_dir;
+      plan.inputs = data_paths;
+      plan.check();
+      return run_output_only(oma);
+    }
+    for (const auto& [given, option] : {std::pair{!method_text.empty(), "--method"},
+                                        {!oma.selection.references.empty(), "--references"},
+                                        {!oma.selection.ignore.empty(), "--ignore"}})
+      if (given) throw CLI::ValidationError(option, "needs --output-only");
     options.refine = !no_refine;
     FrequencyBand band;
     if (!band_text.empty()) {

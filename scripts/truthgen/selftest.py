@@ -24,6 +24,10 @@
 5. Noise: FRF noise has the defined sigma, also averaged; coherence as defined; same seed, same data; the CLI
    writes files in the documented formats. The measurement chain (--gain, --input-gain, --force-sign, --swap,
    --unit, --frf-form): each file against the one without the option, read back from the CSVs.
+7. Output-only records (--kind oma): no force column; the truth modes are the damped modes and their shapes those
+   of the hand-solved quadratic eigenproblem (M s^2 + C s + K) phi = 0 at the outputs; the clean responses'
+   covariance and lag-1 covariance agree with the stationary covariance of the discrete Lyapunov equation
+   P = Ad P Ad^T + Bd Q Bd^T (Q = force RMS^2 I): the record is stationary; the noise has the defined sigma.
 """
 import hashlib
 import json
@@ -996,6 +1000,74 @@ def check_corners(snr_db=40.0, only=None):
                          " at " + ", ".join("%s=%g" % kv for kv in sorted(sizes.items())))
 
 
+# ---- 7. output-only records ----------------------------------------------------------------------------
+def check_oma():
+    from truthlib import operational
+    with tempfile.TemporaryDirectory() as tmp:
+        for example, fs, duration in [("mdof2", 1024.0, 60.0), ("spindle", 4096.0, 8.0)]:
+            argv = ["--example", example, "--case", "nominal", "--kind", "oma", "--draw", "2", "--seed", "5",
+                    "--fs", str(fs), "--duration", str(duration), "-o", example + ".csv"]
+            run_cli_here(argv, tmp)
+            table = read_csv(tmp, example)
+            case = cases.get(example, "nominal").drawn(2)
+            p = case.truth_parameters({})
+            system = case.build(p)
+            mats = system.matrices()
+            outputs = system.output_names()
+            check(table[0] == ["t"] + outputs, "oma %s: columns t and the outputs only, no force" % example)
+            with open(os.path.join(tmp, example + ".truth.json")) as f:
+                doc = json.load(f)
+            modes = doc["truth_modes"]
+            freqs, zetas = response.damped_modes(mats)
+            check(len(modes) == len(freqs) and all(close(m["f_hz"], f, 1e-6) and close(m["zeta"], z, 1e-5)
+                                                   for m, f, z in zip(modes, freqs, zetas)),
+                  "oma %s: truth modes are the damped modes" % example)
+            worst = 1.0
+            for m, f, z in zip(modes, freqs, zetas):
+                # By hand: the null vector of the dynamic stiffness at the pole (smallest singular vector).
+                s = 2 * np.pi * f * (-z + 1j * np.sqrt(1 - z * z))   # unrounded (damped_modes)
+                D = response.dynamic_stiffness(mats, [s])[0]
+                phi = np.linalg.svd(D)[2][-1].conj()
+                want = mats["Cy"] @ phi
+                got = np.array([complex(a, b) for a, b in m["shape"]])
+                if not np.any(got):   # not seen by the sensors: C phi is rounding noise
+                    check(np.linalg.norm(want) < 1e-9 * np.linalg.norm(mats["Cy"], 2) * np.linalg.norm(phi)
+                          and m["visibility"] == 0, "oma %s: the %.1f Hz mode, shape 0, is unseen" % (example, f))
+                    continue
+                mac = abs(np.vdot(want, got)) ** 2 / (np.vdot(want, want).real * np.vdot(got, got).real)
+                worst = min(worst, mac)
+            check(worst > 1 - 1e-6, "oma %s: shapes at the sensors match the hand-solved eigenvectors (worst MAC "
+                                    "%.9f)" % (example, worst))
+            # Stationarity: the clean responses' covariance at lags 0 and 1 against the discrete Lyapunov solution.
+            rng = np.random.default_rng(5)
+            data = operational.make_oma(mats, fs, duration, float("inf"), rng, generate.AMPLITUDE[example])
+            A, Bc, Cc = response.state_space(mats)
+            Ad, Bd = response.zoh_discretise(A, Bc, 1.0 / fs)
+            P = scipy.linalg.solve_discrete_lyapunov(Ad, generate.AMPLITUDE[example] ** 2 * Bd @ Bd.T)
+            y = data["clean"]
+            for lag, want in [(0, Cc @ P @ Cc.T), (1, Cc @ Ad @ P @ Cc.T)]:
+                got = y[lag:].T @ y[:len(y) - lag] / (len(y) - lag)
+                err = np.max(np.abs(got - want)) / np.max(np.abs(want))
+                # The sample covariance of a record of T seconds scatters by about sqrt(2 / (T zeta w)) of the
+                # slowest mode (its correlation time): 10 % for mdof2's 60 s, 14 % for the spindle's 8 s.
+                check(err < 0.25, "oma %s: covariance at lag %d within %.1f %% of the Lyapunov solution"
+                      % (example, lag, 100 * err))
+            sigma = np.array([doc["noise"]["sigma"][o] for o in outputs])
+            written = np.array([numbers(table, o) for o in outputs]).T
+            check(np.allclose(sigma, np.sqrt(np.mean(y ** 2, axis=0)) / 100, rtol=1e-9),
+                  "oma %s: noise sigma = RMS / 10^(40/20)" % example)
+            resid = written - y
+            check(np.all(np.abs(np.std(resid, axis=0) / sigma - 1) < 0.05),
+                  "oma %s: written responses = clean + noise of that sigma" % example)
+        again = os.path.join(tmp, "again")
+        os.mkdir(again)
+        argv = ["--example", "mdof2", "--case", "nominal", "--kind", "oma", "--draw", "2", "--seed", "5", "--fs",
+                "1024", "--duration", "60", "-o", "mdof2.csv"]
+        run_cli(argv, again)
+        run_cli(argv, tmp)
+        check(file_digest(tmp, "mdof2") == file_digest(again, "mdof2"), "oma: same seed, same bytes")
+
+
 def main():
     args = sys.argv[1:]
     only = [a.split("=", 1)[1] for a in args if a.startswith("--only=")]
@@ -1024,6 +1096,7 @@ def main():
         check_averages_and_options()
         check_measurement_chain()
         check_input_noise()
+        check_oma()
         if "--effects" in args:
             check_effects()
         if "--corners" in args:

@@ -4,6 +4,7 @@
     python3 scripts/truthgen/truthgen.py --example mdof2 --case nominal --kind frf --snr-db 40 --seed 1 -o frf.csv
     python3 scripts/truthgen/truthgen.py --example spindle --case sensor_delay --kind frf --draw 3 -o frf.csv
     python3 scripts/truthgen/truthgen.py --example spindle --case nominal --kind frf --gain xs_rear=0.8 -o frf.csv
+    python3 scripts/truthgen/truthgen.py --example mdof2 --case nominal --kind oma --draw 1 --seed 2 -o oma.csv
     python3 scripts/truthgen/truthgen.py --list
 
 Writes FILE.csv in the formats of docs/interfaces.md ("Measured data") and FILE.truth.json (truth values, the
@@ -23,7 +24,7 @@ ensure_numpy()
 
 import numpy as np  # noqa: E402
 
-from truthlib import cases, chain, datafiles, generate, models, response  # noqa: E402
+from truthlib import cases, chain, datafiles, generate, models, operational, response  # noqa: E402
 
 SET_PATTERN = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)=([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)$")
 
@@ -37,7 +38,9 @@ def parse_args(argv):
     ap.add_argument("--list", action="store_true", help="list the cases and exit")
     ap.add_argument("--example", choices=sorted(models.EXAMPLES))
     ap.add_argument("--case", help="truth case (see --list)")
-    ap.add_argument("--kind", choices=["frf", "time"], default="frf")
+    ap.add_argument("--kind", choices=["frf", "time", "oma"], default="frf",
+                    help="frf, time (force and responses) or oma: output-only, the responses to unmeasured white "
+                         "Gaussian forces at every input, no force column (default frf)")
     ap.add_argument("--snr-db", default="40", help="signal-to-noise ratio in dB per channel, or inf (default 40)")
     ap.add_argument("--input-snr-db", type=float, metavar="DB",
                     help="time: the written force carries white measurement noise at this SNR (sigma = RMS(force) / "
@@ -49,9 +52,9 @@ def parse_args(argv):
     ap.add_argument("--f-min", type=float, help="FRF grid start, Hz (mdof2 10, spindle 50, frame3 0.03125)")
     ap.add_argument("--f-max", type=float, help="FRF grid end, Hz (mdof2 400, spindle 1200, frame3 128)")
     ap.add_argument("--df", type=float, help="FRF grid spacing, Hz (mdof2 0.25, spindle 1, frame3 0.03125)")
-    ap.add_argument("--fs", type=float, help="time record sample rate, Hz (mdof2 4096, spindle 8192)")
-    ap.add_argument("--duration", type=float, help="time record length, s (default 2)")
-    ap.add_argument("--amplitude", type=float, help="force amplitude, N (mdof2 10, spindle 100)")
+    ap.add_argument("--fs", type=float, help="time record sample rate, Hz (mdof2 4096, spindle 8192; oma: 1024, 4096)")
+    ap.add_argument("--duration", type=float, help="time record length, s (default 2; oma: mdof2 300, spindle 60)")
+    ap.add_argument("--amplitude", type=float, help="force amplitude, N (mdof2 10, spindle 100; oma: the forces' RMS)")
     ap.add_argument("--excitation", choices=["binary", "gaussian"], default="binary",
                     help="white zero-order-hold force: random +-amplitude (default) or Gaussian")
     ap.add_argument("--draw", type=int, metavar="N",
@@ -159,6 +162,19 @@ def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs,
         for oi, o in enumerate(outputs):
             for ii, i in enumerate(inputs):
                 doc["noise"]["sigma"]["%s/%s" % (o, i)] = float(data["sigma"][oi, ii])
+    elif args.kind == "oma":
+        doc["truth_modes"] = [oma_mode(m) for m in operational.sensor_modes(mats)]
+        doc["noise"]["definition"] = ("oma: white Gaussian on each output, sigma = RMS(noise-free output) / "
+                                      "10^(snr/20); the forces are not measured")
+        doc["oma"] = {"fs": 1.0 / data["dt"], "samples": int(len(data["t"])), "excitation":
+                      "unmeasured independent white Gaussian forces (zero-order hold) at every input",
+                      "forces": list(inputs), "force_rms": args.amplitude, "burn_in_samples": data["burn_in"],
+                      "outputs": list(outputs),
+                      "shapes": "C v at the outputs, unit norm, largest component real and positive",
+                      "visibility": "peak of the mode's term in the output spectrum, |C v| |w^T B| / |Re lambda|, "
+                                    "relative to the largest mode's"}
+        for oi, o in enumerate(outputs):
+            doc["noise"]["sigma"][o] = float(data["sigma"][oi])
     else:
         doc["time"] = {"fs": 1.0 / data["dt"], "samples": int(len(data["t"])), "excitation": args.excitation,
                        "amplitude": args.amplitude, "hold": "zoh", "initial_state": "at rest"}
@@ -173,6 +189,13 @@ def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs,
     return doc
 
 
+def oma_mode(m):
+    """A truth mode of an output-only record: shapes as [re, im] per output, rounded as the other truth values."""
+    return {"f_hz": round(float(m["f_hz"]), 6), "zeta": float("%.6g" % m["zeta"]),
+            "shape": [[float("%.8g" % z.real), float("%.8g" % z.imag)] for z in m["shape"]],
+            "visibility": float("%.4g" % m["visibility"])}
+
+
 def run(argv):
     args = parse_args(argv)
     if args.list:
@@ -184,7 +207,11 @@ def run(argv):
         case = cases.get(args.example, args.case)
     except KeyError as error:
         raise UsageError(error.args[0])
-    if args.kind not in case.kinds:
+    if args.kind == "oma" and (args.input_snr_db is not None or args.gain or args.input_gain or args.force_sign
+                               or args.swap or args.unit or args.frf_form or args.excitation != "binary"):
+        raise UsageError("--kind oma takes no force or measurement-chain options (its forces are Gaussian and "
+                         "unmeasured)")
+    if args.kind not in case.kinds and not (args.kind == "oma" and "time" in case.kinds):
         raise UsageError("case %s/%s has no %s data" % (case.example, case.name, args.kind))
     if args.kind != "frf" and (args.averages != 1 or args.no_coherence):
         raise UsageError("--averages and --no-coherence apply to FRFs only")
@@ -222,6 +249,13 @@ def run(argv):
         data = generate.make_frf(mats, f, snr_db, rng, args.averages)
         chain.apply_frf(data, measurement_chain, outputs, inputs)
         datafiles.write_frf_csv(args.output, data, outputs, inputs, settings, coherence=not args.no_coherence)
+    elif args.kind == "oma":
+        fs = args.fs or operational.SAMPLE_RATE[case.example]
+        args.amplitude = args.amplitude or generate.AMPLITUDE[case.example]
+        data = operational.make_oma(mats, fs, args.duration or operational.DURATION[case.example], snr_db, rng,
+                                    args.amplitude)
+        data["u"] = np.zeros((len(data["t"]), 0))   # no force column
+        datafiles.write_time_csv(args.output, data, outputs, [], settings)
     else:
         fs = args.fs or generate.SAMPLE_RATE[case.example]
         args.amplitude = args.amplitude or generate.AMPLITUDE[case.example]

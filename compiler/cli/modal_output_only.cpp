@@ -1,0 +1,59 @@
+// `mbgen modal --output-only --data REC.csv [--data ...] [--method ssi-cov|fdd]`: the responses of time records,
+// no force (runtime/include/mbgen/output_only_modal.hpp, docs/modal.md).
+#include "cli/modal_output_only.hpp"
+
+#include <mbgen/data_error.hpp>
+#include <mbgen/data_set.hpp>
+#include <mbgen/output_only_report.hpp>
+
+#include <iostream>
+#include <optional>
+#include <stdexcept>
+
+#include "cli/load_data.hpp"
+#include "cli/output_files.hpp"
+
+namespace mbgen::cli {
+
+int run_output_only(const OutputOnlyRequest& request) {
+  std::vector<TimeRecord> records;
+  for (const std::string& path : request.data_paths) {
+    DataSet file = read_data_file(path);
+    if (file.is_frf())
+      throw DataError(path, 0, 0, "output-only modal analysis needs time records of responses, but this holds FRFs "
+                                  "(leave out --output-only)");
+    records.push_back(std::get<TimeRecord>(std::move(file.content)));
+  }
+  std::vector<ResponseData> setups = response_setups(records, request.selection);
+  OutputOnlyOptions options = request.options;
+  options.ssi.progress = [](int order, int max_order) {
+    progress_line("modal: order " + std::to_string(order) + "/" + std::to_string(max_order));
+  };
+  // One setup, or several (roving sensors with shared references) identified one by one and merged.
+  std::optional<MergedSetups> merged;
+  OutputOnlyIdentification single;
+  FddResult spectrum;  // the report's background for SSI-cov (the first setup's)
+  try {
+    if (setups.size() == 1)
+      single = identify_output_only(setups.front(), options);
+    else
+      merged = identify_setups(setups, options);  // a setup's error names its file (DataError)
+    if (!request.report_dir.empty() && options.method == OutputOnlyMethod::SsiCov)
+      spectrum = fdd(setups.front(), options.fdd);
+  } catch (const std::invalid_argument& e) {  // records too short for the lags, too few channels for the order
+    progress_done();
+    throw DataError(setups.front().files.front(), 0, 0, e.what());
+  }
+  progress_done();
+  const OutputOnlyReportInput in{merged ? merged->data : setups.front(), merged ? merged->result : single, options,
+                                 options.method == OutputOnlyMethod::SsiCov ? &spectrum : nullptr,
+                                 merged ? &*merged : nullptr};
+  OutputFiles out;
+  if (!request.json_path.empty()) out.add(request.json_path, output_only_json(in));
+  if (!request.report_dir.empty()) write_output_only_report(out.stage_directory(request.report_dir), in);
+  out.commit();
+  if (request.json_path != "-") std::cout << output_only_summary(in);
+  return 0;
+}
+
+}  // namespace mbgen::cli

@@ -1,0 +1,22 @@
+// `mbgen modal --output-only`: operational modal analysis of response time records (docs/modal.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <mbgen/output_only_modal.hpp>
+
+namespace mbgen::cli {
+
+struct OutputOnlyRequest {
+  std::vector<std::string> data_paths;
+  ResponseSelection selection;  // --ignore, --references
+  OutputOnlyOptions options;    // --method, --max-order
+  std::string json_path, report_dir;
+};
+
+// Reads the records, identifies the modes and writes the outputs (whole or not at all); returns the exit status.
+// Throws as the other commands do (DataError naming the file for bad records).
+int run_output_only(const OutputOnlyRequest& request);
+
+}  // namespace mbgen::cli

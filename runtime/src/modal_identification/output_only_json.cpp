@@ -1,0 +1,116 @@
+// The `mbgen-modal/1` document of an output-only analysis: the FRF path's mode table (f_hz, zeta, mpc, mpd_deg,
+// shape, pole) with the method, what the shapes are scaled to, and each method's own members (docs/modal.md).
+#include "mbgen/output_only_report.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace mbgen {
+
+namespace {
+
+using nlohmann::json;
+
+json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+json complex_number(std::complex<double> z) { return json::array({number(z.real()), number(z.imag())}); }
+
+json matrix(const Eigen::MatrixXd& m) {
+  json rows = json::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    json row = json::array();
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(number(m(i, j)));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::string output_only_json(const OutputOnlyReportInput& in) {
+  const ResponseData& data = in.data;
+  const OutputOnlyIdentification& r = in.result;
+  const OutputOnlyIdentification& run = method_run(in);  // settings: the first setup's when merged
+  const bool ssi = r.method == OutputOnlyMethod::SsiCov;
+  json j;
+  j["schema"] = "mbgen-modal/1";
+  j["data"] = data.files;
+  j["method"] = output_only_method_name(r.method);
+  j["output_only"] = true;
+  j["shape_scaling"] = "unit-norm";
+  json modes = json::array();
+  for (std::size_t m = 0; m < r.modes.size(); ++m) {
+    const OperationalMode& mode = r.modes[m];
+    json shape = json::object();
+    for (std::size_t c = 0; c < data.channels.size(); ++c)
+      shape[data.channels[c]] = complex_number(mode.shape[static_cast<Eigen::Index>(c)]);
+    json entry = {{"f_hz", number(mode.f_hz)},     {"zeta", number(mode.zeta)},   {"mpc", number(mode.mpc)},
+                  {"mpd_deg", number(mode.mpd_deg)}, {"shape", shape},            {"pole", complex_number(mode.lambda)},
+                  {"selected_by", "automatic"}};
+    if (ssi) {
+      entry["stable_orders"] = mode.support;
+      entry["f_scatter_hz"] = number(mode.f_scatter_hz);
+      entry["zeta_scatter"] = number(mode.zeta_scatter);
+      entry["contribution"] = number(mode.contribution);
+    } else if (!in.setups) {
+      const FddPeak& p = r.fdd.peaks[m];
+      entry["peak_f_hz"] = number(p.f_hz);
+      entry["peak_db"] = number(p.sv_db);
+      entry["bell_lines"] = p.bell_lines;
+      entry["efdd_note"] = p.note;
+    }
+    modes.push_back(entry);
+  }
+  j["modes"] = modes;
+  j["channels"] = data.channels;
+  std::vector<std::string> references;
+  for (int c : data.references) references.push_back(data.channels[static_cast<std::size_t>(c)]);
+  j["references"] = static_cast<int>(references.size());
+  j["reference_channels"] = references;
+  j["sample_rate_hz"] = number(1 / data.dt);
+  json samples = json::array();
+  for (const Eigen::MatrixXd& y : data.records) samples.push_back(y.rows());
+  if (in.setups) {
+    json setups = json::array();
+    for (std::size_t s = 0; s < in.setups->setups.size(); ++s) {
+      const ResponseData& setup = in.setups->setups[s];
+      json f = json::array();
+      for (const OperationalMode& mode : in.setups->per_setup[s].modes) f.push_back(number(mode.f_hz));
+      setups.push_back({{"files", setup.files}, {"channels", setup.channels}, {"modes_f_hz", f}});
+      for (const Eigen::MatrixXd& y : setup.records) samples.push_back(y.rows());
+    }
+    j["setups"] = setups;
+  }
+  j["samples"] = samples;
+  j["notes"] = data.notes;
+  j["auto_mac"] = matrix(r.auto_mac);
+  if (ssi) {
+    const StabilizationCriteria& c = in.options.selection.criteria;
+    j["max_order"] = run.ssi.diagram.orders.empty() ? 0 : run.ssi.diagram.orders.back();
+    j["block_rows"] = run.ssi.block_rows;
+    j["stability_criteria"] = {{"frequency", number(c.frequency)},
+                               {"damping", number(c.damping)},
+                               {"shape", number(c.shape)},
+                               {"max_zeta", number(c.max_zeta)}};
+    j["selection"] = "automatic";
+    j["min_orders_fraction"] = number(in.options.selection.min_orders_fraction);
+    j["min_contribution"] = number(in.options.min_contribution);
+    json rejected = json::array();
+    for (const RejectedPole& p : r.rejected)
+      rejected.push_back({{"f_hz", number(p.pole.f_hz)},
+                          {"zeta", number(p.pole.zeta)},
+                          {"stable_orders", p.pole.support},
+                          {"reason", p.reason}});
+    j["rejected_poles"] = rejected;
+  } else {
+    j["window_s"] = number(run.fdd.window_s);
+    j["lines"] = run.fdd.f_hz.size();
+    j["df_hz"] = number(run.fdd.f_hz.size() > 1 ? run.fdd.f_hz[1] : 0.0);
+    j["prominence_db"] = number(in.options.fdd.prominence_db);
+    j["bell"] = {{"mac", number(in.options.fdd.bell_mac)}, {"db", number(in.options.fdd.bell_db)}};
+  }
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace mbgen
