@@ -12,49 +12,19 @@
 #include <stdexcept>
 
 #include "../data/string_format.hpp"
+#include "report_text.hpp"
 
 namespace mbgen {
 
 namespace {
 
 using Stability = DiagramPole::Stability;
-
-void write_file(const std::string& dir, const std::string& name, const std::string& text) {
-  const std::string path = dir + "/" + name;
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) throw std::runtime_error(path + ": error: cannot write the report");
-}
-
-std::string num(double x, int digits = 4) {
-  if (!std::isfinite(x)) return "n/a";
-  std::ostringstream s;
-  s << std::setprecision(digits) << x;
-  return s.str();
-}
-
-std::string fixed(double x, int decimals) {
-  if (!std::isfinite(x)) return "n/a";
-  return detail::format("%.*f", decimals, x);
-}
+using modal_text::fixed;
+using modal_text::num;
+using modal_text::stability_code;
+using modal_text::write_file;
 
 double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
-
-int stability_code(Stability s) {
-  switch (s) {
-    case Stability::New:
-      return 0;
-    case Stability::Frequency:
-      return 1;
-    case Stability::FrequencyDamping:
-      return 2;
-    case Stability::FrequencyShape:
-      return 3;
-    case Stability::Stable:
-      return 4;
-  }
-  return 0;
-}
 
 std::string quantity_text(const ModalReportInput& in) {
   std::string text = frf_quantity_name(in.data.quantity);

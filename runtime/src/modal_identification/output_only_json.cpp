@@ -6,25 +6,16 @@
 
 #include <cmath>
 
+#include "json_values.hpp"
+
 namespace mbgen {
 
 namespace {
 
 using nlohmann::json;
-
-json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
-
-json complex_number(std::complex<double> z) { return json::array({number(z.real()), number(z.imag())}); }
-
-json matrix(const Eigen::MatrixXd& m) {
-  json rows = json::array();
-  for (Eigen::Index i = 0; i < m.rows(); ++i) {
-    json row = json::array();
-    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(number(m(i, j)));
-    rows.push_back(row);
-  }
-  return rows;
-}
+using modal_json_values::complex_number;
+using modal_json_values::matrix;
+using modal_json_values::number;
 
 }  // namespace
 
