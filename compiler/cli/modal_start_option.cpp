@@ -1,6 +1,5 @@
 #include "cli/modal_start_option.hpp"
 
-#include <algorithm>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -10,14 +9,7 @@ ModalStart add_start_from_modes(const Model& model, const std::vector<DataSet>& 
                                 const std::string& command) {
   ModalStart start = start_from_modes(model, data, options);
   std::cerr << command << ": start from the data's modes: " << start.summary << "\n";
-  if (start.values.empty()) return start;
-  if (options.also_start_at.empty()) {
-    options.also_start_at = start.values;
-  } else {
-    options.further_starts_at.insert(options.further_starts_at.begin(), options.also_start_at);
-    options.also_start_at = start.values;
-  }
-  options.starts = std::max(options.starts, 2);
+  start_first_at(start.values, options);
   return start;
 }
 

@@ -326,20 +326,14 @@ class Diagnoser {
     say("nominal model: fitting " + std::to_string(model.parameters.size()) + " parameters");
     // The caller's chosen starts (monitor: the baseline's levels), and the start from the data's modes before them.
     const std::unique_ptr<mbgen::Model> evaluator = derive_model(model);
-    std::map<std::string, double> also = options_.fit.also_start_at;
-    std::vector<std::map<std::string, double>> further = options_.fit.further_starts_at;
-    int starts = options_.fit.starts;
+    FitOptions fo = options_.fit;
     if (options_.start_from_modes) {
-      ModalStart from_modes = start_from_modes(*evaluator, split_.fit, options_.fit);
+      const ModalStart from_modes = start_from_modes(*evaluator, split_.fit, options_.fit);
       say("nominal model: start from the data's modes: " + from_modes.summary);
-      if (!from_modes.values.empty()) {
-        if (!also.empty()) further.insert(further.begin(), also);
-        also = std::move(from_modes.values);
-        starts = std::max(starts, 2);
-      }
+      start_first_at(from_modes.values, fo);
     }
-    ModelState nominal = assess(*evaluator, model, text, {}, starts, Workers{options_.fit.threads, nullptr, nullptr},
-                                also, {}, further);
+    ModelState nominal = assess(*evaluator, model, text, {}, fo.starts, Workers{options_.fit.threads, nullptr, nullptr},
+                                fo.also_start_at, {}, fo.further_starts_at);
     sensor_outputs_ = outputs_missed_alone(nominal.channels);
     if (has_records_) {
       if (const auto companion = estimation::spectral_companion(nominal.info, split_.fit)) {

@@ -130,4 +130,12 @@ ModalStart start_from_modes(const Model& model, const std::vector<DataSet>& data
   }
 }
 
+void start_first_at(const std::map<std::string, double>& values, FitOptions& options) {
+  if (values.empty()) return;
+  if (!options.also_start_at.empty())
+    options.further_starts_at.insert(options.further_starts_at.begin(), options.also_start_at);
+  options.also_start_at = values;
+  options.starts = std::max(options.starts, 2);
+}
+
 }  // namespace mbgen

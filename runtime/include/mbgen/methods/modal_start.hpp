@@ -44,4 +44,8 @@ struct ModalStart {
 // stopping rules.
 ModalStart start_from_modes(const Model& model, const std::vector<DataSet>& data, const FitOptions& options);
 
+// Makes `values` the search's first chosen start (FitOptions::also_start_at), any chosen start already there moving
+// to the front of further_starts_at, with at least two starts so the priors keep theirs. Nothing for empty values.
+void start_first_at(const std::map<std::string, double>& values, FitOptions& options);
+
 }  // namespace mbgen
