@@ -9,6 +9,7 @@
 #   -DMODE=J                with CHANGE: the tracked mode (0-based) that must be named as moved
 #   -DRAW_ALARM=ON          with CHANGE: without compensation some set before it alarms (the drift alone)
 #   -DNAMED=P               with CHANGE: the model's parameter P among those that explain it
+#   -DAGAIN=ON              run the monitor a second time: the JSON and the report must be byte-identical
 cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in script mode
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
@@ -50,6 +51,20 @@ foreach(f report/report.md report/t2.gp report/frequencies.gp)
     message(FATAL_ERROR "${f} was not written")
   endif()
 endforeach()
+if(AGAIN)
+  execute_process(COMMAND "${MBGEN}" monitor --output-only ${data_args} ${monitor_args} --json "${WORK_DIR}/again.json"
+                          --report "${WORK_DIR}/again" RESULT_VARIABLE status OUTPUT_QUIET ERROR_QUIET)
+  foreach(pair "m.json;again.json" "report/report.md;again/report.md" "report/t2.dat;again/t2.dat"
+               "report/frequencies.dat;again/frequencies.dat")
+    list(GET pair 0 a)
+    list(GET pair 1 b)
+    file(SHA256 "${WORK_DIR}/${a}" ha)
+    file(SHA256 "${WORK_DIR}/${b}" hb)
+    if(NOT status EQUAL 0 OR NOT ha STREQUAL hb)
+      message(FATAL_ERROR "a second run wrote a different ${a} (status ${status})")
+    endif()
+  endforeach()
+endif()
 file(READ "${WORK_DIR}/m.json" json)
 string(JSON schema GET "${json}" schema)
 string(JSON n_series LENGTH "${json}" series)
