@@ -288,6 +288,8 @@ int run_monitor(int argc, char** argv) {
         if (app.count(option)) throw CLI::ValidationError(option, "not with --output-only");
       if (data_paths.empty()) throw CLI::ValidationError("--data", "at least one --data file is required");
       if (!settings.sets.empty() && oma.model_path.empty()) throw CLI::ValidationError("--set", "needs --model");
+      if (!settings.roles.empty() && oma.model_path.empty())
+        throw CLI::ValidationError("--fix", "--fix, --free and --bound need --model");
       oma.data_paths = data_paths;
       oma.options.baseline = app.count("--baseline") ? options.baseline : 0;
       oma.options.compensate = !no_compensation;

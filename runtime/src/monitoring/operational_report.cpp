@@ -43,11 +43,11 @@ nlohmann::json explanation_json(const ChangeExplanation& e) {
           {"text", e.text}};
 }
 
-std::string change_line(const OperationalReportInput& in, std::size_t k) {
-  const OperationalChange& c = in.result.changes[k];
-  std::string line = "change at data set " + std::to_string(c.index) + ": " + c.text;
-  if (k < in.explanations.size()) line += "; " + in.explanations[k].text;
-  return line;
+// A change's text, with the model's explanation when there is one.
+std::string change_text(const OperationalReportInput& in, std::size_t k) {
+  std::string text = in.result.changes[k].text;
+  if (k < in.explanations.size()) text += "; " + in.explanations[k].text;
+  return text;
 }
 
 }  // namespace
@@ -151,7 +151,8 @@ std::string operational_monitor_summary(const OperationalReportInput& in) {
                 r.false_alarm, r.features, r.dof);
   std::string out = line;
   if (r.changes.empty()) out += "no change detected\n";
-  for (std::size_t k = 0; k < r.changes.size(); ++k) out += change_line(in, k) + "\n";
+  for (std::size_t k = 0; k < r.changes.size(); ++k)
+    out += "change at data set " + std::to_string(r.changes[k].index) + ": " + change_text(in, k) + "\n";
   return out;
 }
 
@@ -200,7 +201,7 @@ void write_operational_monitor_report(const std::string& dir, const OperationalR
   std::vector<report::Inline> changes;
   for (std::size_t k = 0; k < r.changes.size(); ++k)
     changes.emplace_back(report::Inline("**data set ") << r.changes[k].index << "**: "
-                                                      << report::text(change_line(in, k)));
+                                                      << report::text(change_text(in, k)));
   if (changes.empty()) doc.paragraph("None.");
   doc.list(std::move(changes));
   if (in.uncompensated) {
@@ -214,7 +215,7 @@ void write_operational_monitor_report(const std::string& dir, const OperationalR
     doc.paragraph(report::Inline("Without compensation (the raw frequencies against the baseline's mean and "
                                  "covariance, limit ")
                   << report_number(in.uncompensated->limit, 4) << ") " << alarms << " sets would alarm, " << before
-                  << " of them before the first change found with it.");
+                  << " of them before the first change found with compensation.");
   }
   doc.heading(2, "Tracked modes");
   report::Table modes{{"mode", "f [Hz]", "zeta", "spread [Hz]", "residual std [Hz]", "effects"}, {}};
