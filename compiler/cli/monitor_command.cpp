@@ -3,6 +3,7 @@
 // structural change (one no parameter explains) diagnosed (runtime/include/mbgen/monitor.hpp, docs/monitor.md).
 // `mbgen monitor --manifest FLEET.csv --out DIR [--item I | --count]`: many machines, each an idempotent item
 // (fleet_manifest.hpp, docs/fleets.md).
+// `mbgen monitor --output-only --data REC.csv ...`: response records alone, in operation (monitor_output_only.cpp).
 #include <mbgen/measurement_time.hpp>
 #include <mbgen/monitor_report.hpp>
 
@@ -18,6 +19,7 @@
 #include "cli/commands.hpp"
 #include "cli/parameter_roles.hpp"
 #include "cli/fleet_manifest.hpp"
+#include "cli/monitor_output_only.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
@@ -250,8 +252,62 @@ int run_monitor(int argc, char** argv) {
                  "with --manifest: run only this item, by 0-based index (a job array's index) or machine name");
   app.add_option("--out", out_dir, "with --manifest: the directory of the items' results");
   app.add_flag("--count", count, "with --manifest: print the number of items and exit");
+  // Monitoring in operation: response records, no force (docs/monitor.md, "Monitoring in operation").
+  bool output_only = false, no_compensation = false;
+  OperationalRequest oma;
+  app.add_flag("--output-only", output_only,
+               "monitoring in operation: the data are response records (no force); modes by SSI-cov, tracked, the "
+               "`# condition` variables' effect removed, a Hotelling T^2 chart");
+  app.add_option("--model", oma.model_path,
+                 "with --output-only: a model whose parameters' sensitivities explain a change (default values, --set)");
+  app.add_option("--false-alarm", oma.options.false_alarm,
+                 "with --output-only: the probability that a set without a change alarms (default 0.01)")
+      ->check(CLI::Range(1e-9, 0.5));
+  app.add_option("--environmental-components", oma.options.environmental_components,
+                 "with --output-only and no `# condition` lines: principal components removed as environmental "
+                 "(default: those with 90 % of the baseline's variance, at most modes - 1)")
+      ->check(CLI::Range(0, 1000));
+  app.add_flag("--no-compensation", no_compensation,
+               "with --output-only: test the raw frequencies (to see what the conditions alone do)");
+  app.add_option("--references", oma.selection.references,
+                 "with --output-only: the reference responses of SSI-cov's correlations (default: all)")
+      ->delimiter(',');
+  app.add_option("--ignore", oma.selection.ignore,
+                 "with --output-only: signals that are not responses (e.g. a measured force), left out")
+      ->delimiter(',');
+  app.add_option("--max-order", oma.identification.ssi.max_order,
+                 "with --output-only: SSI-cov's highest model order (default 48)")
+      ->check(CLI::Range(2, 400));
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
+    if (output_only) {
+      if (!model_path.empty())
+        throw CLI::ValidationError("model", "with --output-only a model is optional and given as --model M.mdl");
+      for (const char* option : {"--run-length", "--structural-ratio", "--starts", "--warm-starts", "--seed",
+                                 "--no-diagnosis", "--manifest", "--item", "--out", "--count"})
+        if (app.count(option)) throw CLI::ValidationError(option, "not with --output-only");
+      if (data_paths.empty()) throw CLI::ValidationError("--data", "at least one --data file is required");
+      if (!settings.sets.empty() && oma.model_path.empty()) throw CLI::ValidationError("--set", "needs --model");
+      if (!settings.roles.empty() && oma.model_path.empty())
+        throw CLI::ValidationError("--fix", "--fix, --free and --bound need --model");
+      oma.data_paths = data_paths;
+      oma.options.baseline = app.count("--baseline") ? options.baseline : 0;
+      oma.options.compensate = !no_compensation;
+      oma.sets = settings.sets;
+      oma.roles = settings.roles;
+      oma.json_path = json_path;
+      oma.report_dir = report_dir;
+      OutputPlan plan;
+      plan.files = {{"--json", json_path}};
+      plan.report_dir = report_dir;
+      plan.inputs = data_paths;
+      if (!oma.model_path.empty()) plan.inputs.push_back(oma.model_path);
+      plan.check();
+      return run_monitor_output_only(oma);
+    }
+    for (const char* option : {"--model", "--false-alarm", "--environmental-components", "--no-compensation",
+                               "--references", "--ignore", "--max-order"})
+      if (app.count(option)) throw CLI::ValidationError(option, "needs --output-only");
     if (!manifest_path.empty()) {
       if (!model_path.empty() || !data_paths.empty() || !json_path.empty() || !report_dir.empty())
         throw CLI::ValidationError("--manifest", "the manifest names the models and data; MODEL, --data, --json and "

@@ -1068,6 +1068,53 @@ def check_oma():
         check(file_digest(tmp, "mdof2") == file_digest(again, "mdof2"), "oma: same seed, same bytes")
 
 
+def check_oma_series():
+    """--series: each file's `# condition temperature=` line, the stiffnesses and the truth's frequencies following
+    it by k(T) = k0 (1 - a (T - mean)), and the change from its set on."""
+    with tempfile.TemporaryDirectory() as tmp:
+        argv = ["--example", "mdof2", "--case", "nominal", "--kind", "oma", "--draw", "1", "--seed", "4",
+                "--duration", "2", "--series", "8", "--temperature", "20,5,6,0.5,0.3",
+                "--temperature-coefficient", "0.004", "--change", "k11=0.9@5", "-o", "s.csv"]
+        run_cli_here(argv, tmp)
+        with open(os.path.join(tmp, "s.series.json")) as f:
+            summary = json.load(f)
+        base = cases.get("mdof2", "nominal").drawn(1).truth_parameters({})
+        mats0 = cases.get("mdof2", "nominal").drawn(1).build(base).matrices()
+        f0 = np.sqrt(np.sort(np.linalg.eigvals(np.linalg.solve(mats0["M"], mats0["K"])).real)) / (2 * np.pi)
+        lines_ok, params_ok, freqs_ok, temps = True, True, True, []
+        for i in range(8):
+            with open(os.path.join(tmp, "s_%02d.csv" % i)) as f:
+                head = [f.readline().rstrip("\n") for _ in range(3)]
+            match = re.match(r"^# condition temperature=(-?\d+\.\d\d)$", head[1])
+            lines_ok = lines_ok and match is not None and head[2] == "t,d1,d2"
+            if not match:
+                continue
+            t = float(match.group(1))
+            temps.append(t)
+            with open(os.path.join(tmp, "s_%02d.truth.json" % i)) as f:
+                doc = json.load(f)
+            factor = 1 - 0.004 * (t - 20)
+            want = dict(base)
+            for name in ("k11", "k12", "k22"):
+                want[name] = base[name] * factor
+            if i >= 5:
+                want["k11"] *= 0.9
+            params_ok = params_ok and all(close(doc["parameters"][k], v, 1e-12) for k, v in want.items())
+            # Undamped frequencies by hand (K/M eigenvalues): before the change all scale by sqrt(factor).
+            mats = cases.get("mdof2", "nominal").drawn(1).build(want).matrices()
+            f = np.sqrt(np.sort(np.linalg.eigvals(np.linalg.solve(mats["M"], mats["K"])).real)) / (2 * np.pi)
+            got = np.array([m["f_hz"] for m in doc["truth_modes"]])
+            freqs_ok = freqs_ok and np.all(np.abs(got / f - 1) < 1e-4)
+            if i < 5:
+                freqs_ok = freqs_ok and np.all(np.abs(f / f0 - np.sqrt(factor)) < 1e-12)
+            freqs_ok = freqs_ok and summary["sets"][i]["temperature"] == t and summary["sets"][i]["changed"] == (i >= 5)
+        check(lines_ok, "series: every file has its `# condition temperature=` line before the header")
+        check(params_ok, "series: the stiffnesses follow k0 (1 - a (T - mean)), k11 0.9 times from set 5 on")
+        check(freqs_ok, "series: the truth's frequencies follow the temperature (undamped ones by sqrt(factor))")
+        spread = max(temps) - min(temps) if temps else 0
+        check(spread > 5, "series: the temperature moves over the series (range %.2f)" % spread)
+
+
 def main():
     args = sys.argv[1:]
     only = [a.split("=", 1)[1] for a in args if a.startswith("--only=")]
@@ -1097,6 +1144,7 @@ def main():
         check_measurement_chain()
         check_input_noise()
         check_oma()
+        check_oma_series()
         if "--effects" in args:
             check_effects()
         if "--corners" in args:

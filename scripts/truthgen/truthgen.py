@@ -5,6 +5,8 @@
     python3 scripts/truthgen/truthgen.py --example spindle --case sensor_delay --kind frf --draw 3 -o frf.csv
     python3 scripts/truthgen/truthgen.py --example spindle --case nominal --kind frf --gain xs_rear=0.8 -o frf.csv
     python3 scripts/truthgen/truthgen.py --example mdof2 --case nominal --kind oma --draw 1 --seed 2 -o oma.csv
+    python3 scripts/truthgen/truthgen.py --example mdof2 --case nominal --kind oma --draw 1 --seed 3 --duration 20 \
+        --series 24 --change k11=0.92@16 -o series/set.csv
     python3 scripts/truthgen/truthgen.py --list
 
 Writes FILE.csv in the formats of docs/interfaces.md ("Measured data") and FILE.truth.json (truth values, the
@@ -24,7 +26,7 @@ ensure_numpy()
 
 import numpy as np  # noqa: E402
 
-from truthlib import cases, chain, datafiles, generate, models, operational, response  # noqa: E402
+from truthlib import cases, chain, datafiles, generate, models, operational, response, series  # noqa: E402
 
 SET_PATTERN = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)=([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)$")
 
@@ -64,6 +66,20 @@ def parse_args(argv):
                     help="FRF: the average of N measurements: noise variance sigma^2/N, coherence as for one "
                          "measurement (default 1)")
     ap.add_argument("--no-coherence", action="store_true", help="FRF: write no .coh columns")
+    series_options = ap.add_argument_group("a monitored series (--kind oma; docs/truthgen.md)")
+    series_options.add_argument("--series", type=int, metavar="N",
+                                help="write N output-only records OUT_00.csv .. of the one truth, each with a "
+                                     "`# condition temperature=` line that scales the stiffnesses, and "
+                                     "OUT.series.json; set i's noise from seed (--seed, i + 1)")
+    series_options.add_argument("--temperature", metavar="MEAN,DAILY,PERIOD,TREND,NOISE",
+                                help="the condition of set i: MEAN + DAILY sin(2 pi i / PERIOD) + TREND i + NOISE "
+                                     "N(0,1), rounded to 0.01 (default 20,4,12,0,0.3)")
+    series_options.add_argument("--temperature-coefficient", type=float, default=0.003, metavar="A",
+                                help="every stiffness (parameters k...) times 1 - A (T - MEAN) (default 0.003 per "
+                                     "unit)")
+    series_options.add_argument("--change", metavar="NAME=FACTOR@SET",
+                                help="a structural change: the parameter times FACTOR from set SET (0-based) on, "
+                                     "e.g. k11=0.92@16")
     chain_options = ap.add_argument_group("measurement chain (applied after the noise; docs/truthgen.md)")
     chain_options.add_argument("--gain", action="append", default=[], metavar="OUTPUT=FACTOR",
                                help="the output's sensor reads FACTOR times the truth, its noise included (-1: "
@@ -229,6 +245,8 @@ def run(argv):
         raise UsageError("--snr-db %r: expected a number or inf" % args.snr_db)
     settings = parse_settings(args.set, case)
     p = case.truth_parameters({name: float(text) for name, text in settings})
+    if args.series is not None or args.temperature is not None or args.change is not None:
+        return run_series(args, case, p, settings, snr_db)
     system = case.build(p)
     mats = system.matrices()
     inputs, outputs = system.input_names(), system.output_names()
@@ -269,6 +287,57 @@ def run(argv):
     datafiles.write_truth_json(base + ".truth.json",
                                truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs,
                                               measurement_chain))
+    return 0
+
+
+def run_series(args, case, p, settings, snr_db):
+    """--series: N output-only records of one truth under a changing condition (truthlib/series.py)."""
+    if args.kind != "oma" or args.series is None or args.series < 1:
+        raise UsageError("--temperature and --change go with --series N (N >= 1) and --kind oma")
+    try:
+        spec = series.parse_temperature(args.temperature)
+        change = series.parse_change(args.change, p)
+    except series.SeriesError as error:
+        raise UsageError(error.args[0])
+    if change is not None and change["from_set"] >= args.series:
+        raise UsageError("--change: set %d is beyond the series' %d sets" % (change["from_set"], args.series))
+    fs = args.fs or operational.SAMPLE_RATE[case.example]
+    args.amplitude = args.amplitude or generate.AMPLITUDE[case.example]
+    duration = args.duration or operational.DURATION[case.example]
+    output = args.output
+    temps = series.temperatures(args.series, spec, args.seed)
+    summary = {"generator": "scripts/truthgen", "command": "python3 scripts/truthgen/truthgen.py " + " ".join(sys.argv[1:]),
+               "example": case.example, "case": case.name, "parameters": p,
+               "condition": {"name": "temperature", "mean": spec[0], "daily_amplitude": spec[1],
+                             "period_sets": spec[2], "trend_per_set": spec[3], "noise_std": spec[4],
+                             "coefficient": args.temperature_coefficient,
+                             "stiffnesses": series.stiffness_names(p),
+                             "law": "k(T) = k0 (1 - coefficient (T - mean))"},
+               "change": change, "sets": []}
+    for i, temperature in enumerate(temps):
+        try:
+            q, factor, changed = series.set_parameters(p, temperature, spec, args.temperature_coefficient, change, i)
+        except series.SeriesError as error:
+            raise UsageError(error.args[0])
+        mats = case.build(q).matrices()
+        system = case.build(q)
+        inputs, outputs = system.input_names(), system.output_names()
+        rng = np.random.default_rng([args.seed, i + 1])
+        data = operational.make_oma(mats, fs, duration, snr_db, rng, args.amplitude)
+        data["u"] = np.zeros((len(data["t"]), 0))
+        path = series.set_path(output, i, args.series)
+        datafiles.write_time_csv(path, data, outputs, [], settings,
+                                 comments=["# condition temperature=%.2f" % temperature])
+        args.output = path
+        doc = truth_document(args, case, q, mats, settings, snr_db, data, outputs, inputs)
+        doc["series"] = {"index": i, "temperature": temperature, "stiffness_factor": factor, "changed": changed,
+                         "noise_stream": [args.seed, i + 1]}
+        datafiles.write_truth_json(path[:-4] + ".truth.json", doc)
+        summary["sets"].append({"file": os.path.basename(path), "temperature": temperature,
+                                "stiffness_factor": factor, "changed": changed,
+                                "truth_modes": [{"f_hz": m["f_hz"], "zeta": m["zeta"]} for m in doc["truth_modes"]]})
+    base = output[:-4] if output.endswith(".csv") else output
+    datafiles.write_truth_json(base + ".series.json", summary)
     return 0
 
 

@@ -78,6 +78,9 @@ double standardized_shift(double x, double std, double mean, double sigma, int c
 // the standard normal's.
 double student_t_cdf(double t, double nu);
 
+// The regularized incomplete beta function I_x(a, b), a, b > 0 (continued fraction, modified Lentz).
+double regularized_incomplete_beta(double a, double b, double x);
+
 // The standard normal quantile of p in (0, 1) (Acklam's rational approximation, refined by one Halley step: about
 // 1e-15 relative).
 double normal_quantile(double p);

@@ -136,6 +136,8 @@ double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 
 }  // namespace
 
+double regularized_incomplete_beta(double a, double b, double x) { return incomplete_beta(a, b, x); }
+
 double student_t_cdf(double t, double nu) {
   if (std::isinf(nu)) return normal_cdf(t);
   // P(|T| > |t|) = I_{nu / (nu + t^2)}(nu / 2, 1 / 2).

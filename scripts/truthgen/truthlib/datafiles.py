@@ -41,9 +41,10 @@ def time_decimals(dt):
     return max(0, int(math.ceil(-math.log10(0.01 * dt))))
 
 
-def write_time_csv(path, data, outputs, inputs, settings, digits=5):
-    """t, inputs, outputs; inputs held over each sample interval (zero-order hold, the default)."""
-    lines = [HEADER_NOTE] + _set_lines(settings)
+def write_time_csv(path, data, outputs, inputs, settings, digits=5, comments=()):
+    """t, inputs, outputs; inputs held over each sample interval (zero-order hold, the default). `comments`: more
+    header lines after the `# set` lines (a series' `# condition` line)."""
+    lines = [HEADER_NOTE] + _set_lines(settings) + list(comments)
     lines.append(",".join(["t"] + list(inputs) + list(outputs)))
     decimals = time_decimals(data["dt"])
     for k, t in enumerate(data["t"]):
