@@ -49,16 +49,21 @@ struct ShapeGeometry {
 // instant that component peaks). Entries of `shape` past motion.cols() are ignored.
 Eigen::Matrix3Xd point_displacements(const ShapeGeometry& geometry, const Eigen::VectorXcd& shape);
 
-// The translations of the sensor points from a shape known at the outputs only: value[s] (complex, one per
-// sensor; NaN or a sensor index not in `sensors` leaves it out) along sensors[s].direction, summed per point,
-// with the same phase rule as point_displacements. Points that no given sensor measures stay at rest and are not
-// marked as measured.
+// A shape known at the outputs only (a measured one): value[s] at sensor `sensor[s]` (an index into
+// ShapeGeometry::sensors), complex.
 struct SensorShape {
-  std::vector<int> sensor;                     // indices into ShapeGeometry::sensors
-  Eigen::VectorXcd value;                      // one per entry of `sensor`
+  std::vector<int> sensor;
+  Eigen::VectorXcd value;  // one per entry of `sensor`
 };
-Eigen::Matrix3Xd sensor_displacements(const ShapeGeometry& geometry, const SensorShape& shape,
+
+// Its complex translations of the points (3 x points): each value along its sensor's direction, summed per point.
+// A non-finite value or a sensor index out of range is left out. `measured` tells which points a value moved.
+Eigen::Matrix3Xcd sensor_translations(const ShapeGeometry& geometry, const SensorShape& shape,
                                       std::vector<bool>& measured);
+
+// Complex translations made real: turned by the one phase that makes the largest entry of `reference` real and
+// positive, then their real parts. Two shapes turned by the same reference compare at the same instant.
+Eigen::Matrix3Xd real_at_peak(const Eigen::Matrix3Xcd& translations, const Eigen::Matrix3Xcd& reference);
 
 // One deformed shape drawn over the undeformed geometry.
 struct ShapeLayer {
@@ -67,6 +72,7 @@ struct ShapeLayer {
   bool lines = true;              // draw the elements whose two ends it draws
   bool arrows = false;            // a thin line from each drawn point's rest position to its displaced one
   std::string colour = "#d62728";
+  double marker = 1;              // size of its point marks (a larger one stays visible under a later layer's)
   std::string legend;             // a line of the caption; empty for none
 };
 
@@ -80,11 +86,10 @@ inline constexpr double kShapeFraction = 0.2;
 std::string mode_shape_svg(const ShapeGeometry& geometry, const std::vector<ShapeLayer>& layers,
                            const std::string& title);
 
-// A model's mode on its whole geometry: the picture titled "mode NUMBER: F Hz, zeta Z %".
-std::string model_mode_svg(const ShapeGeometry& geometry, int number, double f_hz, double zeta,
-                           const Eigen::VectorXcd& shape);
+// A model's mode (`shape` over its coordinates) drawn on its whole geometry, in red.
+std::string model_mode_svg(const ShapeGeometry& geometry, const std::string& title, const Eigen::VectorXcd& shape);
 
-// The title of mode `number` at f_hz and zeta, as the pictures write it.
-std::string mode_title(int number, double f_hz, double zeta);
+// A picture's title: "NAME: F Hz, zeta Z %" (6 and 4 significant digits).
+std::string mode_title(const std::string& name, double f_hz, double zeta);
 
 }  // namespace mbgen

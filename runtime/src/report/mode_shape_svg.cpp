@@ -47,20 +47,6 @@ std::string escaped(const std::string& text) {
   return out;
 }
 
-// Turns complex translations by one phase so that the largest is real and positive, and keeps the real parts.
-Eigen::Matrix3Xd real_at_peak(const Eigen::Matrix3Xcd& d) {
-  double largest = 0;
-  std::complex<double> peak(1, 0);
-  for (Eigen::Index k = 0; k < d.cols(); ++k)
-    for (Eigen::Index a = 0; a < 3; ++a)
-      if (std::abs(d(a, k)) > largest) {
-        largest = std::abs(d(a, k));
-        peak = d(a, k);
-      }
-  const std::complex<double> turn = largest > 0 ? std::conj(peak) / largest : std::complex<double>(1, 0);
-  return (d * turn).real();
-}
-
 bool draws(const ShapeLayer& layer, std::size_t k) { return layer.points.empty() || layer.points[k]; }
 
 // Where the picture's drawing of one view puts a global point: the view's two axes, scaled, centred.
@@ -74,18 +60,20 @@ struct View {
 };
 
 void point_mark(std::ostringstream& svg, const View& view, const ShapePoint::Kind kind, const Eigen::Vector3d& p,
-                const std::string& colour) {
+                const std::string& colour, double size = 1) {
   const double x = view.x(p), y = view.y(p);
   switch (kind) {
     case ShapePoint::Kind::Body:
-      svg << "<circle cx=\"" << px(x) << "\" cy=\"" << px(y) << "\" r=\"4\" fill=\"" << colour << "\"/>\n";
+      svg << "<circle cx=\"" << px(x) << "\" cy=\"" << px(y) << "\" r=\"" << px(4 * size) << "\" fill=\"" << colour
+          << "\"/>\n";
       break;
     case ShapePoint::Kind::Sensor:
-      svg << "<rect x=\"" << px(x - 3.5) << "\" y=\"" << px(y - 3.5) << "\" width=\"7\" height=\"7\" fill=\"none\" "
-          << "stroke=\"" << colour << "\" stroke-width=\"1.5\"/>\n";
+      svg << "<rect x=\"" << px(x - 3.5 * size) << "\" y=\"" << px(y - 3.5 * size) << "\" width=\"" << px(7 * size)
+          << "\" height=\"" << px(7 * size) << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\"/>\n";
       break;
     case ShapePoint::Kind::Attachment:
-      svg << "<circle cx=\"" << px(x) << "\" cy=\"" << px(y) << "\" r=\"2\" fill=\"" << colour << "\"/>\n";
+      svg << "<circle cx=\"" << px(x) << "\" cy=\"" << px(y) << "\" r=\"" << px(2 * size) << "\" fill=\"" << colour
+          << "\"/>\n";
       break;
     case ShapePoint::Kind::Ground: break;  // anchors are drawn once, at rest
   }
@@ -120,10 +108,6 @@ void draw_view(std::ostringstream& svg, const View& view, int index, const Shape
     if (p.kind == ShapePoint::Kind::Ground) ground_mark(svg, view, p.position);
     point_mark(svg, view, p.kind, p.position, kRestColour);
   }
-  for (const ShapePoint& p : g.points)
-    if (p.kind == ShapePoint::Kind::Body && !p.label.empty())
-      svg << "<text x=\"" << px(view.x(p.position) + 5) << "\" y=\"" << px(view.y(p.position) - 5)
-          << "\" font-size=\"9\" fill=\"#999999\">" << escaped(p.label) << "</text>\n";
   for (std::size_t l = 0; l < layers.size(); ++l) {
     const ShapeLayer& layer = layers[l];
     const Eigen::Matrix3Xd& at = moved[l];
@@ -135,8 +119,28 @@ void draw_view(std::ostringstream& svg, const View& view, int index, const Shape
       if (!draws(layer, k)) continue;
       const Eigen::Index ki = static_cast<Eigen::Index>(k);
       if (layer.arrows) line(svg, view, g.points[k].position, at.col(ki), layer.colour, 1, "3 2");
-      point_mark(svg, view, g.points[k].kind, at.col(ki), layer.colour);
+      point_mark(svg, view, g.points[k].kind, at.col(ki), layer.colour, layer.marker);
     }
+  }
+  // The bodies' names beside their marks: where the first layer that draws the body with its elements moved it (so
+  // that bodies which rest at one place are told apart), else at rest; names at one place stacked downwards.
+  std::vector<std::pair<std::string, std::string>> named;  // (x, y) as written
+  for (std::size_t k = 0; k < g.points.size(); ++k) {
+    const ShapePoint& p = g.points[k];
+    if (p.kind != ShapePoint::Kind::Body || p.label.empty()) continue;
+    Eigen::Vector3d where = p.position;
+    for (std::size_t l = 0; l < layers.size(); ++l)
+      if (layers[l].lines && draws(layers[l], k)) {
+        where = moved[l].col(static_cast<Eigen::Index>(k));
+        break;
+      }
+    const std::pair<std::string, std::string> at{px(view.x(where)), px(view.y(where))};
+    const double below = 10.0 * static_cast<double>(std::count(named.begin(), named.end(), at));
+    named.push_back(at);
+    const bool right_half = view.x(where) > view.left + kPanel / 2;  // named to the left there, not cut off
+    svg << "<text x=\"" << px(view.x(where) + (right_half ? -5 : 5)) << "\" y=\"" << px(view.y(where) - 5 + below)
+        << "\" font-size=\"9\" fill=\"#777777\"" << (right_half ? " text-anchor=\"end\"" : "") << ">"
+        << escaped(p.label) << "</text>\n";
   }
   svg << "</g>\n";
 }
@@ -145,16 +149,17 @@ void draw_view(std::ostringstream& svg, const View& view, int index, const Shape
 
 Eigen::Matrix3Xd point_displacements(const ShapeGeometry& geometry, const Eigen::VectorXcd& shape) {
   const Eigen::Index n = geometry.motion.cols(), points = static_cast<Eigen::Index>(geometry.points.size());
-  const Eigen::VectorXcd d = geometry.motion.cast<std::complex<double>>() * shape.head(std::min(n, shape.size()));
+  Eigen::VectorXcd q = Eigen::VectorXcd::Zero(n);  // the body coordinates; a shorter shape moves the rest none
+  q.head(std::min(n, shape.size())) = shape.head(std::min(n, shape.size()));
+  const Eigen::VectorXcd d = geometry.motion.cast<std::complex<double>>() * q;
   Eigen::Matrix3Xcd by_point(3, points);
   for (Eigen::Index k = 0; k < points; ++k) by_point.col(k) = d.segment(3 * k, 3);
-  return real_at_peak(by_point);
+  return real_at_peak(by_point, by_point);
 }
 
-Eigen::Matrix3Xd sensor_displacements(const ShapeGeometry& geometry, const SensorShape& shape,
+Eigen::Matrix3Xcd sensor_translations(const ShapeGeometry& geometry, const SensorShape& shape,
                                       std::vector<bool>& measured) {
-  const Eigen::Index points = static_cast<Eigen::Index>(geometry.points.size());
-  Eigen::Matrix3Xcd d = Eigen::Matrix3Xcd::Zero(3, points);
+  Eigen::Matrix3Xcd d = Eigen::Matrix3Xcd::Zero(3, static_cast<Eigen::Index>(geometry.points.size()));
   measured.assign(geometry.points.size(), false);
   for (std::size_t s = 0; s < shape.sensor.size(); ++s) {
     const int k = shape.sensor[s];
@@ -166,7 +171,20 @@ Eigen::Matrix3Xd sensor_displacements(const ShapeGeometry& geometry, const Senso
     d.col(sensor.point) += v * sensor.direction.cast<std::complex<double>>();
     measured[static_cast<std::size_t>(sensor.point)] = true;
   }
-  return real_at_peak(d);
+  return d;
+}
+
+Eigen::Matrix3Xd real_at_peak(const Eigen::Matrix3Xcd& translations, const Eigen::Matrix3Xcd& reference) {
+  double largest = 0;
+  std::complex<double> peak(1, 0);
+  for (Eigen::Index k = 0; k < reference.cols(); ++k)
+    for (Eigen::Index a = 0; a < 3; ++a)
+      if (std::abs(reference(a, k)) > largest) {
+        largest = std::abs(reference(a, k));
+        peak = reference(a, k);
+      }
+  const std::complex<double> turn = largest > 0 ? std::conj(peak) / largest : std::complex<double>(1, 0);
+  return (translations * turn).real();
 }
 
 std::string mode_shape_svg(const ShapeGeometry& g, const std::vector<ShapeLayer>& layers, const std::string& title) {
@@ -252,15 +270,14 @@ std::string mode_shape_svg(const ShapeGeometry& g, const std::vector<ShapeLayer>
   return svg.str();
 }
 
-std::string mode_title(int number, double f_hz, double zeta) {
-  return detail::format("mode %d: %.6g Hz, zeta %.4g %%", number, f_hz, 100 * zeta);
+std::string mode_title(const std::string& name, double f_hz, double zeta) {
+  return name + detail::format(": %.6g Hz, zeta %.4g %%", f_hz, 100 * zeta);
 }
 
-std::string model_mode_svg(const ShapeGeometry& geometry, int number, double f_hz, double zeta,
-                           const Eigen::VectorXcd& shape) {
+std::string model_mode_svg(const ShapeGeometry& geometry, const std::string& title, const Eigen::VectorXcd& shape) {
   ShapeLayer layer;
   layer.displacement = point_displacements(geometry, shape);
-  return mode_shape_svg(geometry, {layer}, mode_title(number, f_hz, zeta));
+  return mode_shape_svg(geometry, {layer}, title);
 }
 
 }  // namespace mbgen

@@ -61,7 +61,8 @@ TEST_CASE("a mode's picture has three views and its title", "[mode_shapes]") {
   const std::vector<Eigen::VectorXcd> shapes = {Eigen::Vector3cd(1, 0, 0.4), Eigen::Vector3cd(0, 1, 0)};
   std::vector<std::string> pictures;
   for (std::size_t m = 0; m < shapes.size(); ++m)
-    pictures.push_back(model_mode_svg(g, static_cast<int>(m) + 1, 90.8 + 60 * m, 0.005, shapes[m]));
+    pictures.push_back(
+        model_mode_svg(g, mode_title("mode " + std::to_string(m + 1), 90.8 + 60 * m, 0.005), shapes[m]));
   REQUIRE(pictures.size() == 2);
   for (std::size_t m = 0; m < pictures.size(); ++m) {
     const std::string& svg = pictures[m];
@@ -84,9 +85,9 @@ TEST_CASE("a mode's picture has three views and its title", "[mode_shapes]") {
 
 TEST_CASE("a body moving in x is drawn displaced in x, not in y or z", "[mode_shapes]") {
   const ShapeGeometry g = two_bodies();
-  const std::string svg = model_mode_svg(g, 1, 100, 0.01, Eigen::Vector3cd(1, 0, 0.4));
+  const std::string svg = model_mode_svg(g, mode_title("mode 1", 100, 0.01), Eigen::Vector3cd(1, 0, 0.4));
   // Body marks (radius 4) in point order per view: A, B; views x-y, x-z, y-z.
-  const std::vector<Mark> rest = circles(svg, "4", grey), moved = circles(svg, "4", red);
+  const std::vector<Mark> rest = circles(svg, "4.00", grey), moved = circles(svg, "4.00", red);
   REQUIRE(rest.size() == 6);
   REQUIRE(moved.size() == 6);
   for (int body = 0; body < 2; ++body) {
@@ -110,16 +111,16 @@ TEST_CASE("a body moving in x is drawn displaced in x, not in y or z", "[mode_sh
 
 TEST_CASE("a rotation moves a point off its body's centre across the arm (u + theta x r)", "[mode_shapes]") {
   const ShapeGeometry g = two_bodies();
-  const std::string svg = model_mode_svg(g, 1, 100, 0.01, Eigen::Vector3cd(0, 1, 0));
+  const std::string svg = model_mode_svg(g, mode_title("mode 1", 100, 0.01), Eigen::Vector3cd(0, 1, 0));
   // Attachment marks (radius 2): one point, three views. A rotation about z moves (0.5, 0, 0) along +y.
-  const std::vector<Mark> rest = circles(svg, "2", grey), moved = circles(svg, "2", red);
+  const std::vector<Mark> rest = circles(svg, "2.00", grey), moved = circles(svg, "2.00", red);
   REQUIRE(rest.size() == 3);
   REQUIRE(moved.size() == 3);
   CHECK(moved[0].x == rest[0].x);
   CHECK(moved[0].y < rest[0].y - 1);  // up in the x-y view (SVG's y grows downwards)
   CHECK(moved[2].x > rest[2].x + 1);  // to the right in the y-z view
   // The bodies' centres do not move.
-  const std::vector<Mark> bodies_rest = circles(svg, "4", grey), bodies_moved = circles(svg, "4", red);
+  const std::vector<Mark> bodies_rest = circles(svg, "4.00", grey), bodies_moved = circles(svg, "4.00", red);
   REQUIRE(bodies_moved.size() == 6);
   for (std::size_t k = 0; k < 6; ++k) {
     CHECK(bodies_moved[k].x == bodies_rest[k].x);
@@ -130,9 +131,9 @@ TEST_CASE("a rotation moves a point off its body's centre across the arm (u + th
 TEST_CASE("the same shape gives the same bytes, whatever its complex phase", "[mode_shapes]") {
   const ShapeGeometry g = two_bodies();
   const Eigen::VectorXcd shape = Eigen::Vector3cd(1, 0.2, -0.7);
-  const std::string first = model_mode_svg(g, 3, 123.456, 0.02, shape);
-  CHECK(model_mode_svg(g, 3, 123.456, 0.02, shape) == first);
-  CHECK(model_mode_svg(g, 3, 123.456, 0.02, shape * std::polar(2.0, 0.9)) == first);
+  const std::string first = model_mode_svg(g, mode_title("mode 3", 123.456, 0.02), shape);
+  CHECK(model_mode_svg(g, mode_title("mode 3", 123.456, 0.02), shape) == first);
+  CHECK(model_mode_svg(g, mode_title("mode 3", 123.456, 0.02), shape * std::polar(2.0, 0.9)) == first);
   // The largest translation is real and positive after the turn, whatever the eigenvector's phase.
   const Eigen::Matrix3Xd d = point_displacements(g, shape * std::complex<double>(0, -1));
   CHECK(d(0, 1) == Approx(1));
@@ -145,7 +146,8 @@ TEST_CASE("a shape known at the sensors moves only the sensor points", "[mode_sh
   measured.sensor = {0};
   measured.value = Eigen::VectorXcd::Constant(1, std::complex<double>(0, -2));
   std::vector<bool> shown;
-  const Eigen::Matrix3Xd d = sensor_displacements(g, measured, shown);
+  const Eigen::Matrix3Xcd translations = sensor_translations(g, measured, shown);
+  const Eigen::Matrix3Xd d = real_at_peak(translations, translations);
   CHECK(shown == std::vector<bool>{false, false, false, false, true});
   CHECK(d(0, 4) == Approx(2));
   CHECK(d.leftCols(4).isZero());
@@ -167,7 +169,7 @@ TEST_CASE("a shape known at the sensors moves only the sensor points", "[mode_sh
 TEST_CASE("a mode that moves none of the drawn points says so", "[mode_shapes]") {
   ShapeGeometry g = two_bodies();
   g.motion.setZero();
-  const std::string svg = model_mode_svg(g, 1, 10, 0.01, Eigen::Vector3cd(1, 1, 1));
+  const std::string svg = model_mode_svg(g, mode_title("mode 1", 10, 0.01), Eigen::Vector3cd(1, 1, 1));
   CHECK(svg.find("do not move") != std::string::npos);
   CHECK(svg.find("nan") == std::string::npos);
 }
