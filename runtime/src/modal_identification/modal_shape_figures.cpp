@@ -105,18 +105,18 @@ void add_identified_mode_figures(report::Document& doc, const std::string& dir, 
     }
     layers.push_back(std::move(shown));
     const std::string file = "shape_identified_" + std::to_string(m + 1) + ".svg";
-    write_svg(dir, file, mode_shape_svg(g, layers, mode_title(name, mode.f_hz, mode.zeta)));
+    const std::string title = mode_title(name, mode.f_hz, mode.zeta);
+    write_svg(dir, file, mode_shape_svg(g, layers, title));
     doc.heading(3, report::Inline("Identified mode ") << m + 1);
-    doc.figure(file, name + ", measured");
+    doc.figure(file, title);
     if (k < 0) continue;
     const std::string model_file = "shape_model_" + std::to_string(k) + ".svg";
     const std::size_t ki = static_cast<std::size_t>(k);
+    const std::string model_title =
+        mode_title("model mode " + std::to_string(k), in.model->modes.f_hz[ki], in.model->modes.zeta[ki]);
     if (drawn.insert(k).second)
-      write_svg(dir, model_file,
-                model_mode_svg(g, mode_title("model mode " + std::to_string(k), in.model->modes.f_hz[ki],
-                                             in.model->modes.zeta[ki]),
-                               in.model->modes.shapes.col(k)));
-    doc.figure(model_file, report::Inline("model mode ") << k);
+      write_svg(dir, model_file, model_mode_svg(g, model_title, in.model->modes.shapes.col(k)));
+    doc.figure(model_file, model_title);
   }
 }
 
