@@ -12,8 +12,8 @@ report::Inline mode_shape_legend() {
          "elements' ends (small dots) and the elements as lines between them, an end on a ground as a hatched "
          "anchor. Grey: at rest. Red: the mode, each point moved by its body's translation and small rotation "
          "(u + theta x r, r from the centre of mass to the point), the largest translation drawn as 20 % of the "
-         "model's size (the largest extent of its points; a length of 1 when they all sit at one place). A complex shape is "
-         "drawn at the instant its largest translation peaks (turned by one phase, real part).";
+         "model's size (the largest extent of its points; a length of 1 when they all sit at one place). A "
+         "complex shape is drawn at the instant its largest translation peaks (turned by one phase, real part).";
 }
 
 void add_model_mode_figures(report::Document& doc, const std::string& dir, const std::string& stem,
