@@ -2,6 +2,7 @@
 
 #include "mbgen/report_files.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace mbgen {
@@ -19,12 +20,15 @@ report::Inline mode_shape_legend() {
 void add_model_mode_figures(report::Document& doc, const std::string& dir, const std::string& stem,
                             const ShapeGeometry& geometry, const std::vector<std::string>& titles,
                             const Eigen::MatrixXcd& shapes) {
-  for (std::size_t m = 0; m < titles.size(); ++m) {
+  for (std::size_t m = 0; m < std::min(titles.size(), kMaxModePictures); ++m) {
     const std::string file = stem + "_" + std::to_string(m + 1) + ".svg";
     write_report_file((std::filesystem::path(dir) / file).string(),
                       model_mode_svg(geometry, titles[m], shapes.col(static_cast<Eigen::Index>(m))));
     doc.figure(file, report::text(titles[m]));
   }
+  if (titles.size() > kMaxModePictures)
+    doc.paragraph(report::Inline("The first ") << kMaxModePictures << " of " << titles.size()
+                                               << " modes are drawn; the others are not.");
 }
 
 }  // namespace mbgen
