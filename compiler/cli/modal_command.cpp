@@ -20,6 +20,7 @@
 #include "cli/run_guarded.hpp"
 #include "cli/uff_modes.hpp"
 #include "cli/version.hpp"
+#include "evaluator/shape_geometry.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
 
@@ -36,7 +37,8 @@ ModalRun modal_identification(ModalRequest request) {
   if (!request.model_path.empty()) {
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(request.sets);
-    model = evaluator::make_evaluator(frontend::parse_file(request.model_path), derive);
+    run.model.emplace(frontend::parse_file(request.model_path));
+    model = evaluator::make_evaluator(*run.model, derive);
   }
   std::vector<FrfData> frfs;
   FrfQuantity quantity = FrfQuantity::Unknown;
@@ -199,7 +201,10 @@ int run_modal(int argc, char** argv) {
     };
     request.quantity = quantity_text;
     const ModalRun run = modal_identification(std::move(request));
-    const ModalReportInput in = run.input();
+    ModalReportInput in = run.input();
+    std::optional<ShapeGeometry> geometry;  // the report draws the shapes on the model's
+    if (run.model && !report_dir.empty())
+      in.geometry = &geometry.emplace(evaluator::shape_geometry(*run.model, parse_set_options(sets)));
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, modal_result_json(in));
     if (!report_dir.empty()) write_modal_report(out.stage_directory(report_dir), in);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -16,6 +17,7 @@
 #include "cli/run_guarded.hpp"
 #include "cli/seed_option.hpp"
 #include "cli/version.hpp"
+#include "evaluator/shape_geometry.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
 #include "frontend/parser.hpp"
@@ -165,8 +167,10 @@ int run_sensitivity(int argc, char** argv) {
       progress_done();
     }
 
-    const SensitivityReportInput in{model_path, info,       local, visibility, global ? &global_result : nullptr,
-                                    sobol,      range_text, maps};
+    SensitivityReportInput in{model_path, info,       local, visibility, global ? &global_result : nullptr,
+                              sobol,      range_text, maps};
+    std::optional<ShapeGeometry> geometry;  // the report draws the modes on it
+    if (!report_dir.empty()) in.geometry = &geometry.emplace(evaluator::shape_geometry(declared, derive.set));
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, sensitivity_json(in));
     if (!report_dir.empty()) write_sensitivity_report(out.stage_directory(report_dir), in);

@@ -19,6 +19,7 @@ struct ModelModes {
   std::vector<double> f_hz, zeta;
   std::vector<std::complex<double>> lambda;
   Eigen::MatrixXcd residues;  // modes x data channels
+  Eigen::MatrixXcd shapes;    // coordinates x modes: the displacement part of each mode's right eigenvector
   // What the measured channels are in the model: all outputs displacements, velocities or accelerations
   // (Unknown when mixed).
   FrfQuantity quantity = FrfQuantity::Unknown;

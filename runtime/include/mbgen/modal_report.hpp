@@ -7,6 +7,7 @@
 
 #include "mbgen/modal_identification.hpp"
 #include "mbgen/modal_pairing.hpp"
+#include "mbgen/mode_shape_svg.hpp"
 
 namespace mbgen {
 
@@ -23,6 +24,7 @@ struct ModalReportInput {
   const ModalOptions& options;
   const ModelComparison* model = nullptr;  // with --model
   std::string quantity_source;             // how the quantity was learned: "UFF ordinate type", "--quantity", ...
+  const ShapeGeometry* geometry = nullptr;  // the model's, with --model: the report draws the shapes on it
 };
 
 // The JSON document: keys sorted, numbers in shortest round-trip form, deterministic.
@@ -30,7 +32,9 @@ std::string modal_result_json(const ModalReportInput& in);
 
 // Writes DIR/report.md and DIR/report.html with the mode table, the stabilization diagram over the sum of the FRFs'
 // magnitudes, the auto-MAC (and with a model the MAC against its modes), and per channel the synthesized against the
-// measured FRF; plots as gnuplot scripts and data beside SVGs rendered when gnuplot is installed. DIR must exist.
+// measured FRF, and with a model's geometry the measured shapes at its sensor points beside the paired model modes
+// (modal_shape_figures.cpp); plots as gnuplot scripts and data beside SVGs rendered when gnuplot is installed. DIR
+// must exist.
 // Throws std::runtime_error when a file cannot be written.
 void write_modal_report(const std::string& dir, const ModalReportInput& in);
 

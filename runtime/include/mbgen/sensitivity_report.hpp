@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mbgen/mode_shape_svg.hpp"
 #include "mbgen/sensitivity.hpp"
 
 namespace mbgen {
@@ -19,11 +20,12 @@ struct SensitivityReportInput {
   SobolOptions sobol;
   std::string range_text;        // how the ranges were chosen, for the report
   std::vector<FeatureMap> maps;  // one per --sweep
+  const ShapeGeometry* geometry = nullptr;  // where known: the modes are drawn on it
 };
 
 // Keys sorted, numbers in shortest round-trip form (NaN as null); deterministic.
 std::string sensitivity_json(const SensitivityReportInput& in);
-// Writes DIR/report.md and DIR/report.html (tables, heat maps, feature maps), the plots as gnuplot scripts and data
+// Writes DIR/report.md and DIR/report.html (tables, heat maps, mode shapes with a geometry, feature maps), the plots as gnuplot scripts and data
 // beside SVGs rendered when gnuplot is installed. DIR must exist. Throws std::runtime_error when a file cannot be
 // written.
 void write_sensitivity_report(const std::string& dir, const SensitivityReportInput& in);

@@ -39,6 +39,12 @@ TEST_CASE("the model's residues rebuild its FRF (mdof2, displacement, velocity a
   for (std::size_t r = 0; r < 2; ++r) {
     CHECK(modes.f_hz[r] == Approx(reference[r].f_hz).epsilon(1e-10));
     CHECK(modes.zeta[r] == Approx(reference[r].zeta).epsilon(1e-8));
+    // The coordinate shape is modal_analysis's up to a complex factor: the same direction (MAC 1).
+    const Eigen::VectorXcd shape = modes.shapes.col(static_cast<Eigen::Index>(r));
+    REQUIRE(shape.size() == reference[r].shape.size());
+    const double mac =
+        std::norm(shape.dot(reference[r].shape)) / (shape.squaredNorm() * reference[r].shape.squaredNorm());
+    CHECK(mac == Approx(1).epsilon(1e-12));
   }
   // H(s) = D + sum over both members of each pair of residue / (s - lambda): D = 0 except for the acceleration
   // output (a2 = q2'', which feeds the force through M^-1).

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "../data/string_format.hpp"
+#include "modal_shape_figures.hpp"
 #include "report_text.hpp"
 
 namespace mbgen {
@@ -262,6 +263,8 @@ void write_modal_report(const std::string& dir, const ModalReportInput& in) {
     stems.push_back("model_mac");
     doc.figure("model_mac.svg", "MAC against the model");
   }
+
+  add_identified_mode_figures(doc, dir, in);
 
   doc.heading(2, "Synthesized and measured FRFs");
   doc.paragraph("The modal model (the selected poles, the residues and the residual terms) against the data. Error: "

@@ -49,11 +49,13 @@ ModelModes model_modes(const Model& model, const Eigen::VectorXd& parameters, co
   ModelModes out;
   out.quantity = quantity_of(m, outputs);
   out.residues.resize(static_cast<Eigen::Index>(sm.modes.size()), static_cast<Eigen::Index>(data.channels.size()));
+  out.shapes.resize(m.M.rows(), static_cast<Eigen::Index>(sm.modes.size()));
   for (std::size_t r = 0; r < sm.modes.size(); ++r) {
     const Eigen::Index e = sm.modes[r];
     out.lambda.push_back(sm.lambda[e]);
     out.f_hz.push_back(sm.f_hz(e));
     out.zeta.push_back(sm.zeta(e));
+    out.shapes.col(static_cast<Eigen::Index>(r)) = sm.right.col(e).head(m.M.rows());
     for (std::size_t c = 0; c < data.channels.size(); ++c) {
       const int o = outputs[static_cast<std::size_t>(data.channels[c].output)];
       const int i = inputs[static_cast<std::size_t>(data.channels[c].input)];

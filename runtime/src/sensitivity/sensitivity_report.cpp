@@ -1,6 +1,7 @@
 // The report directory of `mbgen sensitivity`: report.md and report.html with tables and SVG plots drawn by
 // gnuplot from .dat files and .gp scripts; and the terminal summary.
 #include "mbgen/gnuplot.hpp"
+#include "mbgen/mode_shape_figures.hpp"
 #include "mbgen/report_document.hpp"
 #include "mbgen/sensitivity_report.hpp"
 
@@ -176,6 +177,18 @@ void write_sensitivity_report(const std::string& dir, const SensitivityReportInp
                                    : in.visibility.channels[static_cast<std::size_t>(in.visibility.best[r])]));
   }
   doc.table(std::move(visibility));
+
+  if (in.geometry && !l.modes.empty()) {
+    doc.heading(2, "Mode shapes");
+    doc.paragraph(mode_shape_legend());
+    std::vector<std::string> titles;
+    Eigen::MatrixXcd shapes(l.modes.front().shape.size(), static_cast<Eigen::Index>(l.modes.size()));
+    for (std::size_t r = 0; r < l.modes.size(); ++r) {
+      titles.push_back(mode_title("mode " + std::to_string(r + 1), l.modes[r].f_hz, l.modes[r].zeta));
+      shapes.col(static_cast<Eigen::Index>(r)) = l.modes[r].shape;
+    }
+    add_model_mode_figures(doc, dir, "mode_shape", *in.geometry, titles, shapes);
+  }
 
   if (in.global) {
     const GlobalSensitivity& g = *in.global;
