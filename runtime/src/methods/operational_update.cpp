@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <limits>
 #include <stdexcept>
 
@@ -22,8 +23,9 @@ namespace mbgen {
 namespace {
 
 constexpr int kDampingIterations = 4;  // the modal method's relinearisations
-// |J u| / max column norm below this, u the unit common-factor direction: the residuals do not see it (a finite-
-// difference Jacobian of an invariant direction is ~1e-8 of a column).
+// The residuals' derivative along the common factor of M, C and K (a unit vector of log parameters) below this
+// times the largest column: the residuals do not see it (a finite difference along an exact invariance is ~1e-8 of
+// a column; on mdof2 a direction that leaves the dampings out is 1e-3, and one that leaves a mass out 0.4).
 constexpr double kCommonFactorTolerance = 1e-5;
 constexpr double kRankTolerance = 1e-7;  // identifiability's singular-value ratio
 
@@ -58,14 +60,17 @@ bool paired_at(const Model& model, const std::vector<int>& outputs, const std::v
   return true;
 }
 
-// Refuses mass/stiffness parameters the residuals cannot determine, naming the fix.
-void check_identifiable(const ModelInfo& info, const std::vector<int>& structural, const Eigen::MatrixXd& J) {
+// Refuses mass/stiffness parameters the residuals cannot determine, naming the fix. `common` is the residuals'
+// derivative along the common factor (every estimated mass/stiffness and every damping parameter times one factor,
+// per unit of its log): zero when nothing known ties the masses and stiffnesses to a scale.
+void check_identifiable(const ModelInfo& info, const std::vector<int>& structural, const Eigen::MatrixXd& J,
+                        const Eigen::VectorXd& common) {
   Eigen::VectorXd norms(J.cols());
   for (Eigen::Index j = 0; j < J.cols(); ++j) norms[j] = J.col(j).norm();
   const double largest = norms.size() ? norms.maxCoeff() : 0;
-  const Eigen::VectorXd common = Eigen::VectorXd::Ones(J.cols()) / std::sqrt(static_cast<double>(J.cols()));
-  if (J.cols() > 1 && largest > 0 && (J * common).norm() <= kCommonFactorTolerance * largest)
-    throw FitError("modal: error: --update: frequencies and unscaled shapes determine masses and stiffnesses only up "
+  const double per_parameter = common.norm() / std::sqrt(static_cast<double>(J.cols()));
+  if (J.cols() > 1 && largest > 0 && per_parameter <= kCommonFactorTolerance * largest)
+    throw FitError("modal --update: frequencies and unscaled shapes determine masses and stiffnesses only up "
                    "to a common factor (output-only shapes have no modal mass), and all of " +
                    names_of(info, structural) +
                    " are estimated: make one mass or stiffness known with --fix NAME[=VALUE]");
@@ -81,7 +86,7 @@ void check_identifiable(const ModelInfo& info, const std::vector<int>& structura
             (with.empty() ? " (the modes do not depend on it)" : " (confounded with " + names_of(info, with) + ")");
   }
   if (!lost.empty())
-    throw FitError("modal: error: --update: the identified modes cannot determine " + lost + " (rank " +
+    throw FitError("modal --update: the identified modes cannot determine " + lost + " (rank " +
                    std::to_string(a.rank()) + " of " + std::to_string(structural.size()) +
                    "): make it known with --fix NAME[=VALUE]");
 }
@@ -100,12 +105,12 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
   if (!classes.other.empty()) {
     std::string why = classes.other.front().second;
     const std::string from = "fit: error: --method modal";
-    if (why.rfind(from, 0) == 0) why = "modal: error: --update" + why.substr(from.size());
+    if (why.rfind(from, 0) == 0) why = "modal --update" + why.substr(from.size());
     throw FitError(why + " (make it known with --fix " +
                    info.parameters[static_cast<std::size_t>(classes.other.front().first)].name + ")");
   }
   if (classes.structural.empty())
-    throw FitError("modal: error: --update: no mass or stiffness parameter is estimated");
+    throw FitError("modal --update: no mass or stiffness parameter is estimated");
 
   OperationalUpdate out;
   std::vector<OperationalTarget> targets;
@@ -128,7 +133,7 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
     try {
       mm = operational_model_modes(model, prior, outputs);
     } catch (const std::runtime_error& e) {
-      throw FitError(std::string("modal: error: --update: the model cannot be evaluated at its values: ") + e.what());
+      throw FitError(std::string("modal --update: the model cannot be evaluated at its values: ") + e.what());
     }
     const std::vector<int> pairing = pair_by_mac(targets, mm);
     std::vector<OperationalTarget> kept;
@@ -147,7 +152,7 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
     targets = std::move(kept);
     target_mode = std::move(kept_mode);
     if (targets.empty() || !paired_at(model, outputs, targets, prior, before))
-      throw FitError("modal: error: --update: no identified mode with an uncertainty can be paired with the model's");
+      throw FitError("modal --update: no identified mode with an uncertainty can be paired with the model's");
   }
   std::sort(out.unpaired.begin(), out.unpaired.end());
 
@@ -166,9 +171,20 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
   if (!methods::log_scale_jacobian(info, objectives, prior, classes.structural, r, J))
-    throw FitError("modal: error: --update: the model's modes cannot be paired with the identified ones near its "
+    throw FitError("modal --update: the model's modes cannot be paired with the identified ones near its "
                    "values");
-  check_identifiable(info, classes.structural, J);
+  {
+    std::vector<int> every(info.parameters.size());
+    std::iota(every.begin(), every.end(), 0);
+    const std::vector<int> dampers = methods::classify_parameters(model, prior, every).damping;
+    constexpr double h = 1e-6;
+    Eigen::VectorXd scaled = prior, r_scaled;
+    for (int i : classes.structural) scaled[i] *= std::exp(h);
+    for (int i : dampers) scaled[i] *= std::exp(h);
+    if (!objectives(scaled, r_scaled))
+      throw FitError("modal --update: the model's modes cannot be paired with the identified ones near its values");
+    check_identifiable(info, classes.structural, J, (r_scaled - r) / h);
+  }
   out.chi2_before = r.squaredNorm();
   out.residuals = static_cast<int>(r.size());
 
@@ -201,7 +217,7 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
       zeta_std[t] = targets[static_cast<std::size_t>(t)].zeta_std;
     }
     if (!(zeta_std.allFinite() && zeta_std.minCoeff() > 0))
-      throw FitError("modal: error: --update: a paired mode's damping ratio has no standard deviation");
+      throw FitError("modal --update: a paired mode's damping ratio has no standard deviation");
     const methods::DampingRatios ratios = [&](const Eigen::VectorXd& q, Eigen::VectorXd& zeta) {
       Paired at;
       if (!paired_at(model, outputs, targets, q, at)) return false;
@@ -213,7 +229,7 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
     nlohmann::json log = nlohmann::json::array();
     Eigen::MatrixXd Q;
     methods::solve_damping_ratios(info, ratios, zeta_ref, zeta_std, classes.damping, prior, kDampingIterations,
-                                  "modal: error: --update", hz_text(targets), p, log, &Q);
+                                  "modal --update", hz_text(targets), p, log, &Q);
     const Eigen::MatrixXd information = Q.transpose() * Q;
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(information);
     if (qr.rank() == information.cols()) {
@@ -235,7 +251,7 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
   }
   Paired after;
   if (!paired_at(model, outputs, targets, p, after))
-    throw FitError("modal: error: --update: the model's modes cannot be paired with the identified ones at the "
+    throw FitError("modal --update: the model's modes cannot be paired with the identified ones at the "
                    "estimate");
   for (std::size_t t = 0; t < targets.size(); ++t) {
     UpdatedPair u;
