@@ -48,7 +48,8 @@ struct OperationalTarget {
 
 // The model's oscillating modes (Im lambda > 0, by frequency as `mbgen inspect` lists them) with their shapes
 // C v at the given outputs (indices into the model's outputs; the output's kind is in C, so an acceleration's shape
-// is lambda^2 times the displacement's: the same up to a complex factor).
+// is lambda^2 times the displacement's: the same up to a complex factor). A mode the sensors do not see
+// (|C v| <= 1e-9 |C| |v|: rounding error) gets a zero shape, which pairs with nothing.
 struct OperationalModelModes {
   std::vector<double> f_hz, zeta;
   std::vector<Eigen::VectorXcd> shapes;
@@ -63,7 +64,7 @@ OperationalModelModes operational_model_modes(const Model& model, const Eigen::V
 std::vector<int> model_outputs_of(const ModelInfo& info, const std::vector<std::string>& channels);
 
 // Each target paired one to one with a model mode, greedily by the largest MAC (near-ties within 1e-6 to the
-// nearest frequency); -1 for targets left over when the model has fewer oscillating modes.
+// nearest frequency); -1 for targets left over when the model has fewer oscillating modes the sensors see.
 std::vector<int> pair_by_mac(const std::vector<OperationalTarget>& targets, const OperationalModelModes& model,
                              std::vector<double>* mac = nullptr);
 

@@ -23,11 +23,15 @@ namespace mbgen {
 namespace {
 
 constexpr int kDampingIterations = 4;  // the modal method's relinearisations
+constexpr int kAlternations = 3;       // rounds of masses/stiffnesses, then dampings
 // The residuals' derivative along the common factor of M, C and K (a unit vector of log parameters) below this
 // times the largest column: the residuals do not see it (a finite difference along an exact invariance is ~1e-8 of
 // a column; on mdof2 a direction that leaves the dampings out is 1e-3, and one that leaves a mass out 0.4).
 constexpr double kCommonFactorTolerance = 1e-5;
 constexpr double kRankTolerance = 1e-7;  // identifiability's singular-value ratio
+// A column below this times the largest is zero: the finite differences through the eigensolver leave ~1e-6 of the
+// largest column in parameters the modes do not depend on (the spindle's y stiffnesses under x sensors).
+constexpr double kZeroColumn = 1e-5;
 
 std::string names_of(const ModelInfo& info, const std::vector<int>& which) {
   std::string s;
@@ -76,6 +80,7 @@ void check_identifiable(const ModelInfo& info, const std::vector<int>& structura
                    " are estimated: make one mass or stiffness known with --fix NAME[=VALUE]");
   IdentifiabilityOptions io;
   io.rank_tolerance = kRankTolerance;
+  io.zero_tolerance = kZeroColumn;
   const IdentifiabilityAnalysis a = analyse_identifiability(J, io);
   std::string lost;
   for (std::size_t j = 0; j < structural.size(); ++j) {
@@ -88,7 +93,8 @@ void check_identifiable(const ModelInfo& info, const std::vector<int>& structura
   if (!lost.empty())
     throw FitError("modal --update: the identified modes cannot determine " + lost + " (rank " +
                    std::to_string(a.rank()) + " of " + std::to_string(structural.size()) +
-                   "): make it known with --fix NAME[=VALUE]");
+                   "): make " + (lost.find(';') == std::string::npos ? "it" : "each") +
+                   " known with --fix NAME[=VALUE]");
 }
 
 }  // namespace
@@ -188,55 +194,60 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
   out.chi2_before = r.squaredNorm();
   out.residuals = static_cast<int>(r.size());
 
-  const methods::LocalOptimum o =
-      methods::log_scale_fit(info, objectives, prior, prior, classes.structural, options);
-  Eigen::VectorXd p = o.p;
-  out.chi2_after = o.cost;
-  out.iterations = o.iterations;
-  out.converged = o.converged;
-  Eigen::VectorXd structural_std = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(classes.structural.size()),
-                                                             std::numeric_limits<double>::quiet_NaN());
-  if (methods::log_scale_jacobian(info, objectives, p, classes.structural, r, J)) {
-    // Gauss-Newton covariance of log p, the weights being standard deviations: (J^T J)^-1, not rescaled.
-    const Eigen::MatrixXd information = J.transpose() * J;
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(information);
-    if (qr.rank() == information.cols()) {
-      const Eigen::MatrixXd cov = qr.inverse();
-      for (Eigen::Index j = 0; j < cov.rows(); ++j)
-        structural_std[j] = p[classes.structural[static_cast<std::size_t>(j)]] * std::sqrt(cov(j, j));
-    }
+  // The damping ratios, weighted by their standard deviations.
+  const auto nt = static_cast<Eigen::Index>(targets.size());
+  Eigen::VectorXd zeta_ref(nt), zeta_std(nt);
+  for (Eigen::Index t = 0; t < nt; ++t) {
+    zeta_ref[t] = targets[static_cast<std::size_t>(t)].zeta;
+    zeta_std[t] = targets[static_cast<std::size_t>(t)].zeta_std;
   }
+  if (!classes.damping.empty() && !(zeta_std.allFinite() && zeta_std.minCoeff() > 0))
+    throw FitError("modal --update: a paired mode's damping ratio has no standard deviation");
+  const methods::DampingRatios ratios = [&](const Eigen::VectorXd& q, Eigen::VectorXd& zeta) {
+    Paired at;
+    if (!paired_at(model, outputs, targets, q, at)) return false;
+    zeta.resize(nt);
+    for (Eigen::Index t = 0; t < nt; ++t)
+      zeta[t] = at.modes.zeta[static_cast<std::size_t>(at.model_mode[static_cast<std::size_t>(t)])];
+    return true;
+  };
 
-  Eigen::VectorXd damping_std = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(classes.damping.size()),
-                                                          std::numeric_limits<double>::quiet_NaN());
-  if (!classes.damping.empty()) {
-    const auto nt = static_cast<Eigen::Index>(targets.size());
-    Eigen::VectorXd zeta_ref(nt), zeta_std(nt);
-    for (Eigen::Index t = 0; t < nt; ++t) {
-      zeta_ref[t] = targets[static_cast<std::size_t>(t)].zeta;
-      zeta_std[t] = targets[static_cast<std::size_t>(t)].zeta_std;
-    }
-    if (!(zeta_std.allFinite() && zeta_std.minCoeff() > 0))
-      throw FitError("modal --update: a paired mode's damping ratio has no standard deviation");
-    const methods::DampingRatios ratios = [&](const Eigen::VectorXd& q, Eigen::VectorXd& zeta) {
-      Paired at;
-      if (!paired_at(model, outputs, targets, q, at)) return false;
-      zeta.resize(nt);
-      for (Eigen::Index t = 0; t < nt; ++t)
-        zeta[t] = at.modes.zeta[static_cast<std::size_t>(at.model_mode[static_cast<std::size_t>(t)])];
-      return true;
-    };
+  // Masses and stiffnesses, then dampings, in turn: the shapes of modes with non-proportional damping are complex
+  // and depend on the dampings (the spindle's fit at the prior dampings stopped with chi2 676; in turn, 49).
+  Eigen::VectorXd p = prior;
+  Eigen::MatrixXd Q;
+  const int rounds = classes.damping.empty() ? 1 : kAlternations;
+  for (int round = 0; round < rounds; ++round) {
+    const methods::LocalOptimum o = methods::log_scale_fit(info, objectives, p, p, classes.structural, options);
+    p = o.p;
+    out.iterations += o.iterations;
+    out.converged = o.converged;
+    if (classes.damping.empty()) continue;
     nlohmann::json log = nlohmann::json::array();
-    Eigen::MatrixXd Q;
-    methods::solve_damping_ratios(info, ratios, zeta_ref, zeta_std, classes.damping, prior, kDampingIterations,
-                                  "modal --update", hz_text(targets), p, log, &Q);
-    const Eigen::MatrixXd information = Q.transpose() * Q;
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(information);
-    if (qr.rank() == information.cols()) {
-      const Eigen::MatrixXd cov = qr.inverse();
-      for (Eigen::Index j = 0; j < cov.rows(); ++j) damping_std[j] = std::sqrt(cov(j, j));
+    try {
+      methods::solve_damping_ratios(info, ratios, zeta_ref, zeta_std, classes.damping, prior, kDampingIterations,
+                                    "modal --update", hz_text(targets), p, log, &Q);
+    } catch (const FitError& e) {
+      throw FitError(std::string(e.what()) + ": make some of " + names_of(info, classes.damping) +
+                     " known with --fix NAME[=VALUE]");
     }
   }
+  if (!methods::log_scale_jacobian(info, objectives, p, classes.structural, r, J))
+    throw FitError("modal --update: the model's modes cannot be paired with the identified ones at the estimate");
+  out.chi2_after = r.squaredNorm();
+  // Gauss-Newton covariances, the weights being standard deviations: (J^T J)^-1 of log p, not rescaled; the
+  // dampings' (Q^T Q)^-1 at the fitted masses and stiffnesses.
+  const auto std_of = [](const Eigen::MatrixXd& jacobian) {
+    const Eigen::MatrixXd information = jacobian.transpose() * jacobian;
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(information);
+    Eigen::VectorXd s = Eigen::VectorXd::Constant(information.cols(), std::numeric_limits<double>::quiet_NaN());
+    if (qr.rank() == information.cols()) s = qr.inverse().diagonal().cwiseSqrt();
+    return s;
+  };
+  Eigen::VectorXd structural_std = std_of(J);
+  for (Eigen::Index j = 0; j < structural_std.size(); ++j)
+    structural_std[j] *= p[classes.structural[static_cast<std::size_t>(j)]];
+  const Eigen::VectorXd damping_std = classes.damping.empty() ? Eigen::VectorXd() : std_of(Q);
 
   for (std::size_t i = 0; i < info.parameters.size(); ++i) {
     const auto index = static_cast<int>(i);

@@ -10,6 +10,10 @@
 
 namespace mbgen {
 
+namespace {
+constexpr double kInvisible = 1e-9;  // |C v| / (|C| |v|) of a mode the sensors do not see
+}  // namespace
+
 std::vector<int> model_outputs_of(const ModelInfo& info, const std::vector<std::string>& channels) {
   std::vector<int> out;
   for (const std::string& c : channels) {
@@ -27,13 +31,15 @@ OperationalModelModes operational_model_modes(const Model& model, const Eigen::V
   ModelMatrices m;
   model.evaluate(p, m);
   const StateModes sm = state_modes(m);
+  Eigen::MatrixXd C(static_cast<Eigen::Index>(outputs.size()), sm.ss.C.cols());
+  for (std::size_t k = 0; k < outputs.size(); ++k) C.row(static_cast<Eigen::Index>(k)) = sm.ss.C.row(outputs[k]);
   OperationalModelModes out;
   for (const Eigen::Index e : sm.modes) {
     if (!(sm.lambda[e].imag() > 0)) continue;
-    Eigen::VectorXcd shape(static_cast<Eigen::Index>(outputs.size()));
-    for (std::size_t k = 0; k < outputs.size(); ++k)
-      shape[static_cast<Eigen::Index>(k)] =
-          (sm.ss.C.row(outputs[k]).cast<std::complex<double>>() * sm.right.col(e)).value();
+    Eigen::VectorXcd shape = C.cast<std::complex<double>>() * sm.right.col(e);
+    // A mode the sensors do not see (the spindle's y modes at x sensors) has a shape of rounding error, whose MAC
+    // with a measured mode can be anything: it has no shape here, and pairs with nothing.
+    if (shape.norm() <= kInvisible * C.norm() * sm.right.col(e).norm()) shape.setZero();
     out.f_hz.push_back(sm.f_hz(e));
     out.zeta.push_back(sm.zeta(e));
     out.shapes.push_back(shape);
@@ -52,6 +58,9 @@ std::vector<int> pair_by_mac(const std::vector<OperationalTarget>& targets, cons
   std::vector<int> out(nt, -1);
   if (mac) mac->assign(nt, 0.0);
   std::vector<bool> target_done(nt, false), model_done(nm, false);
+  for (std::size_t t = 0; t < nt; ++t)  // modes without a shape at the sensors pair with nothing
+    for (std::size_t m = 0; m < nm; ++m)
+      if (!(model.shapes[m].squaredNorm() > 0)) table(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(m)) = -1;
   for (std::size_t k = 0; k < std::min(nt, nm); ++k) {
     // The largest MAC left; a near-tie (within 1e-6: one channel, where every MAC is 1) to the nearest frequency.
     int bt = -1, bm = -1;
@@ -75,6 +84,7 @@ std::vector<int> pair_by_mac(const std::vector<OperationalTarget>& targets, cons
         }
       }
     }
+    if (bt < 0 || table(bt, bm) < 0) break;
     out[static_cast<std::size_t>(bt)] = bm;
     if (mac) (*mac)[static_cast<std::size_t>(bt)] = table(bt, bm);
     target_done[static_cast<std::size_t>(bt)] = true;
