@@ -189,16 +189,19 @@ TEST_CASE("operational update: noise-free modes of a truth, one mass known", "[o
 // values as priors. Measured: masses and stiffnesses within 0.07 % (draw 1) and 0.18 % (draw 2) of the truth, 0.2 to
 // 0.7 standard deviations; the dampings within 8 % (c11: 2.9 and 1.5 standard deviations) and 35 % (c22, the
 // lightly damped mode's: 0.5 and 2.6). Asserted: masses and stiffnesses within 3 %, every estimate within 3
-// standard deviations (issue 34's consistency target).
+// standard deviations (issue 34's consistency target). The identified modes against the truth's, in their block
+// standard deviations: frequencies 0.15 to 1.1, damping ratios 1.5 to 2.9 (SSI-cov's damping bias, which the blocks
+// share, is not in their spread); asserted: 3.
 TEST_CASE("operational update: truthgen's output-only records of drawn mdof2 truths", "[operational_update]") {
   for (const int draw : {1, 2}) {
     const int seed = 60 + draw;
     INFO("draw " << draw);
     test::OmaRecord record = test::oma_record("methods_operational_update", "mdof2", draw, seed);
+    REQUIRE(record.modes.size() == 2);
     std::ifstream in(std::string(mbgen_binary_dir()) + "/methods_operational_update/mdof2_draw" +
                      std::to_string(draw) + "_seed" + std::to_string(seed) + ".truth.json");
     const nlohmann::json truth = nlohmann::json::parse(in).at("parameters");
-    const ResponseData data = response_data({std::move(record.record)});
+    const ResponseData data = response_data({record.record});
     const OutputOnlyOptions oma;
     const OutputOnlyIdentification id = identify_output_only(data, oma);
     REQUIRE(id.modes.size() == 2);
@@ -207,6 +210,12 @@ TEST_CASE("operational update: truthgen's output-only records of drawn mdof2 tru
     for (std::size_t m = 0; m < id.modes.size(); ++m) {
       const ModeUncertainty& s = unc.modes[m];
       REQUIRE(s.blocks_found >= 6);
+      // The block standard deviations against the truth's modes (numpy's eigenvalues, the .truth.json).
+      const test::TruthMode& tm = record.modes[m];
+      INFO("mode " << m << ": f " << id.modes[m].f_hz << " +- " << s.f_std_hz << " (truth " << tm.f_hz << "), zeta "
+                   << id.modes[m].zeta << " +- " << s.zeta_std << " (truth " << tm.zeta << ")");
+      CHECK(std::abs(id.modes[m].f_hz - tm.f_hz) < 3 * s.f_std_hz);
+      CHECK(std::abs(id.modes[m].zeta - tm.zeta) < 3 * s.zeta_std);
       targets.push_back({id.modes[m].f_hz, id.modes[m].zeta, id.modes[m].shape, s.f_std_hz, s.zeta_std, s.shape_std});
     }
     const test::Mdof2Model model = test::mdof2_model();
