@@ -27,28 +27,26 @@ OperationalUpdate update_model(const OutputOnlyRequest& request, const ResponseD
   derive.set = parse_set_options(request.sets);
   const ir::ModelIr declared = read_model_with_roles(request.model_path, request.roles, derive.set).model;
   const auto model = evaluator::make_evaluator(declared, derive);
-  OperationalUpdate update;
-  update.model_file = request.model_path;
   try {
     model_outputs_of(model->info(), data.channels);
   } catch (const std::invalid_argument& e) {
     throw DataError(data.files.front(), 0, 0, std::string(e.what()) + " (" + request.model_path + ")");
   }
+  BlockUncertainty uncertainty;
   try {
-    update.uncertainty = block_uncertainty(data, id, options);
+    uncertainty = block_uncertainty(data, id, options);
   } catch (const std::invalid_argument& e) {  // blocks too short for the lags
     throw DataError(data.files.front(), 0, 0, std::string("--update: the data blocks of the uncertainties: ") + e.what());
   }
   std::vector<OperationalTarget> targets;
   for (std::size_t m = 0; m < id.modes.size(); ++m) {
     const OperationalMode& mode = id.modes[m];
-    const ModeUncertainty& u = update.uncertainty.modes[m];
+    const ModeUncertainty& u = uncertainty.modes[m];
     targets.push_back({mode.f_hz, mode.zeta, mode.shape, u.f_std_hz, u.zeta_std, u.shape_std});
   }
-  const BlockUncertainty uncertainty = update.uncertainty;
-  update = update_from_operational_modes(*model, data.channels, targets);
+  OperationalUpdate update = update_from_operational_modes(*model, data.channels, targets);
   update.model_file = request.model_path;
-  update.uncertainty = uncertainty;
+  update.uncertainty = std::move(uncertainty);
   return update;
 }
 
@@ -90,7 +88,12 @@ int run_output_only(const OutputOnlyRequest& request) {
       throw DataError(setups.back().files.front(), 0, 0,
                       "--update needs the records of one setup (these responses differ from the first record's)");
     progress_line("modal: the model against the modes");
-    update = update_model(request, setups.front(), single, options);
+    try {
+      update = update_model(request, setups.front(), single, options);
+    } catch (...) {
+      progress_done();  // the message on a line of its own
+      throw;
+    }
     progress_done();
   }
   const OutputOnlyReportInput in{merged ? merged->data : setups.front(), merged ? merged->result : single, options,
