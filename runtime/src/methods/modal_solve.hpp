@@ -1,7 +1,8 @@
 // The modal objectives solved for parameters: a Levenberg-Marquardt fit of mass/stiffness parameters (on a log
 // scale) to the reference modes' frequencies, shapes and scales, and the linear least squares of damping parameters
-// on the modal damping ratios. Shared by the modal method (modal_fit.cpp) and the start from the data's modes
-// (modal_start.cpp). Internal header.
+// on the modal damping ratios. Shared by the modal method (modal_fit.cpp), the start from the data's modes
+// (modal_start.cpp) and, through their generic forms (log_scale_fit, solve_damping_ratios), the update of a model to
+// output-only modes (operational_update.cpp). Internal header.
 #pragma once
 
 #include "modal_configurations.hpp"
