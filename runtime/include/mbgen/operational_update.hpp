@@ -15,9 +15,10 @@ namespace mbgen {
 
 // ---- the identified modes' uncertainties ---------------------------------------------------------------------
 
-// Batch means: the records cut into `blocks` contiguous blocks of equal length, each identified on its own with the
-// same options; a mode of the whole record is found in a block when the block has a mode within the frequency
-// criterion (the nearest, MAC above 0.9 with the whole record's shape). Its standard deviations are those over the
+// Batch means: each record cut into `blocks` contiguous pieces of equal length, block b the b-th piece of every
+// record, each block identified on its own with the same options; a mode of the whole record is found in a block
+// when the block has a mode within the frequency criterion (the nearest, MAC above 0.9 with the whole record's
+// shape). Its standard deviations are those over the
 // blocks divided by sqrt(blocks found): an estimate from 1/blocks of the data varies blocks times as much as one
 // from all of it. shape_std is per real component of the unit-norm shape, from the blocks' shapes scaled to the
 // whole record's (complex least squares) over the 2 channels - 2 components that scaling leaves.
@@ -28,7 +29,7 @@ struct ModeUncertainty {
 
 struct BlockUncertainty {
   int blocks = 0;
-  double block_s = 0;                 // each block's duration
+  double block_s = 0;                 // each block's duration (its pieces of all records)
   std::vector<ModeUncertainty> modes;  // per mode of the identification
 };
 

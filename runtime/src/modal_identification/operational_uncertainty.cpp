@@ -41,9 +41,7 @@ BlockUncertainty block_uncertainty(const ResponseData& data, const OutputOnlyIde
                                    const OutputOnlyOptions& options, int blocks) {
   BlockUncertainty out;
   out.blocks = blocks;
-  Eigen::Index shortest = std::numeric_limits<Eigen::Index>::max();
-  for (const Eigen::MatrixXd& r : data.records) shortest = std::min(shortest, r.rows());
-  out.block_s = data.records.empty() ? 0 : static_cast<double>(shortest / blocks) * data.dt;
+  for (const Eigen::MatrixXd& r : data.records) out.block_s += static_cast<double>(r.rows() / blocks) * data.dt;
   const std::size_t nm = id.modes.size();
   std::vector<std::vector<double>> f(nm), zeta(nm), shape_sq(nm);
   for (int b = 0; b < blocks; ++b) {
