@@ -8,7 +8,6 @@
 #include "mbgen/identifiability.hpp"
 
 #include <Eigen/QR>
-#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
@@ -177,8 +176,7 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
   if (!methods::log_scale_jacobian(info, objectives, prior, classes.structural, r, J))
-    throw FitError("modal --update: the model's modes cannot be paired with the identified ones near its "
-                   "values");
+    throw FitError("modal --update: the model's modes cannot be paired with the identified ones near its values");
   {
     std::vector<int> every(info.parameters.size());
     std::iota(every.begin(), every.end(), 0);
@@ -213,7 +211,7 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
   };
 
   // Masses and stiffnesses, then dampings, in turn: the shapes of modes with non-proportional damping are complex
-  // and depend on the dampings (the spindle's fit at the prior dampings stopped with chi2 676; in turn, 49).
+  // and depend on the dampings, so masses and stiffnesses fitted at the prior dampings are fitted again.
   Eigen::VectorXd p = prior;
   Eigen::MatrixXd Q;
   const int rounds = classes.damping.empty() ? 1 : kAlternations;
@@ -262,8 +260,7 @@ OperationalUpdate update_from_operational_modes(const Model& model, const std::v
   }
   Paired after;
   if (!paired_at(model, outputs, targets, p, after))
-    throw FitError("modal --update: the model's modes cannot be paired with the identified ones at the "
-                   "estimate");
+    throw FitError("modal --update: the model's modes cannot be paired with the identified ones at the estimate");
   for (std::size_t t = 0; t < targets.size(); ++t) {
     UpdatedPair u;
     const OperationalTarget& g = targets[t];
