@@ -158,7 +158,8 @@ int run_modal(int argc, char** argv) {
       if (!update && !sets.empty()) throw CLI::ValidationError("--set", "not with --output-only without --update");
       if (update && method_text == "fdd")
         throw CLI::ValidationError("--update", "SSI-cov only (its modes' uncertainties come from data blocks)");
-      for (const auto& [given, option] : {std::pair{!band_text.empty(), "--band"}, {!options.select_hz.empty(), "--select"},
+      for (const auto& [given, option] : {std::pair{!band_text.empty(), "--band"},
+                                          {!options.select_hz.empty(), "--select"},
                                           {no_refine, "--no-refine"}, {quantity_text != "auto", "--quantity"},
                                           {!uff_path.empty(), "--uff"}})
         if (given) throw CLI::ValidationError(option, "not with --output-only (FRF analysis only)");

@@ -36,7 +36,8 @@ OperationalUpdate update_model(const OutputOnlyRequest& request, const ResponseD
   try {
     uncertainty = block_uncertainty(data, id, options);
   } catch (const std::invalid_argument& e) {  // blocks too short for the lags
-    throw DataError(data.files.front(), 0, 0, std::string("--update: the data blocks of the uncertainties: ") + e.what());
+    throw DataError(data.files.front(), 0, 0,
+                    std::string("--update: the data blocks of the uncertainties: ") + e.what());
   }
   std::vector<OperationalTarget> targets;
   for (std::size_t m = 0; m < id.modes.size(); ++m) {

@@ -85,7 +85,8 @@ TEST_CASE("operational residuals: frequency and shape after the best complex fac
   t.f_hz = mm.f_hz[0] + 0.01;
   t.f_std_hz = 0.005;
   t.shape_std = 1e-3;
-  Eigen::VectorXcd shape = e.phi.col(0).cast<std::complex<double>>() + Eigen::Vector2cd(std::complex<double>(0, 0), std::complex<double>(0.1, 0.05));
+  Eigen::VectorXcd shape = e.phi.col(0).cast<std::complex<double>>() +
+                           Eigen::Vector2cd(std::complex<double>(0, 0), std::complex<double>(0.1, 0.05));
   shape *= std::polar(1.0 / shape.norm(), 0.3);
   t.shape = shape;
   Eigen::VectorXd r(operational_residuals_per_mode(2));
@@ -137,7 +138,8 @@ TEST_CASE("operational residuals: the Jacobian in log parameters against the eig
     for (int j = 0; j < 5; ++j) {
       const double dl = phi.dot((dK[static_cast<std::size_t>(j)] - lambda * dM[static_cast<std::size_t>(j)]) * phi) /
                         phi.dot(e.M * phi);
-      const double expected = p[j] * dl / (2 * kTwoPi * std::sqrt(lambda)) / targets[static_cast<std::size_t>(k)].f_std_hz;
+      const double expected =
+          p[j] * dl / (2 * kTwoPi * std::sqrt(lambda)) / targets[static_cast<std::size_t>(k)].f_std_hz;
       CHECK(J(row, j) == Approx(expected).epsilon(1e-5).margin(1e-6 * J.row(row).cwiseAbs().maxCoeff()));
     }
     // The common factor of masses and stiffnesses changes neither the frequency nor the shape.

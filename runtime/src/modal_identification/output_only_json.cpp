@@ -46,8 +46,10 @@ json update_json(const OperationalUpdate& u) {
                      {"zeta", number(p.zeta)},
                      {"zeta_std", number(p.zeta_std)},
                      {"shape_std", number(p.shape_std)},
-                     {"before", pair_side(p.model_mode_before, p.model_f_before, p.model_zeta_before, p.mac_before, p.f_hz)},
-                     {"after", pair_side(p.model_mode_after, p.model_f_after, p.model_zeta_after, p.mac_after, p.f_hz)}});
+                     {"before",
+                      pair_side(p.model_mode_before, p.model_f_before, p.model_zeta_before, p.mac_before, p.f_hz)},
+                     {"after",
+                      pair_side(p.model_mode_after, p.model_f_after, p.model_zeta_after, p.mac_after, p.f_hz)}});
   return {{"model", u.model_file},
           {"uncertainty",
            {{"method", "data-blocks"}, {"blocks", u.uncertainty.blocks}, {"block_s", number(u.uncertainty.block_s)},

@@ -101,7 +101,8 @@ void update_section(report::Document& doc, const OperationalUpdate& u) {
   doc.heading(2, "Model update");
   doc.paragraph(report::Inline("The model ") << report::code(u.model_file)
                 << " fitted to the identified modes: frequencies and shapes (after the best complex factor, as "
-                   "output-only shapes are unscaled) weighted by their standard deviations, which come from " << u.uncertainty.blocks
+                   "output-only shapes are unscaled) weighted by their standard deviations, which come from "
+                << u.uncertainty.blocks
                 << " data blocks of " << num(u.uncertainty.block_s, 4)
                 << " s (batch means); damping parameters by least squares on the damping ratios. chi2 "
                 << num(u.chi2_before, 4) << " -> " << num(u.chi2_after, 4) << " over " << u.residuals
@@ -115,8 +116,8 @@ void update_section(report::Document& doc, const OperationalUpdate& u) {
   for (const UpdatedParameter& p : u.parameters)
     params.rows.push_back({report::code(p.name), p.kind, num(p.prior, 6), num(p.estimate, 6), num(p.std, 3)});
   doc.table(std::move(params));
-  report::Table pairs{{"mode", "f [Hz]", "std f [Hz]", "zeta [%]", "std zeta [%]", "model before [Hz]", "error before [%]",
-                       "MAC before", "model after [Hz]", "error after [%]", "MAC after"},
+  report::Table pairs{{"mode", "f [Hz]", "std f [Hz]", "zeta [%]", "std zeta [%]", "model before [Hz]",
+                       "error before [%]", "MAC before", "model after [Hz]", "error after [%]", "MAC after"},
                       {}};
   for (const UpdatedPair& p : u.pairs)
     pairs.rows.push_back({report::Inline() << p.mode + 1, fixed(p.f_hz, 3), num(p.f_std_hz, 2),
