@@ -17,6 +17,7 @@
 #include "cli/modal_output_only.hpp"
 #include "cli/output_files.hpp"
 #include "cli/number_checks.hpp"
+#include "cli/parameter_roles.hpp"
 #include "cli/run_guarded.hpp"
 #include "cli/uff_modes.hpp"
 #include "cli/version.hpp"
@@ -103,7 +104,9 @@ int run_modal(int argc, char** argv) {
                  "records of responses (records with other responses are setups, merged on shared references)")
       ->required();
   app.add_option("--band", band_text, "analyse LO <= f <= HI only (Hz; either side may be left empty)");
-  app.add_option("--model", model_path, "pair the identified modes with this model's modes by MAC (.mdl)");
+  app.add_option("--model", model_path,
+                 "pair the identified modes with this model's modes by MAC (.mdl); with --output-only and --update, "
+                 "fit it to them");
   app.add_option("--set", sets, "with --model: override a parameter's value, NAME=VALUE (repeatable)");
   app.add_option("--json", json_path, "write the result (schema mbgen-modal/1); - for standard output");
   app.add_option("--report", report_dir,
@@ -139,11 +142,26 @@ int run_modal(int argc, char** argv) {
   app.add_option("--ignore", oma.selection.ignore,
                  "with --output-only: signals that are not responses (e.g. a measured force), left out with a note")
       ->delimiter(',');
+  bool update = false;
+  app.add_flag("--update", update,
+               "with --output-only and --model: fit the model's mass, stiffness and damping parameters to the "
+               "identified frequencies, shapes and damping ratios, weighted by their uncertainties from data blocks");
+  add_role_options(app, oma.roles);
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
+    if (!output_only && update) throw CLI::ValidationError("--update", "needs --output-only and --model");
+    if (!update && !oma.roles.empty())
+      throw CLI::ValidationError(!oma.roles.fix.empty() ? "--fix" : !oma.roles.free.empty() ? "--free" : "--bound",
+                                 "needs --output-only --update");
     if (output_only) {
-      for (const auto& [given, option] : {std::pair{!band_text.empty(), "--band"}, {!model_path.empty(), "--model"},
-                                          {!sets.empty(), "--set"}, {!options.select_hz.empty(), "--select"},
+      if (update && model_path.empty()) throw CLI::ValidationError("--update", "needs --model");
+      if (!update && !model_path.empty())
+        throw CLI::ValidationError("--model", "with --output-only only with --update (the model fitted to the modes)");
+      if (!update && !sets.empty()) throw CLI::ValidationError("--set", "not with --output-only without --update");
+      if (update && method_text == "fdd")
+        throw CLI::ValidationError("--update", "SSI-cov only (its modes' uncertainties come from data blocks)");
+      for (const auto& [given, option] : {std::pair{!band_text.empty(), "--band"},
+                                          {!options.select_hz.empty(), "--select"},
                                           {no_refine, "--no-refine"}, {quantity_text != "auto", "--quantity"},
                                           {!uff_path.empty(), "--uff"}})
         if (given) throw CLI::ValidationError(option, "not with --output-only (FRF analysis only)");
@@ -161,10 +179,13 @@ int run_modal(int argc, char** argv) {
                                                       " with --output-only");
       oma.json_path = json_path;
       oma.report_dir = report_dir;
+      oma.model_path = model_path;
+      oma.sets = sets;
       OutputPlan plan;
       plan.files = {{"--json", json_path}};
       plan.report_dir = report_dir;
       plan.inputs = data_paths;
+      if (!model_path.empty()) plan.inputs.push_back(model_path);
       plan.check();
       return run_output_only(oma);
     }

@@ -4,16 +4,54 @@
 
 #include <mbgen/data_error.hpp>
 #include <mbgen/data_set.hpp>
+#include <mbgen/methods/operational_update.hpp>
 #include <mbgen/output_only_report.hpp>
 
 #include <iostream>
 #include <optional>
 #include <stdexcept>
 
+#include "cli/commands.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
+#include "evaluator/symbolic_evaluator.hpp"
 
 namespace mbgen::cli {
+
+namespace {
+
+// --update: the modes' uncertainties from data blocks, then the model fitted to them.
+OperationalUpdate update_model(const OutputOnlyRequest& request, const ResponseData& data,
+                               const OutputOnlyIdentification& id, const OutputOnlyOptions& options) {
+  symbolic::DeriveOptions derive;
+  derive.set = parse_set_options(request.sets);
+  const ir::ModelIr declared = read_model_with_roles(request.model_path, request.roles, derive.set).model;
+  const auto model = evaluator::make_evaluator(declared, derive);
+  try {
+    model_outputs_of(model->info(), data.channels);
+  } catch (const std::invalid_argument& e) {
+    throw DataError(data.files.front(), 0, 0, std::string(e.what()) + " (" + request.model_path + ")");
+  }
+  BlockUncertainty uncertainty;
+  try {
+    uncertainty = block_uncertainty(data, id, options);
+  } catch (const std::invalid_argument& e) {  // blocks too short for the lags
+    throw DataError(data.files.front(), 0, 0,
+                    std::string("--update: the data blocks of the uncertainties: ") + e.what());
+  }
+  std::vector<OperationalTarget> targets;
+  for (std::size_t m = 0; m < id.modes.size(); ++m) {
+    const OperationalMode& mode = id.modes[m];
+    const ModeUncertainty& u = uncertainty.modes[m];
+    targets.push_back({mode.f_hz, mode.zeta, mode.shape, u.f_std_hz, u.zeta_std, u.shape_std});
+  }
+  OperationalUpdate update = update_from_operational_modes(*model, data.channels, targets);
+  update.model_file = request.model_path;
+  update.uncertainty = std::move(uncertainty);
+  return update;
+}
+
+}  // namespace
 
 int run_output_only(const OutputOnlyRequest& request) {
   std::vector<TimeRecord> records;
@@ -45,9 +83,23 @@ int run_output_only(const OutputOnlyRequest& request) {
     throw DataError(setups.front().files.front(), 0, 0, e.what());
   }
   progress_done();
+  std::optional<OperationalUpdate> update;
+  if (!request.model_path.empty()) {
+    if (merged)
+      throw DataError(setups.back().files.front(), 0, 0,
+                      "--update needs the records of one setup (these responses differ from the first record's)");
+    progress_line("modal: the model against the modes");
+    try {
+      update = update_model(request, setups.front(), single, options);
+    } catch (...) {
+      progress_done();  // the message on a line of its own
+      throw;
+    }
+    progress_done();
+  }
   const OutputOnlyReportInput in{merged ? merged->data : setups.front(), merged ? merged->result : single, options,
                                  options.method == OutputOnlyMethod::SsiCov ? &spectrum : nullptr,
-                                 merged ? &*merged : nullptr};
+                                 merged ? &*merged : nullptr, update ? &*update : nullptr};
   OutputFiles out;
   if (!request.json_path.empty()) out.add(request.json_path, output_only_json(in));
   if (!request.report_dir.empty()) write_output_only_report(out.stage_directory(request.report_dir), in);

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/parameter_roles.hpp"
+
 #include <mbgen/output_only_modal.hpp>
 
 namespace mbgen::cli {
@@ -13,6 +15,10 @@ struct OutputOnlyRequest {
   ResponseSelection selection;  // --ignore, --references
   OutputOnlyOptions options;    // --method, --max-order
   std::string json_path, report_dir;
+  // --model with --update: the model fitted to the identified modes (docs/modal.md).
+  std::string model_path;
+  std::vector<std::string> sets;
+  RoleOptions roles;
 };
 
 // Reads the records, identifies the modes and writes the outputs (whole or not at all); returns the exit status.

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "mbgen/operational_update.hpp"
 #include "mbgen/output_only_modal.hpp"
 
 namespace mbgen {
@@ -14,6 +15,7 @@ struct OutputOnlyReportInput {
   const OutputOnlyOptions& options;
   const FddResult* spectrum = nullptr;  // the singular values behind SSI-cov's stabilization diagram (report only)
   const MergedSetups* setups = nullptr;  // several setups: `data` and `result` are the merged ones
+  const OperationalUpdate* update = nullptr;  // --model --update: the model fitted to the modes
 };
 
 // The run whose diagram, spectrum and settings the outputs show: the first setup's when setups were merged.

@@ -45,35 +45,54 @@ bool damping_ratios(const ModalProblem& pr, const Eigen::VectorXd& q, Eigen::Vec
 
 }  // namespace
 
-bool residuals_at(const ModalProblem& pr, const Eigen::VectorXd& base, const std::vector<int>& which,
-                  const std::vector<int>& modes, const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+namespace {
+
+// The objectives at x = log(parameters `which`), the others at `base`; false outside the bounds.
+bool objectives_at_log(const ModelInfo& info, const ParameterObjectives& f, const Eigen::VectorXd& base,
+                       const std::vector<int>& which, const Eigen::VectorXd& x, Eigen::VectorXd& r) {
   Eigen::VectorXd p = base;
   for (std::size_t j = 0; j < which.size(); ++j) p[which[j]] = std::exp(x[static_cast<Eigen::Index>(j)]);
-  if (!within_bounds(pr.model.info(), p, which)) return false;
-  return objectives_at(pr, p, modes, r);
+  if (!within_bounds(info, p, which)) return false;
+  return f(p, r);
 }
 
-LocalOptimum local_fit(const ModalProblem& pr, const Eigen::VectorXd& base, const Eigen::VectorXd& start,
-                       const std::vector<int>& which, const std::vector<int>& modes, const FitOptions& options) {
-  const estimation::ResidualFunction f = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
-    if (!residuals_at(pr, base, which, modes, x, r)) return false;
-    if (J) {
-      J->resize(r.size(), x.size());
-      Eigen::VectorXd rh;
-      for (Eigen::Index j = 0; j < x.size(); ++j) {
-        constexpr double h = 1e-7;
-        Eigen::VectorXd xh = x;
-        xh[j] += h;
-        double step = h;
-        if (!residuals_at(pr, base, which, modes, xh, rh)) {
-          xh[j] = x[j] - h;
-          step = -h;
-          if (!residuals_at(pr, base, which, modes, xh, rh)) return false;
-        }
-        J->col(j) = (rh - r) / step;
-      }
+// Forward differences in x (backward where the forward step leaves the bounds).
+bool jacobian_at_log(const ModelInfo& info, const ParameterObjectives& f, const Eigen::VectorXd& base,
+                     const std::vector<int>& which, const Eigen::VectorXd& x, const Eigen::VectorXd& r,
+                     Eigen::MatrixXd& J) {
+  J.resize(r.size(), x.size());
+  Eigen::VectorXd rh;
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    constexpr double h = 1e-7;
+    Eigen::VectorXd xh = x;
+    xh[j] += h;
+    double step = h;
+    if (!objectives_at_log(info, f, base, which, xh, rh)) {
+      xh[j] = x[j] - h;
+      step = -h;
+      if (!objectives_at_log(info, f, base, which, xh, rh)) return false;
     }
-    return true;
+    J.col(j) = (rh - r) / step;
+  }
+  return true;
+}
+
+ParameterObjectives modal_objectives(const ModalProblem& pr, const std::vector<int>& modes) {
+  return [&pr, &modes](const Eigen::VectorXd& p, Eigen::VectorXd& r) { return objectives_at(pr, p, modes, r); };
+}
+
+}  // namespace
+
+bool residuals_at(const ModalProblem& pr, const Eigen::VectorXd& base, const std::vector<int>& which,
+                  const std::vector<int>& modes, const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+  return objectives_at_log(pr.model.info(), modal_objectives(pr, modes), base, which, x, r);
+}
+
+LocalOptimum log_scale_fit(const ModelInfo& info, const ParameterObjectives& objectives, const Eigen::VectorXd& base,
+                           const Eigen::VectorXd& start, const std::vector<int>& which, const FitOptions& options) {
+  const estimation::ResidualFunction f = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    if (!objectives_at_log(info, objectives, base, which, x, r)) return false;
+    return !J || jacobian_at_log(info, objectives, base, which, x, r, *J);
   };
   Eigen::VectorXd x0(static_cast<Eigen::Index>(which.size()));
   for (std::size_t j = 0; j < which.size(); ++j) x0[static_cast<Eigen::Index>(j)] = std::log(start[which[j]]);
@@ -90,6 +109,18 @@ LocalOptimum local_fit(const ModalProblem& pr, const Eigen::VectorXd& base, cons
   o.converged = res.converged;
   o.iterations = res.iterations;
   return o;
+}
+
+bool log_scale_jacobian(const ModelInfo& info, const ParameterObjectives& f, const Eigen::VectorXd& p,
+                        const std::vector<int>& which, Eigen::VectorXd& r, Eigen::MatrixXd& J) {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(which.size()));
+  for (std::size_t j = 0; j < which.size(); ++j) x[static_cast<Eigen::Index>(j)] = std::log(p[which[j]]);
+  return objectives_at_log(info, f, p, which, x, r) && jacobian_at_log(info, f, p, which, x, r, J);
+}
+
+LocalOptimum local_fit(const ModalProblem& pr, const Eigen::VectorXd& base, const Eigen::VectorXd& start,
+                       const std::vector<int>& which, const std::vector<int>& modes, const FitOptions& options) {
+  return log_scale_fit(pr.model.info(), modal_objectives(pr, modes), base, start, which, options);
 }
 
 ParameterClasses classify_parameters(const Model& model, const Eigen::VectorXd& prior,
@@ -127,13 +158,27 @@ ParameterClasses classify_parameters(const Model& model, const Eigen::VectorXd& 
 void solve_damping(const ModalProblem& pr, const std::vector<int>& damping, const Eigen::VectorXd& prior,
                    int iterations, Eigen::VectorXd& p, nlohmann::json& log) {
   if (damping.empty()) return;
-  const ModelInfo& info = pr.model.info();
-  const auto kd = static_cast<Eigen::Index>(damping.size());
   const auto nr = static_cast<Eigen::Index>(pr.modes.size());
+  Eigen::VectorXd zeta_ref(nr);
+  for (Eigen::Index r = 0; r < nr; ++r) zeta_ref[r] = reference_of(pr, static_cast<int>(r)).zeta;
+  const DampingRatios ratios = [&pr](const Eigen::VectorXd& q, Eigen::VectorXd& zeta) {
+    return damping_ratios(pr, q, zeta);
+  };
+  solve_damping_ratios(pr.model.info(), ratios, zeta_ref, zeta_ref, damping, prior, iterations,
+                       "fit: error: --method modal", hz_list(pr.configurations), p, log);
+}
+
+void solve_damping_ratios(const ModelInfo& info, const DampingRatios& ratios, const Eigen::VectorXd& zeta_ref,
+                          const Eigen::VectorXd& row_scale, const std::vector<int>& damping,
+                          const Eigen::VectorXd& prior, int iterations, const std::string& what,
+                          const std::string& modes_text, Eigen::VectorXd& p, nlohmann::json& log,
+                          Eigen::MatrixXd* weighted_q) {
+  if (damping.empty()) return;
+  const auto kd = static_cast<Eigen::Index>(damping.size());
+  const Eigen::Index nr = zeta_ref.size();
   for (int it = 0; it < iterations; ++it) {
     Eigen::VectorXd z0, z1;
-    if (!damping_ratios(pr, p, z0))
-      throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
+    if (!ratios(p, z0)) throw FitError(what + ": the model's modes could not be paired at the estimate");
     Eigen::MatrixXd Q(nr, kd);
     Eigen::VectorXd rhs(nr), c(kd);
     for (Eigen::Index j = 0; j < kd; ++j) {
@@ -142,23 +187,20 @@ void solve_damping(const ModalProblem& pr, const std::vector<int>& damping, cons
       const double h = 1e-3 * std::max({std::abs(p[i]), std::abs(prior[i]), 1e-6});
       Eigen::VectorXd q = p;
       q[i] += h;
-      if (!damping_ratios(pr, q, z1))
-        throw FitError("fit: error: --method modal: the model's modes could not be paired at the estimate");
+      if (!ratios(q, z1)) throw FitError(what + ": the model's modes could not be paired at the estimate");
       Q.col(j) = (z1 - z0) / h;
     }
     Eigen::VectorXd residual_share(nr);
     for (Eigen::Index r = 0; r < nr; ++r) {
-      const double zeta_ref = reference_of(pr, static_cast<int>(r)).zeta;
       residual_share[r] = z0[r] - Q.row(r).dot(c);
-      rhs[r] = (zeta_ref - residual_share[r]) / zeta_ref;
-      Q.row(r) /= zeta_ref;
+      rhs[r] = (zeta_ref[r] - residual_share[r]) / row_scale[r];
+      Q.row(r) /= row_scale[r];
     }
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Q);
     if (qr.rank() < kd)
-      throw FitError("fit: error: --method modal: the modal damping ratios of the " + std::to_string(nr) +
-                     " identified modes (" + hz_list(pr.configurations) +
-                     ") cannot separate the damping parameters (rank " + std::to_string(qr.rank()) + " of " +
-                     std::to_string(kd) + ")");
+      throw FitError(what + ": the modal damping ratios of the " + std::to_string(nr) + " identified modes (" +
+                     modes_text + ") cannot separate the damping parameters (rank " + std::to_string(qr.rank()) +
+                     " of " + std::to_string(kd) + ")");
     const Eigen::VectorXd sol = qr.solve(rhs);
     double step = 0;
     for (Eigen::Index j = 0; j < kd; ++j) {
@@ -169,6 +211,7 @@ void solve_damping(const ModalProblem& pr, const std::vector<int>& damping, cons
       p[i] = v;
     }
     log.push_back({{"relative_step", step}, {"ndd_residual_norm", (Q * sol - rhs).norm()}});
+    if (weighted_q) *weighted_q = Q;
   }
 }
 

@@ -17,6 +17,54 @@ using modal_json_values::complex_number;
 using modal_json_values::matrix;
 using modal_json_values::number;
 
+json pair_side(int model_mode, double f_hz, double zeta, double mac, double f_identified) {
+  return {{"model_mode", model_mode},
+          {"f_hz", number(f_hz)},
+          {"zeta", number(zeta)},
+          {"mac", number(mac)},
+          {"f_error", number((f_hz - f_identified) / f_identified)}};
+}
+
+// The `model_update` object: the uncertainties used, the estimates with their standard deviations, the pairs
+// before and after.
+json update_json(const OperationalUpdate& u) {
+  json per_mode = json::array();
+  for (const ModeUncertainty& m : u.uncertainty.modes)
+    per_mode.push_back({{"f_std_hz", number(m.f_std_hz)},
+                        {"zeta_std", number(m.zeta_std)},
+                        {"shape_std", number(m.shape_std)},
+                        {"blocks_found", m.blocks_found}});
+  json parameters = json::object();
+  for (const UpdatedParameter& p : u.parameters)
+    parameters[p.name] = {{"kind", p.kind}, {"prior", number(p.prior)}, {"estimate", number(p.estimate)},
+                          {"std", number(p.std)}};
+  json pairs = json::array();
+  for (const UpdatedPair& p : u.pairs)
+    pairs.push_back({{"mode", p.mode},
+                     {"f_hz", number(p.f_hz)},
+                     {"f_std_hz", number(p.f_std_hz)},
+                     {"zeta", number(p.zeta)},
+                     {"zeta_std", number(p.zeta_std)},
+                     {"shape_std", number(p.shape_std)},
+                     {"before",
+                      pair_side(p.model_mode_before, p.model_f_before, p.model_zeta_before, p.mac_before, p.f_hz)},
+                     {"after",
+                      pair_side(p.model_mode_after, p.model_f_after, p.model_zeta_after, p.mac_after, p.f_hz)}});
+  return {{"model", u.model_file},
+          {"uncertainty",
+           {{"method", "data-blocks"}, {"blocks", u.uncertainty.blocks}, {"block_s", number(u.uncertainty.block_s)},
+            {"modes", per_mode}}},
+          {"parameters", parameters},
+          {"pairs", pairs},
+          {"unpaired_modes", u.unpaired},
+          {"chi2_before", number(u.chi2_before)},
+          {"chi2_after", number(u.chi2_after)},
+          {"residuals", u.residuals},
+          {"iterations", u.iterations},
+          {"converged", u.converged},
+          {"notes", u.notes}};
+}
+
 }  // namespace
 
 std::string output_only_json(const OutputOnlyReportInput& in) {
@@ -101,6 +149,7 @@ std::string output_only_json(const OutputOnlyReportInput& in) {
     j["prominence_db"] = number(in.options.fdd.prominence_db);
     j["bell"] = {{"mac", number(in.options.fdd.bell_mac)}, {"db", number(in.options.fdd.bell_db)}};
   }
+  if (in.update) j["model_update"] = update_json(*in.update);
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 

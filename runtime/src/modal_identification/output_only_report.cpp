@@ -77,6 +77,57 @@ std::string singular_plot(const OutputOnlyReportInput& in) {
   return gp.str();
 }
 
+std::string update_summary(const OperationalUpdate& u) {
+  std::ostringstream out;
+  out << "model update (" << u.model_file << "): " << u.pairs.size() << (u.pairs.size() == 1 ? " mode" : " modes")
+      << " paired, chi2 " << num(u.chi2_before, 4) << " -> " << num(u.chi2_after, 4) << " over " << u.residuals
+      << " residuals, " << u.iterations << " iterations" << (u.converged ? "" : " (not converged)")
+      << "; standard deviations from " << u.uncertainty.blocks << " data blocks of " << num(u.uncertainty.block_s, 4)
+      << " s\n";
+  for (const std::string& note : u.notes) out << "note: " << note << "\n";
+  out << detail::format("%-12s %-15s %14s %14s %12s\n", "parameter", "kind", "prior", "estimate", "std");
+  for (const UpdatedParameter& p : u.parameters)
+    out << detail::format("%-12s %-15s %14.6g %14.6g %12.3g\n", p.name.c_str(), p.kind.c_str(), p.prior, p.estimate,
+                          p.std);
+  out << detail::format("%4s %12s %10s %22s %22s\n", "mode", "f [Hz]", "std [Hz]", "model before (MAC)",
+                        "model after (MAC)");
+  for (const UpdatedPair& p : u.pairs)
+    out << detail::format("%4d %12.4f %10.2g %13.4f (%.4f) %13.4f (%.4f)\n", p.mode + 1, p.f_hz, p.f_std_hz,
+                          p.model_f_before, p.mac_before, p.model_f_after, p.mac_after);
+  return out.str();
+}
+
+void update_section(report::Document& doc, const OperationalUpdate& u) {
+  doc.heading(2, "Model update");
+  doc.paragraph(report::Inline("The model ") << report::code(u.model_file)
+                << " fitted to the identified modes: frequencies and shapes (after the best complex factor, as "
+                   "output-only shapes are unscaled) weighted by their standard deviations, which come from "
+                << u.uncertainty.blocks
+                << " data blocks of " << num(u.uncertainty.block_s, 4)
+                << " s (batch means); damping parameters by least squares on the damping ratios. chi2 "
+                << num(u.chi2_before, 4) << " -> " << num(u.chi2_after, 4) << " over " << u.residuals
+                << " residuals, " << u.iterations << " iterations" << (u.converged ? "." : " (not converged)."));
+  if (!u.notes.empty()) {
+    std::vector<report::Inline> notes;
+    for (const std::string& n : u.notes) notes.push_back(n);
+    doc.list(std::move(notes));
+  }
+  report::Table params{{"parameter", "kind", "prior", "estimate", "std"}, {}};
+  for (const UpdatedParameter& p : u.parameters)
+    params.rows.push_back({report::code(p.name), p.kind, num(p.prior, 6), num(p.estimate, 6), num(p.std, 3)});
+  doc.table(std::move(params));
+  report::Table pairs{{"mode", "f [Hz]", "std f [Hz]", "zeta [%]", "std zeta [%]", "model before [Hz]",
+                       "error before [%]", "MAC before", "model after [Hz]", "error after [%]", "MAC after"},
+                      {}};
+  for (const UpdatedPair& p : u.pairs)
+    pairs.rows.push_back({report::Inline() << p.mode + 1, fixed(p.f_hz, 3), num(p.f_std_hz, 2),
+                          num(100 * p.zeta, 4), num(100 * p.zeta_std, 2), fixed(p.model_f_before, 3),
+                          num(100 * (p.model_f_before - p.f_hz) / p.f_hz, 3), fixed(p.mac_before, 4),
+                          fixed(p.model_f_after, 3), num(100 * (p.model_f_after - p.f_hz) / p.f_hz, 3),
+                          fixed(p.mac_after, 4)});
+  doc.table(std::move(pairs));
+}
+
 }  // namespace
 
 std::string output_only_summary(const OutputOnlyReportInput& in) {
@@ -107,6 +158,7 @@ std::string output_only_summary(const OutputOnlyReportInput& in) {
   for (const RejectedPole& p : r.rejected)
     out << detail::format("dropped: a pole at %.4f Hz (%d %s): ", p.pole.f_hz, p.pole.support, ssi ? "orders" : "lines")
         << p.reason << "\n";
+  if (in.update) out << update_summary(*in.update);
   return out.str();
 }
 
@@ -203,6 +255,8 @@ void write_output_only_report(const std::string& dir, const OutputOnlyReportInpu
     doc.paragraph("Clusters dropped:");
     doc.list(std::move(dropped));
   }
+
+  if (in.update) update_section(doc, *in.update);
 
   std::vector<std::string> stems;
   const FddResult* spectrum = ssi ? in.spectrum : &run.fdd;
