@@ -123,6 +123,10 @@ FitRun fit_model(FitRequest request) {
   if (request.start_from_modes && !output_error)
     throw FitError("fit: error: --start-from-modes starts the output-error search; --method " + method +
                    " has its own starts (drop --start-from-modes or use --method auto)");
+  // Validation data are read and checked before the fit, so that a bad file stops the command at once. They are not
+  // cut to --band: they are scored as they are.
+  if (!request.validate_paths.empty())
+    run.validation = load_data(request.validate_paths, evaluator.info(), model, derive.set);
   std::optional<ModalStart> modal_start;
   if (request.start_from_modes) modal_start = add_start_from_modes(evaluator, data, request.options, "fit");
   const FitOptions& options = request.options;
@@ -139,6 +143,9 @@ FitRun fit_model(FitRequest request) {
   result.model = request.model_path;
   result.seed = options.seed;
   result.warnings = passivity_warnings(model, data);
+  result.residual_test_lags = request.residual_lags;
+  result.residual_tests = residual_tests(evaluator, data, result.values, request.residual_lags);
+  if (!run.validation.empty()) result.validation = validation_scores(evaluator, run.validation, result.values);
   return run;
 }
 
@@ -157,6 +164,9 @@ int run_fit(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "direct", "two-step", "hybrid", "ekf",
                              "arx-two-stage", "modal", "eiv"}));
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
+  std::vector<std::string> validate_paths;
+  app.add_option("--validate", validate_paths, "score the estimate on other data (same kinds as --data; repeatable): "
+                 "the fit percentage per channel, as MATLAB's compare (docs/estimation.md)");
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   RoleOptions roles;
@@ -192,10 +202,12 @@ int run_fit(int argc, char** argv) {
     plan.files = {{"--json", json_path}};
     plan.report_dir = report_dir;
     plan.inputs = data_paths;
+    plan.inputs.insert(plan.inputs.end(), validate_paths.begin(), validate_paths.end());
     plan.inputs.push_back(model_path);
     plan.check();
     request.model_path = model_path;
     request.data_paths = data_paths;
+    request.validate_paths = validate_paths;
     request.method = method;
     request.roles = roles;
     request.options = options;
@@ -216,7 +228,7 @@ int run_fit(int argc, char** argv) {
 
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, fit_result_json(result));
-    if (!report_dir.empty()) write_fit_report(out.stage_directory(report_dir), *evaluator, data, result);
+    if (!report_dir.empty()) write_fit_report(out.stage_directory(report_dir), *evaluator, data, result, run.validation);
     out.commit();
     if (json_path != "-") std::cout << summary(result);
     return 0;
