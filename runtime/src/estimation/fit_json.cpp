@@ -19,7 +19,8 @@ nlohmann::json correlation_test(const CorrelationTest& t, const char* passed, co
   for (double v : t.values) values.push_back(number(v));
   return {{"lags", t.lags},       {"values", values},     {"band", number(t.band)},
           {"judged", t.judged},   {"outside", t.outside}, {"fraction_outside", number(t.fraction_outside())},
-          {"allowed", t.allowed}, {"verdict", t.passed() ? passed : failed}};
+          {"allowed", t.allowed}, {"simultaneous_band", number(t.simultaneous_band)},
+          {"beyond_simultaneous", t.beyond_simultaneous}, {"verdict", t.passed() ? passed : failed}};
 }
 
 nlohmann::json residual_tests_json(const FitResult& r) {

@@ -87,7 +87,8 @@ void residual_test_section(report::Document& doc, const std::filesystem::path& r
                                "should stay within +-2.58/sqrt(N) if e is white, and its cross-correlation with each "
                                "input for lags -L to L within Ljung's band +-2.58 sqrt(P/N), P = sum of rho_e(k) "
                                "rho_u(k), if e is independent of the input (99 % bands). A verdict fails when more "
-                               "lags lie outside than noise alone leaves there in 99 % of cases. L = ")
+                               "lags lie outside than noise alone leaves there in 99 % of cases, or when one lag lies "
+                               "beyond the simultaneous 99 % band of all the lags (Bonferroni). L = ")
                 << result.residual_test_lags << ". An output-error fit models no noise: coloured measurement "
                    "noise makes the residual not white while the model is right; a residual correlated with the "
                    "input is a model error.");

@@ -28,6 +28,12 @@ void judge(CorrelationTest& t, bool skip_lag_zero) {
     if (std::abs(t.values[i]) > t.band) ++t.outside;
   }
   t.allowed = allowed_outside(t.judged);
+  // The per-lag band is kResidualBandQuantile sigma; the simultaneous one the Bonferroni quantile times the same sigma.
+  t.simultaneous_band =
+      t.judged > 0 ? t.band / kResidualBandQuantile * two_sided_normal_quantile(0.01 / t.judged) : t.band;
+  t.beyond_simultaneous = 0;
+  for (std::size_t i = 0; i < t.lags.size(); ++i)
+    if (!(skip_lag_zero && t.lags[i] == 0) && std::abs(t.values[i]) > t.simultaneous_band) ++t.beyond_simultaneous;
 }
 
 }  // namespace
@@ -61,6 +67,18 @@ int allowed_outside(int judged) {
     ++k;
   }
   return k;
+}
+
+bool CorrelationTest::passed() const { return outside <= allowed && beyond_simultaneous == 0; }
+
+double two_sided_normal_quantile(double tail) {
+  // Bisection on P(|Z| > z) = erfc(z / sqrt 2), decreasing in z.
+  double lo = 0, hi = 40;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = (lo + hi) / 2;
+    (std::erfc(mid / std::sqrt(2.0)) > tail ? lo : hi) = mid;
+  }
+  return (lo + hi) / 2;
 }
 
 CorrelationTest whiteness_test(const Eigen::VectorXd& e, int max_lag) {
