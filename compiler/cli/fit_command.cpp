@@ -75,6 +75,25 @@ std::string summary(const FitResult& r) {
     out += line;
   }
   out += "\n";
+  // The residual tests' verdicts and the scores on other data (docs/estimation.md), one line per record and file.
+  std::string tested_file;
+  for (const ChannelResidualTest& t : r.residual_tests) {
+    if (t.data_set != tested_file) out += (tested_file.empty() ? "" : "\n") + ("residual tests, " + t.data_set + ":");
+    tested_file = t.data_set;
+    out += " " + t.output + " " + (t.whiteness.passed() ? "white" : "NOT WHITE");
+    for (const auto& [input, x] : t.inputs)
+      out += (x.passed() ? ", independent of " : ", CORRELATED WITH ") + input;
+    out += ";";
+  }
+  if (!tested_file.empty()) out += "\n";
+  for (const ValidationScore& v : r.validation) {
+    out += "validation, " + v.file + ": fit";
+    for (const ChannelValidation& c : v.channels) {
+      std::snprintf(line, sizeof line, " %s %.1f %%", c.channel.c_str(), c.fit_percent);
+      out += line;
+    }
+    out += "\n";
+  }
   // A method's own account of what it did (method_details.NAME.summary), e.g. two-step's route.
   for (const auto& [name, text] : r.method_details) {
     const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
@@ -167,6 +186,10 @@ int run_fit(int argc, char** argv) {
   std::vector<std::string> validate_paths;
   app.add_option("--validate", validate_paths, "score the estimate on other data (same kinds as --data; repeatable): "
                  "the fit percentage per channel, as MATLAB's compare (docs/estimation.md)");
+  int residual_lags = 25;
+  app.add_option("--residual-lags", residual_lags, "time records: the residual tests' largest lag L (default 25, as "
+                 "MATLAB's resid; at most a quarter of a record's samples are used; docs/estimation.md)")
+      ->check(CLI::Range(1, 1000000));
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   RoleOptions roles;
@@ -208,6 +231,7 @@ int run_fit(int argc, char** argv) {
     request.model_path = model_path;
     request.data_paths = data_paths;
     request.validate_paths = validate_paths;
+    request.residual_lags = residual_lags;
     request.method = method;
     request.roles = roles;
     request.options = options;

@@ -111,3 +111,14 @@ foreach(case "other_channel.csv;other_channel.csv:1:4: error: column 'z' is neit
     message(SEND_ERROR "--validate ${file}: an output was written")
   endif()
 endforeach()
+
+# --residual-lags: longer lags (capped at a quarter of the record) leave the nominal fit white and independent too;
+# 0 is a usage error.
+expect_run(STATUS 0 STDOUT "residual tests, fitted.csv: d1 white, independent of F1; d2 white, independent of F1;"
+  ARGS fit ${MDOF2} --data fitted.csv --residual-lags 5000 --json long.json)
+file(READ "${WORK}/long.json" json)
+string(JSON lags LENGTH "${json}" residual_tests channels 0 inputs F1 lags)
+if(NOT lags EQUAL 1025)  # 2048 samples: L = 512, lags -512..512
+  message(SEND_ERROR "--residual-lags 5000 on 2048 samples: ${lags} lags, expected 1025")
+endif()
+expect_run(STATUS 2 STDERR "--residual-lags" ARGS fit ${MDOF2} --data fitted.csv --residual-lags 0)
