@@ -144,8 +144,10 @@ FitRun fit_model(FitRequest request) {
                    " has its own starts (drop --start-from-modes or use --method auto)");
   // Validation data are read and checked before the fit, so that a bad file stops the command at once. They are not
   // cut to --band: they are scored as they are.
-  if (!request.validate_paths.empty())
+  if (!request.validate_paths.empty()) {
     run.validation = load_data(request.validate_paths, evaluator.info(), model, derive.set);
+    check_validation_data(evaluator, run.validation);
+  }
   std::optional<ModalStart> modal_start;
   if (request.start_from_modes) modal_start = add_start_from_modes(evaluator, data, request.options, "fit");
   const FitOptions& options = request.options;
@@ -162,9 +164,22 @@ FitRun fit_model(FitRequest request) {
   result.model = request.model_path;
   result.seed = options.seed;
   result.warnings = passivity_warnings(model, data);
+  // The residual tests and the validation simulate the model at the estimate; where that fails (an estimate of a
+  // method without a stability constraint may be unstable) the fit's result stands and a warning says what is missing.
   result.residual_test_lags = request.residual_lags;
-  result.residual_tests = residual_tests(evaluator, data, result.values, request.residual_lags);
-  if (!run.validation.empty()) result.validation = validation_scores(evaluator, run.validation, result.values);
+  try {
+    result.residual_tests = residual_tests(evaluator, data, result.values, request.residual_lags);
+  } catch (const std::exception& e) {
+    result.warnings.push_back(std::string("no residual tests: ") + e.what());
+  }
+  for (const DataSet& d : run.validation) {
+    try {
+      result.validation.push_back(validation_scores(evaluator, {d}, result.values).front());
+    } catch (const std::exception& e) {
+      result.warnings.push_back("no validation on " + d.file() + ": " + e.what());
+      result.validation.push_back(ValidationScore{d.file(), d.is_frf(), {}});
+    }
+  }
   return run;
 }
 

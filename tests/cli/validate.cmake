@@ -105,7 +105,7 @@ foreach(case "other_channel.csv;other_channel.csv:1:4: error: column 'z' is neit
              "no_force.csv;no_force.csv: error: time record lacks model input\\(s\\) F1")
   list(GET case 0 file)
   list(GET case 1 message)
-  expect_run(STATUS 1 STDERR "${message}"
+  expect_run(STATUS 1 STDERR "${message}" STDOUT "^$"  # refused before the fit: no summary
     ARGS fit ${MDOF2} --data fitted.csv --validate ${file} --json refused.json --report refused_report)
   if(EXISTS "${WORK}/refused.json" OR EXISTS "${WORK}/refused_report")
     message(SEND_ERROR "--validate ${file}: an output was written")

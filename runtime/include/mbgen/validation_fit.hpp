@@ -32,6 +32,11 @@ struct ValidationScore {
 // or zero (FRFs).
 double compare_fit_percent(const Eigen::VectorXcd& measured, const Eigen::VectorXcd& model, bool subtract_mean);
 
+// Throws FitError (naming the file) unless the fit could take every data set: FRF channels of model outputs and
+// inputs, records with every model input, some model output and two samples. Simulates nothing: a check of
+// validation data before the fit.
+void check_validation_data(const Model& model, const std::vector<DataSet>& data);
+
 // Every data set scored with the model at `values` (all model parameters; each set's `# set` values on top).
 std::vector<ValidationScore> validation_scores(const Model& model, const std::vector<DataSet>& data,
                                                const Eigen::VectorXd& values);

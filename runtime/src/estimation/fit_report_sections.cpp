@@ -133,15 +133,21 @@ void validation_section(report::Document& doc, const std::filesystem::path& root
     for (const ChannelValidation& c : v.channels)
       table.rows.push_back({report::code(v.file), report::text(c.channel), report_number(c.fit_percent, 4)});
   doc.table(std::move(table));
-  const Prediction at_estimate = predict(model, validation, result.values);
   for (std::size_t d = 0; d < validation.size(); ++d) {
     doc.heading(3, report::Inline("Validation data ") << d + 1 << ": " << report::code(validation[d].file()));
-    for (std::size_t c = 0; c < at_estimate.channels[d].size(); ++c) {
-      const std::string label = at_estimate.channel_names[d][c];
+    Prediction at_estimate;
+    try {
+      at_estimate = predict(model, {validation[d]}, result.values);
+    } catch (const std::exception& e) {
+      doc.paragraph(report::Inline("Not drawn: ") << report::text(e.what()) << ".");
+      continue;
+    }
+    for (std::size_t c = 0; c < at_estimate.channels[0].size(); ++c) {
+      const std::string label = at_estimate.channel_names[0][c];
       const std::string stem = "validate" + std::to_string(d + 1) + "_" + file_stem(label);
       std::ostringstream dat;
       dat << std::setprecision(10);
-      const Eigen::VectorXcd& model_values = at_estimate.channels[d][c];
+      const Eigen::VectorXcd& model_values = at_estimate.channels[0][c];
       if (validation[d].is_frf()) {
         const FrfData& f = std::get<FrfData>(validation[d].content);
         dat << "# f_hz |H_data| phase_data |H_estimate| phase_estimate\n";

@@ -3,6 +3,8 @@
 
 #include "mbgen/fit.hpp"
 
+#include "output_error.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -13,6 +15,12 @@ double compare_fit_percent(const Eigen::VectorXcd& measured, const Eigen::Vector
   const double scale = (measured.array() - baseline).matrix().norm();
   if (!(scale > 0)) return std::numeric_limits<double>::quiet_NaN();
   return 100 * (1 - (measured - model).norm() / scale);
+}
+
+void check_validation_data(const Model& model, const std::vector<DataSet>& data) {
+  // The fit's own problem checks the data's shape when it is built.
+  const estimation::OutputErrorProblem problem(model, data, FrfWeighting{});
+  (void)problem;
 }
 
 std::vector<ValidationScore> validation_scores(const Model& model, const std::vector<DataSet>& data,
