@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mbgen {
@@ -28,5 +29,10 @@ struct FrfBand {
 FrfBand frf_band(const Model& model, const Eigen::VectorXd& values, const std::vector<int>& estimated,
                  const Eigen::MatrixXd& covariance, const std::vector<double>& f_hz, int output, int input,
                  const std::vector<int>& held = {});
+
+// The bands of several channels (output, input) at once, from one evaluation of the FRF's Jacobian.
+std::vector<FrfBand> frf_bands(const Model& model, const Eigen::VectorXd& values, const std::vector<int>& estimated,
+                               const Eigen::MatrixXd& covariance, const std::vector<double>& f_hz,
+                               const std::vector<std::pair<int, int>>& channels, const std::vector<int>& held = {});
 
 }  // namespace mbgen

@@ -67,31 +67,37 @@ bool has_covariance(const FitResult& r) {
   return k > 0 && r.covariance.rows() == k && r.covariance.cols() == k && r.covariance.allFinite();
 }
 
-// The estimate's band on channel `channel` of FRF data set `d` (its `# set` values applied and held), or nothing where
-// the fit has no covariance or the model's FRF cannot be evaluated at these lines.
-std::optional<FrfBand> estimate_band(const Model& model, const DataSet& d, const FrfChannel& channel,
-                                     const FitResult& r) {
-  if (!has_covariance(r)) return std::nullopt;
+// The estimate's bands on the channels of FRF data set `d` (its `# set` values applied and held), one per channel,
+// empty where the fit has no covariance or the model's FRF cannot be evaluated at these lines.
+std::vector<std::optional<FrfBand>> estimate_bands(const Model& model, const DataSet& d, const FitResult& r) {
+  const FrfData& frf = std::get<FrfData>(d.content);
+  std::vector<std::optional<FrfBand>> out(frf.channels.size());
+  if (!has_covariance(r)) return out;
   const ModelInfo& info = model.info();
-  const auto output = std::find(info.outputs.begin(), info.outputs.end(), channel.output) - info.outputs.begin();
-  const auto input = std::find(info.inputs.begin(), info.inputs.end(), channel.input) - info.inputs.begin();
-  if (output == static_cast<long>(info.outputs.size()) || input == static_cast<long>(info.inputs.size())) return std::nullopt;
+  std::vector<std::pair<int, int>> entries;
+  for (const FrfChannel& channel : frf.channels) {
+    const auto output = std::find(info.outputs.begin(), info.outputs.end(), channel.output) - info.outputs.begin();
+    const auto input = std::find(info.inputs.begin(), info.inputs.end(), channel.input) - info.inputs.begin();
+    if (output == static_cast<long>(info.outputs.size()) || input == static_cast<long>(info.inputs.size())) return out;
+    entries.emplace_back(static_cast<int>(output), static_cast<int>(input));
+  }
   Eigen::VectorXd values = r.values;
   std::vector<int> held, estimated;
   for (const auto& [name, value] : d.set()) {
     const int idx = info.parameter_index(name);
-    if (idx < 0) return std::nullopt;
+    if (idx < 0) return out;
     values[idx] = value.value;
     held.push_back(idx);
   }
   for (const std::string& name : r.estimated) estimated.push_back(info.parameter_index(name));
-  const Eigen::VectorXd& f_hz = std::get<FrfData>(d.content).f_hz;
   try {
-    return frf_band(model, values, estimated, r.covariance, std::vector<double>(f_hz.data(), f_hz.data() + f_hz.size()),
-                    static_cast<int>(output), static_cast<int>(input), held);
+    std::vector<FrfBand> bands = frf_bands(model, values, estimated, r.covariance,
+                                           std::vector<double>(frf.f_hz.data(), frf.f_hz.data() + frf.f_hz.size()),
+                                           entries, held);
+    for (std::size_t c = 0; c < bands.size(); ++c) out[c] = std::move(bands[c]);
   } catch (const DynamicsError&) {
-    return std::nullopt;
   }
+  return out;
 }
 
 std::string time_script(const std::string& stem, const std::string& title) {
@@ -202,6 +208,8 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
     std::vector<report::Inline> set;
     for (const auto& [name, value] : data[d].set()) set.push_back(report::Inline("set " + name + " = ") << report::text(value.text));
     doc.list(std::move(set));
+    const std::vector<std::optional<FrfBand>> bands =
+        data[d].is_frf() ? estimate_bands(model, data[d], result) : std::vector<std::optional<FrfBand>>{};
     for (std::size_t c = 0; c < before.channels[d].size(); ++c) {
       const std::string label = before.channel_names[d][c];
       const std::string stem = "set" + std::to_string(d + 1) + "_" + file_stem(label);
@@ -210,7 +218,7 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
       if (data[d].is_frf()) {
         const FrfData& f = std::get<FrfData>(data[d].content);
         const Eigen::VectorXcd& measured = f.channels[c].values;
-        const std::optional<FrfBand> band = estimate_band(model, data[d], f.channels[c], result);
+        const std::optional<FrfBand>& band = bands[c];
         dat << "# f_hz |H_data| phase_data |H_prior| phase_prior |H_estimate| phase_estimate |res_prior| |res_estimate|";
         dat << (band ? " |H|-2std |H|+2std phase-2std phase+2std\n" : "\n");
         for (Eigen::Index k = 0; k < f.f_hz.size(); ++k) {
