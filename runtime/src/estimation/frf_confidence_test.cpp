@@ -114,3 +114,33 @@ TEST_CASE("a parameter held by a data set's `# set` value adds nothing to the ba
   CHECK(held.magnitude_std.maxCoeff() == 0);
   CHECK(held.phase_std_deg.maxCoeff() == 0);
 }
+
+TEST_CASE("several channels' bands at once are each channel's band", "[frf_confidence]") {
+  // Two masses in a chain, both displacements measured: channels (0, 0) and (1, 0) from one Jacobian.
+  test::LinearModel model("two_masses", 2, {"F"}, {"y1", "y2"});
+  const int m = model.parameter("m", 1.5, ParameterRole::Estimate);
+  const int k1 = model.parameter("k1", 4e5, ParameterRole::Estimate);
+  const int k2 = model.parameter("k2", 2e5, ParameterRole::Estimate);
+  model.linear(test::LinearModel::M, m, 0, 0, 1);
+  model.linear(test::LinearModel::M, m, 1, 1, 1);
+  model.element(test::LinearModel::K, k1, 0, -1);
+  model.element(test::LinearModel::K, k2, 0, 1);
+  model.constant(test::LinearModel::C, 0, 0, 5);
+  model.constant(test::LinearModel::C, 1, 1, 5);
+  model.constant(test::LinearModel::B, 0, 0, 1);
+  model.constant(test::LinearModel::Cd, 0, 0, 1);
+  model.constant(test::LinearModel::Cd, 1, 1, 1);
+  Eigen::VectorXd p(3);
+  p << 1.5, 4e5, 2e5;
+  const Eigen::Matrix3d cov = Eigen::Vector3d(1e-4, 1e6, 4e5).asDiagonal();
+  const std::vector<double> f{20, 60, 120, 200};
+  const std::vector<FrfBand> both = frf_bands(model, p, {0, 1, 2}, cov, f, {{0, 0}, {1, 0}});
+  REQUIRE(both.size() == 2);
+  for (int output = 0; output < 2; ++output) {
+    const FrfBand one = frf_band(model, p, {0, 1, 2}, cov, f, output, 0);
+    CHECK(both[static_cast<std::size_t>(output)].magnitude_std == one.magnitude_std);
+    CHECK(both[static_cast<std::size_t>(output)].phase_std_deg == one.phase_std_deg);
+    CHECK(both[static_cast<std::size_t>(output)].H == one.H);
+  }
+  CHECK(both[0].magnitude_std != both[1].magnitude_std);  // two different channels
+}
