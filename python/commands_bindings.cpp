@@ -86,7 +86,7 @@ py::object fit_command(const py::object& model, const py::object& data, const st
                        const py::object& starts, const py::object& seed, bool start_from_modes,
                        const py::object& band, const std::string& two_step_route, const py::object& two_step_model,
                        const py::object& two_step_criterion, const py::object& two_step_weighting,
-                       const py::object& ekf_drift) {
+                       const py::object& ekf_drift, const py::object& validate, const py::object& residual_lags) {
   member("--method", method, {"auto", "frf-output-error", "time-output-error", "direct", "two-step", "hybrid", "ekf",
                               "arx-two-stage", "modal", "eiv"});
   member("--two-step-route", two_step_route, {"auto", "analytical", "numerical", "minimisation"});
@@ -116,6 +116,11 @@ py::object fit_command(const py::object& model, const py::object& data, const st
   if (!ekf_drift.is_none()) {
     check("--ekf-drift", cli::non_negative_number(), option_text(ekf_drift));
     request.ekf.drift = ekf_drift.cast<double>();
+  }
+  if (!validate.is_none()) request.validate_paths = paths(validate, "--validate");
+  if (!residual_lags.is_none()) {
+    check("--residual-lags", CLI::Range(1, 1000000), option_text(residual_lags));
+    request.residual_lags = residual_lags.cast<int>();
   }
   const std::string path = request.model_path;
   const std::string json = guarded(path, [&] { return fit_result_json(cli::fit_model(std::move(request)).result); });
@@ -194,9 +199,10 @@ void register_commands(py::module_& m) {
         py::arg("bound") = py::none(), py::arg("starts") = py::none(), py::arg("seed") = py::none(),
         py::arg("start_from_modes") = false, py::arg("band") = py::none(), py::arg("two_step_route") = "auto", py::arg("two_step_model") = py::none(),
         py::arg("two_step_criterion") = py::none(), py::arg("two_step_weighting") = py::none(),
-        py::arg("ekf_drift") = py::none(),
+        py::arg("ekf_drift") = py::none(), py::arg("validate") = py::none(), py::arg("residual_lags") = py::none(),
         "`mbgen fit`: estimates the model's `estimate` parameters from data files; returns the mbgen-fit/1 JSON "
-        "as Python objects. model: a path or a mbgen.Model; data: a path or a list of paths.");
+        "as Python objects. model: a path or a mbgen.Model; data: a path or a list of paths; validate: data "
+        "scored at the estimate (`--validate`), a path or a list of paths.");
   m.def("diagnose", &diagnose_command, py::arg("model"), py::arg("data"), py::kw_only(), py::arg("set") = py::none(),
         py::arg("fix") = py::none(), py::arg("free") = py::none(), py::arg("bound") = py::none(),
         py::arg("starts") = py::none(), py::arg("seed") = py::none(), py::arg("start_from_modes") = true,

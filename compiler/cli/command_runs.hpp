@@ -38,12 +38,15 @@ struct FitRequest {
   TwoStepOptions two_step;            // --two-step-model, --two-step-criterion, --two-step-weighting
   std::string two_step_route = "auto";
   EkfOptions ekf;                     // --ekf-drift
+  std::vector<std::string> validate_paths;  // --validate: data scored at the estimate, not fitted
+  int residual_lags = 25;             // the residual tests' largest lag L
 };
 
 struct FitRun {
   std::unique_ptr<Model> model;  // the evaluator fitted (the report draws with it)
   std::vector<DataSet> data;     // as fitted (within --band)
-  FitResult result;              // with its model file, seed and warnings set
+  std::vector<DataSet> validation;  // --validate's data sets
+  FitResult result;              // with its model file, seed, warnings, residual tests and validation scores set
 };
 
 FitRun fit_model(FitRequest request);

@@ -75,6 +75,25 @@ std::string summary(const FitResult& r) {
     out += line;
   }
   out += "\n";
+  // The residual tests' verdicts and the scores on other data (docs/estimation.md), one line per record and file.
+  std::string tested_file;
+  for (const ChannelResidualTest& t : r.residual_tests) {
+    if (t.data_set != tested_file) out += (tested_file.empty() ? "" : "\n") + ("residual tests, " + t.data_set + ":");
+    tested_file = t.data_set;
+    out += " " + t.output + " " + (t.whiteness.passed() ? "white" : "NOT WHITE");
+    for (const auto& [input, x] : t.inputs)
+      out += (x.passed() ? ", independent of " : ", CORRELATED WITH ") + input;
+    out += ";";
+  }
+  if (!tested_file.empty()) out += "\n";
+  for (const ValidationScore& v : r.validation) {
+    out += "validation, " + v.file + ": fit";
+    for (const ChannelValidation& c : v.channels) {
+      std::snprintf(line, sizeof line, " %s %.1f %%", c.channel.c_str(), c.fit_percent);
+      out += line;
+    }
+    out += "\n";
+  }
   // A method's own account of what it did (method_details.NAME.summary), e.g. two-step's route.
   for (const auto& [name, text] : r.method_details) {
     const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
@@ -123,6 +142,12 @@ FitRun fit_model(FitRequest request) {
   if (request.start_from_modes && !output_error)
     throw FitError("fit: error: --start-from-modes starts the output-error search; --method " + method +
                    " has its own starts (drop --start-from-modes or use --method auto)");
+  // Validation data are read and checked before the fit, so that a bad file stops the command at once. They are not
+  // cut to --band: they are scored as they are.
+  if (!request.validate_paths.empty()) {
+    run.validation = load_data(request.validate_paths, evaluator.info(), model, derive.set);
+    check_validation_data(evaluator, run.validation);
+  }
   std::optional<ModalStart> modal_start;
   if (request.start_from_modes) modal_start = add_start_from_modes(evaluator, data, request.options, "fit");
   const FitOptions& options = request.options;
@@ -139,6 +164,22 @@ FitRun fit_model(FitRequest request) {
   result.model = request.model_path;
   result.seed = options.seed;
   result.warnings = passivity_warnings(model, data);
+  // The residual tests and the validation simulate the model at the estimate; where that fails (an estimate of a
+  // method without a stability constraint may be unstable) the fit's result stands and a warning says what is missing.
+  result.residual_test_lags = request.residual_lags;
+  try {
+    result.residual_tests = residual_tests(evaluator, data, result.values, request.residual_lags);
+  } catch (const std::exception& e) {
+    result.warnings.push_back(std::string("no residual tests: ") + e.what());
+  }
+  for (const DataSet& d : run.validation) {
+    try {
+      result.validation.push_back(validation_scores(evaluator, {d}, result.values).front());
+    } catch (const std::exception& e) {
+      result.warnings.push_back("no validation on " + d.file() + ": " + e.what());
+      result.validation.push_back(ValidationScore{d.file(), d.is_frf(), {}});
+    }
+  }
   return run;
 }
 
@@ -157,6 +198,13 @@ int run_fit(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "direct", "two-step", "hybrid", "ekf",
                              "arx-two-stage", "modal", "eiv"}));
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
+  std::vector<std::string> validate_paths;
+  app.add_option("--validate", validate_paths, "score the estimate on other data (same kinds as --data; repeatable): "
+                 "the fit percentage per channel, as MATLAB's compare (docs/estimation.md)");
+  int residual_lags = 25;
+  app.add_option("--residual-lags", residual_lags, "time records: the residual tests' largest lag L (default 25, as "
+                 "MATLAB's resid; at most a quarter of a record's samples are used; docs/estimation.md)")
+      ->check(CLI::Range(1, 1000000));
   app.add_option("--report", report_dir, "write a report directory (Markdown with Bode overlays and residual plots)");
   app.add_option("--set", sets, "override a parameter's value: NAME=VALUE (repeatable)");
   RoleOptions roles;
@@ -192,10 +240,13 @@ int run_fit(int argc, char** argv) {
     plan.files = {{"--json", json_path}};
     plan.report_dir = report_dir;
     plan.inputs = data_paths;
+    plan.inputs.insert(plan.inputs.end(), validate_paths.begin(), validate_paths.end());
     plan.inputs.push_back(model_path);
     plan.check();
     request.model_path = model_path;
     request.data_paths = data_paths;
+    request.validate_paths = validate_paths;
+    request.residual_lags = residual_lags;
     request.method = method;
     request.roles = roles;
     request.options = options;
@@ -216,7 +267,7 @@ int run_fit(int argc, char** argv) {
 
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, fit_result_json(result));
-    if (!report_dir.empty()) write_fit_report(out.stage_directory(report_dir), *evaluator, data, result);
+    if (!report_dir.empty()) write_fit_report(out.stage_directory(report_dir), *evaluator, data, result, run.validation);
     out.commit();
     if (json_path != "-") std::cout << summary(result);
     return 0;

@@ -114,3 +114,20 @@ def test_calls_from_threads(fitted):
         t.join()
     assert results[0] == fitted and results[2] == fitted
     assert results[1] == results[3] == mbgen.load_model(MODEL).parameters
+
+
+def test_fit_with_validation_data_is_the_commands(mbgen_command, tmp_path):
+    # A record fitted, the example's FRF of the same truth scored: residual tests of the record, fit % per channel.
+    record = MDOF2 / "data" / "time_F1.csv"
+    result = mbgen.fit(MODEL, record, starts=2, validate=[FRF], residual_lags=30)
+    out = tmp_path / "fit.json"
+    subprocess.run([mbgen_command, "fit", str(MODEL), "--data", str(record), "--starts", "2", "--validate", str(FRF),
+                    "--residual-lags", "30", "--json", str(out)], check=True, capture_output=True)
+    assert json.loads(out.read_text()) == result
+    assert result["residual_tests"]["max_lag"] == 30
+    assert [c["output"] for c in result["residual_tests"]["channels"]] == ["d1", "d2"]
+    [scored] = result["validation"]
+    assert scored["kind"] == "frf"
+    assert scored["fit_percent"]["d1/F1"] > 95 and scored["fit_percent"]["d2/F1"] > 95
+    with pytest.raises(ValueError, match="--residual-lags"):
+        mbgen.fit(MODEL, record, residual_lags=0)

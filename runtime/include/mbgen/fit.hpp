@@ -20,7 +20,9 @@
 #include "mbgen/modal.hpp"
 #include "mbgen/model.hpp"
 #include "mbgen/parallel.hpp"
+#include "mbgen/residual_tests.hpp"
 #include "mbgen/time_record.hpp"
+#include "mbgen/validation_fit.hpp"
 
 #include <Eigen/Core>
 
@@ -181,6 +183,12 @@ struct FitResult {
   // What a user must know before reading the estimates (the command's data checks, e.g. a driving point with the
   // wrong sign): the summary and the report open with them, the JSON has them under `warnings`.
   std::vector<std::string> warnings;
+  // Filled by the caller after the fit (the command does, docs/estimation.md), empty otherwise: the residual tests
+  // of the time records fitted (residual_tests.hpp), written under `residual_tests`; the scores on other data
+  // (`fit --validate`, validation_fit.hpp), written under `validation`.
+  std::vector<ChannelResidualTest> residual_tests;
+  int residual_test_lags = 0;  // L asked for (a short record's tests use fewer: their lags say)
+  std::vector<ValidationScore> validation;
 };
 
 FitResult fit(const Model& model, const std::vector<DataSet>& data, const FitOptions& options = {});

@@ -14,6 +14,40 @@ namespace {
 // NaN and infinities are not JSON numbers: they are written as null.
 nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
+nlohmann::json correlation_test(const CorrelationTest& t, const char* passed, const char* failed) {
+  nlohmann::json values = nlohmann::json::array();
+  for (double v : t.values) values.push_back(number(v));
+  return {{"lags", t.lags},       {"values", values},     {"band", number(t.band)},
+          {"judged", t.judged},   {"outside", t.outside}, {"fraction_outside", number(t.fraction_outside())},
+          {"allowed", t.allowed}, {"simultaneous_band", number(t.simultaneous_band)},
+          {"beyond_simultaneous", t.beyond_simultaneous}, {"verdict", t.passed() ? passed : failed}};
+}
+
+nlohmann::json residual_tests_json(const FitResult& r) {
+  nlohmann::json channels = nlohmann::json::array();
+  for (const ChannelResidualTest& c : r.residual_tests) {
+    nlohmann::json inputs = nlohmann::json::object();
+    for (const auto& [name, t] : c.inputs)
+      inputs[name] = correlation_test(t, "independent of the input", "correlated with the input");
+    channels.push_back({{"data", c.data_set},
+                        {"output", c.output},
+                        {"samples", c.samples},
+                        {"whiteness", correlation_test(c.whiteness, "white", "not white")},
+                        {"inputs", inputs}});
+  }
+  return {{"max_lag", r.residual_test_lags}, {"confidence", 0.99}, {"channels", channels}};
+}
+
+nlohmann::json validation_json(const FitResult& r) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ValidationScore& v : r.validation) {
+    nlohmann::json channels = nlohmann::json::object();
+    for (const ChannelValidation& c : v.channels) channels[c.channel] = number(c.fit_percent);
+    out.push_back({{"file", v.file}, {"kind", v.frf ? "frf" : "time"}, {"fit_percent", channels}});
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string fit_result_json(const FitResult& r) {
@@ -77,6 +111,8 @@ std::string fit_result_json(const FitResult& r) {
     for (const auto& [name, text] : r.method_details) details[name] = nlohmann::json::parse(text);
     j["method_details"] = details;
   }
+  if (!r.residual_tests.empty()) j["residual_tests"] = residual_tests_json(r);
+  if (!r.validation.empty()) j["validation"] = validation_json(r);
   // Invalid UTF-8 (a file name in another encoding) cannot be JSON text: such bytes become U+FFFD.
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }

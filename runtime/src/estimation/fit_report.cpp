@@ -2,6 +2,9 @@
 // .gp scripts.
 #include "mbgen/fit_report.hpp"
 
+#include "fit_report_sections.hpp"
+#include "mbgen/dynamics_error.hpp"
+#include "mbgen/frf_confidence.hpp"
 #include "mbgen/gnuplot.hpp"
 #include "mbgen/report_document.hpp"
 #include "mbgen/report_files.hpp"
@@ -15,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 namespace mbgen {
@@ -25,17 +29,26 @@ namespace fs = std::filesystem;
 
 double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
 
-std::string frf_script(const std::string& stem, const std::string& title) {
+// `band`: the .dat has the estimate's +-2 std band of |H| in columns 10 and 11 and of the phase in 12 and 13, drawn
+// light beneath the points and curves.
+std::string frf_script(const std::string& stem, const std::string& title, bool band) {
+  const auto band_then = [&](int lo, int hi) {
+    return band ? "using 1:" + std::to_string(lo) + ":" + std::to_string(hi) +
+                      " with filledcurves fs solid 0.35 noborder lc rgb '#f4a582' title 'estimate, +-2 std', \\\n     '' "
+                : std::string();
+  };
   std::ostringstream gp;
   gp << "set terminal svg size 900,700 dynamic font 'sans,11'\n"
      << "set output '" << stem << ".svg'\n"
      << "set multiplot layout 2,1 title " << gnuplot_string(title) << " noenhanced\n"
      << "set logscale y\nset format y '%.0e'\nset grid\nset ylabel '|H|'\nset key top right\n"
-     << "plot '" << stem << ".dat' using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
+     << "plot '" << stem << ".dat' " << band_then(10, 11)
+     << "using 1:2 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
      << "     '' using 1:4 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
      << "     '' using 1:6 with lines lc rgb '#d62728' title 'model, estimate'\n"
      << "unset logscale y\nset format y '%g'\nset ylabel 'phase [deg]'\nset xlabel 'f [Hz]'\nset yrange [-180:180]\nset ytics 90\n"
-     << "plot '" << stem << ".dat' using 1:3 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
+     << "plot '" << stem << ".dat' " << band_then(12, 13)
+     << "using 1:3 with points pt 7 ps 0.3 lc rgb '#555555' title 'data', \\\n"
      << "     '' using 1:5 with lines lc rgb '#1f77b4' dt 2 title 'model, prior', \\\n"
      << "     '' using 1:7 with lines lc rgb '#d62728' title 'model, estimate'\n"
      << "unset multiplot\n"
@@ -47,6 +60,44 @@ std::string frf_script(const std::string& stem, const std::string& title) {
      << "plot '" << stem << ".dat' using 1:8 with lines lc rgb '#1f77b4' dt 2 title 'prior', \\\n"
      << "     '' using 1:9 with lines lc rgb '#d62728' title 'estimate'\n";
   return gp.str();
+}
+
+bool has_covariance(const FitResult& r) {
+  const auto k = static_cast<Eigen::Index>(r.estimated.size());
+  return k > 0 && r.covariance.rows() == k && r.covariance.cols() == k && r.covariance.allFinite();
+}
+
+// The estimate's bands on the channels of FRF data set `d` (its `# set` values applied and held), one per channel,
+// empty where the fit has no covariance or the model's FRF cannot be evaluated at these lines.
+std::vector<std::optional<FrfBand>> estimate_bands(const Model& model, const DataSet& d, const FitResult& r) {
+  const FrfData& frf = std::get<FrfData>(d.content);
+  std::vector<std::optional<FrfBand>> out(frf.channels.size());
+  if (!has_covariance(r)) return out;
+  const ModelInfo& info = model.info();
+  std::vector<std::pair<int, int>> entries;
+  for (const FrfChannel& channel : frf.channels) {
+    const auto output = std::find(info.outputs.begin(), info.outputs.end(), channel.output) - info.outputs.begin();
+    const auto input = std::find(info.inputs.begin(), info.inputs.end(), channel.input) - info.inputs.begin();
+    if (output == static_cast<long>(info.outputs.size()) || input == static_cast<long>(info.inputs.size())) return out;
+    entries.emplace_back(static_cast<int>(output), static_cast<int>(input));
+  }
+  Eigen::VectorXd values = r.values;
+  std::vector<int> held, estimated;
+  for (const auto& [name, value] : d.set()) {
+    const int idx = info.parameter_index(name);
+    if (idx < 0) return out;
+    values[idx] = value.value;
+    held.push_back(idx);
+  }
+  for (const std::string& name : r.estimated) estimated.push_back(info.parameter_index(name));
+  try {
+    std::vector<FrfBand> bands = frf_bands(model, values, estimated, r.covariance,
+                                           std::vector<double>(frf.f_hz.data(), frf.f_hz.data() + frf.f_hz.size()),
+                                           entries, held);
+    for (std::size_t c = 0; c < bands.size(); ++c) out[c] = std::move(bands[c]);
+  } catch (const DynamicsError&) {
+  }
+  return out;
 }
 
 std::string time_script(const std::string& stem, const std::string& title) {
@@ -68,7 +119,7 @@ std::string time_script(const std::string& stem, const std::string& title) {
 }  // namespace
 
 void write_fit_report(const std::string& dir, const Model& model, const std::vector<DataSet>& data,
-                      const FitResult& result) {
+                      const FitResult& result, const std::vector<DataSet>& validation) {
   const fs::path root(dir);
   std::error_code ec;
   fs::create_directories(root, ec);
@@ -144,12 +195,21 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
   doc.paragraph(singular);
   doc.heading(2, "Data and model");
 
+  if (std::any_of(data.begin(), data.end(), [](const DataSet& d) { return d.is_frf(); }))
+    doc.paragraph(has_covariance(result)
+                      ? "The shaded band around the estimate's Bode curves is +-2 standard deviations of |H| and of the "
+                        "phase, from the estimate's covariance by the delta method (docs/estimation.md)."
+                      : "No confidence band on the Bode curves: this fit gives no covariance of its estimate (the "
+                        "method gives none, or no parameter was estimated with one).");
   std::vector<std::string> scripts;
+  bool any_frf_without_band = false;
   for (std::size_t d = 0; d < data.size(); ++d) {
     doc.heading(3, report::Inline("Data set ") << d + 1 << ": " << report::code(data[d].file()));
     std::vector<report::Inline> set;
     for (const auto& [name, value] : data[d].set()) set.push_back(report::Inline("set " + name + " = ") << report::text(value.text));
     doc.list(std::move(set));
+    const std::vector<std::optional<FrfBand>> bands =
+        data[d].is_frf() ? estimate_bands(model, data[d], result) : std::vector<std::optional<FrfBand>>{};
     for (std::size_t c = 0; c < before.channels[d].size(); ++c) {
       const std::string label = before.channel_names[d][c];
       const std::string stem = "set" + std::to_string(d + 1) + "_" + file_stem(label);
@@ -158,13 +218,23 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
       if (data[d].is_frf()) {
         const FrfData& f = std::get<FrfData>(data[d].content);
         const Eigen::VectorXcd& measured = f.channels[c].values;
-        dat << "# f_hz |H_data| phase_data |H_prior| phase_prior |H_estimate| phase_estimate |res_prior| |res_estimate|\n";
+        const std::optional<FrfBand>& band = bands[c];
+        dat << "# f_hz |H_data| phase_data |H_prior| phase_prior |H_estimate| phase_estimate |res_prior| |res_estimate|";
+        dat << (band ? " |H|-2std |H|+2std phase-2std phase+2std\n" : "\n");
         for (Eigen::Index k = 0; k < f.f_hz.size(); ++k) {
           const auto hd = measured[k], hp = before.channels[d][c][k], he = after.channels[d][c][k];
           dat << f.f_hz[k] << ' ' << std::abs(hd) << ' ' << phase_deg(hd) << ' ' << std::abs(hp) << ' ' << phase_deg(hp)
-              << ' ' << std::abs(he) << ' ' << phase_deg(he) << ' ' << std::abs(hp - hd) << ' ' << std::abs(he - hd) << '\n';
+              << ' ' << std::abs(he) << ' ' << phase_deg(he) << ' ' << std::abs(hp - hd) << ' ' << std::abs(he - hd);
+          if (band) {
+            // A log axis has no zero: the lower edge is drawn at no less than 1 % of |H|.
+            const double m = std::abs(he), sm = band->magnitude_std[k], sp = band->phase_std_deg[k];
+            dat << ' ' << std::max(m - 2 * sm, 0.01 * m) << ' ' << m + 2 * sm << ' ' << phase_deg(he) - 2 * sp << ' '
+                << phase_deg(he) + 2 * sp;
+          }
+          dat << '\n';
         }
-        write_report_file(root / (stem + ".gp"), frf_script(stem, label));
+        if (!band) any_frf_without_band = true;
+        write_report_file(root / (stem + ".gp"), frf_script(stem, label, band.has_value()));
       } else {
         const TimeRecord& t = std::get<TimeRecord>(data[d].content);
         const Eigen::VectorXd& measured = t.at(label).values;
@@ -182,6 +252,10 @@ void write_fit_report(const std::string& dir, const Model& model, const std::vec
       if (data[d].is_frf()) doc.figure(stem + "_residual.svg", report::Inline(report::text(label)) << " residual");
     }
   }
+  if (any_frf_without_band && has_covariance(result))
+    doc.paragraph("Some FRF channels have no band: the model's FRF or its Jacobian could not be evaluated at their lines.");
+  estimation::residual_test_section(doc, root, result, scripts);
+  estimation::validation_section(doc, root, model, validation, result, scripts);
   report::write_report(root.string(), std::move(doc), scripts);
 }
 

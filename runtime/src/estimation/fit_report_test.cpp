@@ -99,3 +99,38 @@ TEST_CASE("the report directory has Markdown, data, scripts and (with gnuplot) S
   CHECK(slurp(dir / "report.md") == md);
   CHECK(slurp(dir / "set1_d1_F1.dat") == dat);
 }
+
+TEST_CASE("the report's confidence bands, residual tests and validation section", "[fit][report]") {
+  Fixture f;
+  f.result.residual_test_lags = 25;
+  f.result.residual_tests = residual_tests(f.model, f.data, f.result.values, 25);
+  f.result.validation = validation_scores(f.model, f.data, f.result.values);
+  const std::filesystem::path dir = std::filesystem::path(mbgen_binary_dir()) / "fit_report_test_validation";
+  std::filesystem::remove_all(dir);
+  write_fit_report(dir.string(), f.model, f.data, f.result, f.data);
+  const std::string md = slurp(dir / "report.md");
+  // The fit has a covariance: the Bode overlays carry the band (columns 10 to 13) and the report says what it is.
+  CHECK(md.find("The shaded band around the estimate's Bode curves") != std::string::npos);
+  CHECK(slurp(dir / "set1_d1_F1.dat").find("|H|-2std |H|+2std phase-2std phase+2std") != std::string::npos);
+  CHECK(slurp(dir / "set1_d1_F1.gp").find("using 1:10:11 with filledcurves") != std::string::npos);
+  // The record's two outputs: a whiteness and a cross-correlation row each, and a plot each.
+  CHECK(md.find("## Residual tests") != std::string::npos);
+  CHECK(md.find("| `time.csv` | d1 | cross-correlation with F1 |") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "resid2_d2.gp"));
+  CHECK(md.find("## Validation on other data") != std::string::npos);
+  CHECK(md.find("| `frf.csv` | d2/F1 |") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "validate2_d1.dat"));
+  // The fit's own data scored: the fit % the fit itself reached, high.
+  for (const ValidationScore& v : f.result.validation)
+    for (const ChannelValidation& c : v.channels) CHECK(c.fit_percent > 90);
+  const std::string json = fit_result_json(f.result);
+  CHECK(json.find("\"residual_tests\"") != std::string::npos);
+  CHECK(json.find("\"validation\"") != std::string::npos);
+
+  // Without a covariance: no band, and the report says so.
+  f.result.estimated.clear();
+  f.result.covariance.resize(0, 0);
+  write_fit_report(dir.string(), f.model, f.data, f.result);
+  CHECK(slurp(dir / "report.md").find("No confidence band on the Bode curves") != std::string::npos);
+  CHECK(slurp(dir / "set1_d1_F1.gp").find("filledcurves") == std::string::npos);
+}
