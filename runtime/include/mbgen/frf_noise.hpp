@@ -11,9 +11,9 @@
 // cancel any cubic through five lines and keep the noise: for independent complex noise of variance s_j^2 per
 // line, E|d_k|^2 = s_{k-2}^2 + 16 s_{k-1}^2 + 36 s_k^2 + 16 s_{k+1}^2 + s_{k+2}^2, and |d_k|^2 is exponentially
 // distributed about that mean. Where a sharp resonance bends the response over a few lines its curvature adds to
-// d_k; those lines stand far above the noise's exponential tail and are left out. (Second differences were tried
-// first: around a resonance ten lines wide their curvature term is ten times larger, and a fit took it for noise
-// proportional to the response.)
+// d_k; those lines stand far above the noise's exponential tail and are left out. (Not second differences: around
+// a resonance ten lines wide their curvature term is ten times larger, and a fit takes it for noise proportional to
+// the response.)
 //
 // Without coherence the noise is modelled per channel as
 //
@@ -22,8 +22,8 @@
 // a level that may drift across the band (a hammer's force spectrum rolls off, a sensor's noise floor is not
 // white), with a and g by maximum likelihood. A part proportional to the response (force noise) is not modelled:
 // a model's error at a resonance also grows with the response, and a fit that took it for noise would hide exactly
-// the findings that matter (a frequency shift at every peak); tried with second differences, such a part also
-// absorbed the curvature of lightly damped peaks. With coherence, the fit's coherence-based variance is used
+// the findings that matter (a frequency shift at every peak); with second differences, such a part would also
+// absorb the curvature of lightly damped peaks. With coherence, the fit's coherence-based variance is used
 // (frf_variance) and only the number of averages, its scale, is estimated the same way.
 #pragma once
 
