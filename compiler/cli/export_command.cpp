@@ -183,8 +183,8 @@ UffFiles frf_uff(const ir::ModelIr& model, const std::string& model_path, const 
   return out;
 }
 
-// The model's modes at its sensor points as UFF 55, the points' coordinates as UFF 15 before them, and the mapping
-// file that names the points. A shape at an output is the motion of its point along its axis: the output map's row
+// The model's modes at its sensor points as UFF 55, the points' coordinates as UFF 15 and the lines between them
+// as UFF 82 (sensor_geometry) before them, and the mapping file that names the points. A shape at an output is the motion of its point along its axis: the output map's row
 // (displacement, velocity or acceleration map; one of them holds the output) applied to the mode's coordinates.
 UffFiles modes_uff(const ir::ModelIr& model, const std::string& model_path, const ModelInfo& info,
                    const Eigen::VectorXd& p, const std::map<std::string, std::string>& sets, const ModelMatrices& m) {
@@ -208,7 +208,7 @@ UffFiles modes_uff(const ir::ModelIr& model, const std::string& model_path, cons
   }
   UffFiles out;
   out.data = uff55_modes_text(points, eigenvalues, shapes, 8, "mbgen export " + model_path, "model modes",
-                              geometry.nodes);
+                              geometry.nodes, geometry.traces);
   out.mapping = uff_points_mapping("mbgen export " + model_path, info.outputs, points);
   return out;
 }
