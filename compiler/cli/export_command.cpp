@@ -321,7 +321,8 @@ int run_export(int argc, char** argv) {
   app.add_option("--frf", grid, "with --what frf: the frequency grid LO:HI:N (Hz; N lines, both ends included)");
   app.add_option("--format", format, "json (default, schema mbgen-export/1), csv (frf: the FRF CSV layout mbgen "
                                      "reads; modes: one row per mode) or uff (frf: UFF 58; modes: UFF 55 at the sensor "
-                                     "points with their UFF 15 nodes; the .map beside it names the points) or mat (MATLAB "
+                                     "points with their UFF 15 nodes and UFF 82 trace lines; the .map beside it names "
+                                     "the points) or mat (MATLAB "
                                      "variables, the JSON's content)")
       ->check(CLI::IsMember({"json", "csv", "uff", "mat"}));
   app.add_option("--fit-result", fit_result, "the parameters' values from a `mbgen fit --json` result");
