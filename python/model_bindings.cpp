@@ -1,5 +1,6 @@
 // mbgen.load_model and mbgen.Model: a model derived from its .mdl file by the path `mbgen export` and `fit` take
-// (parse, roles, derive, the in-process evaluator), and its numbers at its values or at values given in Python.
+// (parse, roles, derive, the in-process evaluator), and its numbers at its values or at values given in Python; and
+// Model.export, the content of `mbgen export` (its own code).
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -253,7 +254,8 @@ py::dict export_arrays(py::dict d) {
   } else {
     const py::dict frf = d["frf"];
     const auto f = frf["f_hz"].cast<std::vector<double>>();
-    const auto outputs = d["outputs"].cast<std::vector<std::string>>(), inputs = d["inputs"].cast<std::vector<std::string>>();
+    const auto outputs = d["outputs"].cast<std::vector<std::string>>();
+    const auto inputs = d["inputs"].cast<std::vector<std::string>>();
     py::array_t<std::complex<double>> h({static_cast<py::ssize_t>(f.size()), no, ni});
     auto view = h.mutable_unchecked<3>();
     for (py::ssize_t o = 0; o < no; ++o)
@@ -274,7 +276,8 @@ py::dict export_arrays(py::dict d) {
 std::string grid_text(const py::object& grid) {
   if (py::isinstance<py::str>(grid)) return grid.cast<std::string>();
   const py::sequence s = py::reinterpret_borrow<py::sequence>(grid);
-  if (!py::isinstance<py::sequence>(grid) || py::len(s) != 3) usage_error("--frf", "the grid is \"LO:HI:N\" or (LO, HI, N)");
+  if (!py::isinstance<py::sequence>(grid) || py::len(s) != 3)
+    usage_error("--frf", "the grid is \"LO:HI:N\" or (LO, HI, N)");
   return option_text(s[0]) + ":" + option_text(s[1]) + ":" + py::str(s[2]).cast<std::string>();
 }
 

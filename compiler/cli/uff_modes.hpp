@@ -67,7 +67,8 @@ struct UffText {
 // An output's point: its name when it is one ("node12:+Z", a UFF file read without a mapping), the mapping file
 // beside its data file (FILE.map) that named it, or else, when every output is one of the model's, the model's
 // sensor points (sensor_geometry). Nodes come with their UFF 15 coordinates and UFF 82 trace lines from the model or
-// from datasets 15 and 82 in the data files; `sets` (--set) place them. DataError (first data file) naming an output that none of these places.
+// from datasets 15 and 82 in the data files; `sets` (--set) place them. DataError (first data file) naming an output
+// that none of these places.
 UffText identified_modes_uff(const ModalData& data, const ModalIdentification& result,
                              const std::vector<std::string>& data_paths, const ir::ModelIr* model,
                              const std::map<std::string, std::string>& sets);

@@ -1,5 +1,5 @@
 # Model.export: `mbgen export`'s content (the same code): its arrays equal to the model's own numbers (Model.matrices,
-# state_space, modes, frf, computed by other calls), its JSON equal to the command's, the estimate of a fit result taken.
+# state_space, modes, frf, computed by other calls), its JSON equal to the command's, a fit result's estimate taken.
 import json
 import subprocess
 
