@@ -18,7 +18,7 @@ namespace py = pybind11;
 void register_errors(py::module_& m);    // errors.cpp: the exception classes and the translation of C++ errors
 void register_model(py::module_& m);     // model_bindings.cpp: load_model and Model
 void register_data(py::module_& m);      // data_bindings.cpp: read_data
-void register_commands(py::module_& m);  // commands_bindings.cpp: fit, diagnose, modal
+void register_commands(py::module_& m);  // commands_bindings.cpp: fit, diagnose, modal, sensitivity, monitor
 
 // Runs `f` (which touches no Python object) with the interpreter lock released, so that other Python threads run
 // meanwhile, and one call at a time: the derivation and the diagnosis use GiNaC, which is not thread-safe (the

@@ -1,10 +1,13 @@
-// mbgen.fit, mbgen.diagnose and mbgen.modal: the commands' own functions (cli/command_runs.hpp) with their options
-// given as keyword arguments, returning the content of the JSON the command writes with --json (docs/interfaces.md:
-// mbgen-fit/1, mbgen-diagnosis/1, mbgen-modal/1), made by the same code and read back by Python's json module.
+// mbgen.fit, mbgen.diagnose, mbgen.modal, mbgen.sensitivity, mbgen.monitor and mbgen.monitor_output_only: the
+// commands' own functions (cli/command_runs.hpp) with their options given as keyword arguments, returning the content
+// of the JSON the command writes with --json (docs/interfaces.md: mbgen-fit/1, mbgen-diagnosis/1, mbgen-modal/1,
+// mbgen-sensitivity/1, mbgen-monitor/1, mbgen-monitor-operational/1), made by the same code and read back by Python's
+// json module.
 #include <pybind11/stl.h>
 
 #include <mbgen/dynamics_error.hpp>
 #include <mbgen/fit_report.hpp>
+#include <mbgen/monitor_report.hpp>
 
 #include <cmath>
 
@@ -191,6 +194,130 @@ py::object modal_command(const py::object& data, const py::object& band, const p
   return json_to_python(json);
 }
 
+
+// A whole-number option checked by the command line's validator for it.
+int int_option(const std::string& option, const py::handle& value, CLI::Validator validator) {
+  if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value))
+    usage_error(option, "expected a whole number, not " + py::repr(value).cast<std::string>());
+  check(option, std::move(validator), py::str(value));
+  return value.cast<int>();
+}
+
+// A number option checked by the command line's validator for it.
+double number_option(const std::string& option, const py::handle& value, CLI::Validator validator) {
+  const std::string text = option_text(value);
+  check(option, std::move(validator), text);
+  return std::stod(text);
+}
+
+// One text or a list of texts, as a repeatable option's values.
+std::vector<std::string> texts(const py::object& value) {
+  std::vector<std::string> out;
+  if (py::isinstance<py::str>(value)) out.push_back(value.cast<std::string>());
+  else
+    for (const py::handle& v : value) out.push_back(py::str(v).cast<std::string>());
+  return out;
+}
+
+py::object sensitivity_command(const py::object& model, bool global, const py::object& samples, const py::object& seed,
+                               const py::object& spread, bool bounds, const py::object& sweep, const py::object& set,
+                               const py::object& fix, const py::object& free, const py::object& bound) {
+  if (!global && (bounds || !samples.is_none() || !seed.is_none() || !spread.is_none()))
+    throw CLI::ValidationError("--samples, --seed, --spread and --bounds need --global");
+  ModelOptions options = model_options(set, fix, free, bound);
+  cli::SensitivityRequest request;
+  request.model_path = model_file(model, options);
+  request.set = cli::parse_set_options(options.sets);
+  request.roles = options.roles;
+  request.global = global;
+  request.bounds = bounds;
+  if (!samples.is_none()) request.sobol.samples = int_option("--samples", samples, CLI::Range(16, 1 << 22));
+  if (!seed.is_none()) {
+    check("--seed", cli::seed_check(), py::str(seed));
+    request.sobol.seed = std::stoull(py::str(seed).cast<std::string>());
+  }
+  if (!spread.is_none()) request.spread = number_option("--spread", spread, CLI::Range(1e-9, 10.0));
+  // Sweeps: "NAME=LO:HI:N", a list of them, or a dict NAME -> (LO, HI, N).
+  if (py::isinstance<py::dict>(sweep)) {
+    for (const auto& [name, range] : sweep.cast<py::dict>()) {
+      const py::sequence lo_hi_n = py::reinterpret_borrow<py::sequence>(range);
+      if (!py::isinstance<py::sequence>(range) || py::isinstance<py::str>(range) || py::len(lo_hi_n) != 3)
+        usage_error("--sweep", py::str(name).cast<std::string>() + ": expected (LO, HI, N)");
+      request.sweeps.push_back(py::str(name).cast<std::string>() + "=" + option_text(lo_hi_n[0]) + ":" +
+                               option_text(lo_hi_n[1]) + ":" + py::str(lo_hi_n[2]).cast<std::string>());
+    }
+  } else if (!sweep.is_none()) {
+    request.sweeps = texts(sweep);
+  }
+  const std::string path = request.model_path;
+  const std::string json = guarded(path, [&] {
+    const cli::SensitivityRun run = cli::sensitivity_analysis(std::move(request));
+    return sensitivity_json(run.input());
+  });
+  return json_to_python(json);
+}
+
+py::object monitor_command(const py::object& model, const py::object& data, const py::object& baseline,
+                           const py::object& run_length, const py::object& structural_ratio, const py::object& starts,
+                           const py::object& warm_starts, const py::object& seed, bool diagnosis,
+                           const py::object& set, const py::object& fix, const py::object& free,
+                           const py::object& bound) {
+  ModelOptions options = model_options(set, fix, free, bound);
+  const std::string path = model_file(model, options);
+  const std::vector<std::string> data_paths = paths(data, "--data");
+  cli::MonitorSettings settings;
+  settings.sets = options.sets;
+  settings.roles = options.roles;
+  settings.no_diagnosis = !diagnosis;
+  MonitorOptions& o = settings.options;
+  if (!baseline.is_none()) o.baseline = int_option("--baseline", baseline, CLI::Range(2, 1000000));
+  if (!run_length.is_none()) o.run_length = number_option("--run-length", run_length, CLI::Range(2.0, 1e12));
+  if (!structural_ratio.is_none())
+    o.structural_ratio = number_option("--structural-ratio", structural_ratio, CLI::Range(1.0001, 1e6));
+  search_options(o.fit, starts, seed);
+  if (!warm_starts.is_none()) o.warm_starts = int_option("--warm-starts", warm_starts, cli::starts_range());
+  const std::string json = guarded(path, [&] {
+    MonitorResult result = cli::monitor_machine(path, data_paths, std::move(settings));
+    return monitor_result_json(result);
+  });
+  return json_to_python(json);
+}
+
+py::object monitor_output_only_command(const py::object& data, const py::object& baseline, const py::object& model,
+                                       const py::object& false_alarm, const py::object& environmental_components,
+                                       bool compensation, const py::object& references, const py::object& ignore,
+                                       const py::object& max_order, const py::object& set, const py::object& fix,
+                                       const py::object& free, const py::object& bound) {
+  cli::OperationalRequest request;
+  request.data_paths = paths(data, "--data");
+  ModelOptions options = model_options(set, fix, free, bound);
+  if (!model.is_none()) {
+    request.model_path = model_file(model, options);
+  } else {
+    if (!options.sets.empty()) usage_error("--set", "needs --model");
+    if (!options.roles.empty()) usage_error("--fix", "--fix, --free and --bound need --model");
+  }
+  request.sets = options.sets;
+  request.roles = options.roles;
+  if (!baseline.is_none()) request.options.baseline = int_option("--baseline", baseline, CLI::Range(2, 1000000));
+  if (!false_alarm.is_none())
+    request.options.false_alarm = number_option("--false-alarm", false_alarm, CLI::Range(1e-9, 0.5));
+  if (!environmental_components.is_none())
+    request.options.environmental_components =
+        int_option("--environmental-components", environmental_components, CLI::Range(0, 1000));
+  request.options.compensate = compensation;
+  if (!references.is_none()) request.selection.references = texts(references);
+  if (!ignore.is_none()) request.selection.ignore = texts(ignore);
+  if (!max_order.is_none())
+    request.identification.ssi.max_order = int_option("--max-order", max_order, CLI::Range(2, 400));
+  const std::string path = request.model_path;
+  const std::string json = guarded(path, [&] {
+    const cli::OperationalRun run = cli::monitor_output_only(request);
+    return operational_monitor_json(run.input());
+  });
+  return json_to_python(json);
+}
+
 }  // namespace
 
 void register_commands(py::module_& m) {
@@ -215,6 +342,29 @@ void register_commands(py::module_& m) {
         py::arg("select") = py::none(), py::arg("refine") = true, py::arg("quantity") = "auto",
         "`mbgen modal`: experimental modal analysis of measured FRFs; returns the mbgen-modal/1 JSON as Python "
         "objects.");
+  m.def("sensitivity", &sensitivity_command, py::arg("model"), py::kw_only(), py::arg("global_") = false,
+        py::arg("samples") = py::none(), py::arg("seed") = py::none(), py::arg("spread") = py::none(),
+        py::arg("bounds") = false, py::arg("sweep") = py::none(), py::arg("set") = py::none(),
+        py::arg("fix") = py::none(), py::arg("free") = py::none(), py::arg("bound") = py::none(),
+        "`mbgen sensitivity`: how the model's modes depend on its parameters; returns the mbgen-sensitivity/1 JSON "
+        "as Python objects. global_ is --global; sweep: \"NAME=LO:HI:N\", a list of them or a dict NAME -> "
+        "(LO, HI, N).");
+  m.def("monitor", &monitor_command, py::arg("model"), py::arg("data"), py::kw_only(), py::arg("baseline") = py::none(),
+        py::arg("run_length") = py::none(), py::arg("structural_ratio") = py::none(), py::arg("starts") = py::none(),
+        py::arg("warm_starts") = py::none(), py::arg("seed") = py::none(), py::arg("diagnosis") = true,
+        py::arg("set") = py::none(), py::arg("fix") = py::none(), py::arg("free") = py::none(),
+        py::arg("bound") = py::none(),
+        "`mbgen monitor`: each data set (with a measured force) fitted in time order, parameter changes and "
+        "structural changes detected; returns the mbgen-monitor/1 JSON as Python objects. diagnosis=False is "
+        "--no-diagnosis.");
+  m.def("monitor_output_only", &monitor_output_only_command, py::arg("data"), py::kw_only(),
+        py::arg("baseline") = py::none(), py::arg("model") = py::none(), py::arg("false_alarm") = py::none(),
+        py::arg("environmental_components") = py::none(), py::arg("compensation") = true,
+        py::arg("references") = py::none(), py::arg("ignore") = py::none(), py::arg("max_order") = py::none(),
+        py::arg("set") = py::none(), py::arg("fix") = py::none(), py::arg("free") = py::none(),
+        py::arg("bound") = py::none(),
+        "`mbgen monitor --output-only`: monitoring in operation from response records; returns the "
+        "mbgen-monitor-operational/1 JSON as Python objects. compensation=False is --no-compensation.");
 }
 
 }  // namespace mbgen::python

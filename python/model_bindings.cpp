@@ -1,5 +1,6 @@
 // mbgen.load_model and mbgen.Model: a model derived from its .mdl file by the path `mbgen export` and `fit` take
-// (parse, roles, derive, the in-process evaluator), and its numbers at its values or at values given in Python.
+// (parse, roles, derive, the in-process evaluator), and its numbers at its values or at values given in Python; and
+// Model.export, the content of `mbgen export` (its own code).
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -16,6 +17,7 @@
 #include <memory>
 
 #include "bindings.hpp"
+#include "cli/command_runs.hpp"
 #include "cli/commands.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
@@ -197,6 +199,112 @@ Eigen::MatrixXd simulate_of(const PyModel& model, const Eigen::VectorXd& t, cons
   });
 }
 
+
+// ---- Model.export: `mbgen export --format json` (cli::export_model) ---------------------------------------------
+
+// A matrix of the export's JSON (a list of rows) as a rows x cols NumPy array (the shape given: a matrix with no rows
+// is an empty list in the JSON).
+py::object matrix_array(const py::handle& rows, py::ssize_t r, py::ssize_t c) {
+  const py::module_ np = py::module_::import("numpy");
+  return np.attr("array")(rows, py::arg("dtype") = "float64").attr("reshape")(r, c);
+}
+
+// {"re": [...], "im": [...]} as a complex vector.
+Eigen::VectorXcd complex_vector(const py::handle& parts) {
+  const auto re = parts["re"].cast<std::vector<double>>(), im = parts["im"].cast<std::vector<double>>();
+  Eigen::VectorXcd v(static_cast<Eigen::Index>(re.size()));
+  for (std::size_t k = 0; k < re.size(); ++k) v[static_cast<Eigen::Index>(k)] = {re[k], im.at(k)};
+  return v;
+}
+
+// The JSON's content with its numbers as NumPy arrays: each matrix an array; "modes" a dict of f_hz, zeta,
+// eigenvalues and shapes (coordinates x modes), as Model.modes(); "frf" a dict of f_hz and H (lines x outputs x
+// inputs, complex), as Model.frf().
+py::dict export_arrays(py::dict d) {
+  const std::string what = d["what"].cast<std::string>();
+  const auto ni = static_cast<py::ssize_t>(py::len(d["inputs"])), no = static_cast<py::ssize_t>(py::len(d["outputs"]));
+  const auto maps = [&](const char* square, const char* input_map, const std::vector<const char*>& output_maps) {
+    const auto n = static_cast<py::ssize_t>(py::len(d[square]));
+    d[input_map] = matrix_array(d[input_map], n, ni);
+    for (const char* c : output_maps) d[c] = matrix_array(d[c], no, n);
+    return n;
+  };
+  if (what == "matrices") {
+    const py::ssize_t n = maps("M", "B", {"Cd", "Cv", "Ca"});
+    for (const char* name : {"M", "C", "K"}) d[name] = matrix_array(d[name], n, n);
+  } else if (what == "state-space") {
+    const py::ssize_t n = maps("A", "B", {"C"});
+    d["A"] = matrix_array(d["A"], n, n);
+    d["D"] = matrix_array(d["D"], no, ni);
+  } else if (what == "modes") {
+    const py::list modes = d["modes"];
+    const auto count = static_cast<Eigen::Index>(py::len(modes));
+    Eigen::VectorXd f(count), zeta(count);
+    Eigen::VectorXcd eigenvalues(count);
+    Eigen::MatrixXcd shapes(static_cast<Eigen::Index>(py::len(d["coordinates"])), count);
+    for (Eigen::Index k = 0; k < count; ++k) {
+      const py::handle m = modes[static_cast<std::size_t>(k)];
+      f[k] = m["f_hz"].cast<double>(), zeta[k] = m["zeta"].cast<double>();
+      eigenvalues[k] = {m["eigenvalue"]["re"].cast<double>(), m["eigenvalue"]["im"].cast<double>()};
+      shapes.col(k) = complex_vector(m["shape"]);
+    }
+    py::dict out;
+    out["f_hz"] = f, out["zeta"] = zeta, out["eigenvalues"] = eigenvalues, out["shapes"] = shapes;
+    d["modes"] = out;
+  } else {
+    const py::dict frf = d["frf"];
+    const auto f = frf["f_hz"].cast<std::vector<double>>();
+    const auto outputs = d["outputs"].cast<std::vector<std::string>>();
+    const auto inputs = d["inputs"].cast<std::vector<std::string>>();
+    py::array_t<std::complex<double>> h({static_cast<py::ssize_t>(f.size()), no, ni});
+    auto view = h.mutable_unchecked<3>();
+    for (py::ssize_t o = 0; o < no; ++o)
+      for (py::ssize_t i = 0; i < ni; ++i) {
+        const Eigen::VectorXcd v = complex_vector(
+            frf["channels"][py::str(outputs[static_cast<std::size_t>(o)] + "/" + inputs[static_cast<std::size_t>(i)])]);
+        for (py::ssize_t k = 0; k < static_cast<py::ssize_t>(f.size()); ++k) view(k, o, i) = v[k];
+      }
+    py::dict out;
+    out["f_hz"] = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size())));
+    out["H"] = h;
+    d["frf"] = out;
+  }
+  return d;
+}
+
+// The grid of --frf: "LO:HI:N" or (LO, HI, N).
+std::string grid_text(const py::object& grid) {
+  if (py::isinstance<py::str>(grid)) return grid.cast<std::string>();
+  const py::sequence s = py::reinterpret_borrow<py::sequence>(grid);
+  if (!py::isinstance<py::sequence>(grid) || py::len(s) != 3)
+    usage_error("--frf", "the grid is \"LO:HI:N\" or (LO, HI, N)");
+  return option_text(s[0]) + ":" + option_text(s[1]) + ":" + py::str(s[2]).cast<std::string>();
+}
+
+py::object export_of(const PyModel& model, const std::string& what, const py::object& frf_grid,
+                     const py::object& fit_result, bool as_json) {
+  if (what != "matrices" && what != "state-space" && what != "modes" && what != "frf")
+    usage_error("--what", "`" + what + "` is none of matrices, state-space, modes, frf");
+  cli::ExportRequest request;
+  request.model_path = model.path();
+  request.what = what;
+  if (!frf_grid.is_none()) request.grid = grid_text(frf_grid);
+  if (py::isinstance<py::dict>(fit_result)) {  // a result of mbgen.fit
+    request.fit_result = "fit_result";
+    request.fit_result_text = py::module_::import("json").attr("dumps")(fit_result).cast<std::string>();
+  } else if (!fit_result.is_none()) {
+    request.fit_result = path_text(fit_result);
+  }
+  // The values the model was loaded with: --set's, and those --fix gave (export takes no roles).
+  std::vector<std::string> sets = model.options().sets;
+  for (const std::string& f : model.options().roles.fix)
+    if (f.find('=') != std::string::npos) sets.push_back(f);
+  request.set = cli::parse_set_options(sets);
+  const std::string text = released([&] { return model.guarded([&] { return cli::export_model(request).data; }); });
+  py::dict d = json_to_python(text);
+  return as_json ? d : export_arrays(d);
+}
+
 }  // namespace
 
 void register_model(py::module_& m) {
@@ -219,6 +327,11 @@ void register_model(py::module_& m) {
            "dict of f_hz, zeta, eigenvalues and shapes (coordinates x modes), sorted by frequency")
       .def("simulate", &simulate_of, py::arg("t"), py::arg("u"), py::arg("params") = py::none(),
            py::arg("hold") = "zero-order", "outputs (samples x outputs) from rest for inputs u (samples x inputs)")
+      .def("export", &export_of, py::arg("what") = "matrices", py::kw_only(), py::arg("frf") = py::none(),
+           py::arg("fit_result") = py::none(), py::arg("json") = false,
+           "`mbgen export`'s mbgen-export/1 content at the model's values (or a fit's estimate: fit_result, a path or "
+           "the dict mbgen.fit returns): what = matrices, state-space, modes or frf (frf = \"LO:HI:N\" or (LO, HI, "
+           "N)); its numbers as NumPy arrays, or as the JSON gives them with json=True")
       .def("__repr__", [](const PyModel& s) { return "<mbgen.Model " + s.info().name + " from " + s.path() + ">"; });
 
   m.def(

@@ -1,5 +1,6 @@
-// The work of `fit`, `diagnose` and `modal` between their command lines and their output files, as functions: the
-// `mbgen` command (run_fit, run_diagnose, run_modal) and the Python module (python/) call the same code, so a
+// The work of `fit`, `diagnose`, `modal`, `sensitivity`, `monitor` and `export` between their command lines and their
+// output files, as functions: the `mbgen` command (run_fit, run_diagnose, ...) and the Python module (python/) call
+// the same code, so a
 // result's JSON is the same whichever asked for it. Each takes the options as the command line gives them (checked
 // where the command checks them first) and returns what the command writes from; errors are thrown as the command
 // body throws them (run_guarded.hpp turns them into messages and exit statuses).
@@ -12,6 +13,10 @@
 #include <mbgen/modal_identification.hpp>
 #include <mbgen/modal_report.hpp>
 #include <mbgen/model.hpp>
+#include <mbgen/mode_shape_svg.hpp>
+#include <mbgen/monitor.hpp>
+#include <mbgen/operational_report.hpp>
+#include <mbgen/sensitivity_report.hpp>
 
 #include <map>
 #include <memory>
@@ -19,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/monitor_output_only.hpp"
 #include "cli/parameter_roles.hpp"
 #include "diagnosis/engine/diagnose.hpp"
 
@@ -91,5 +97,91 @@ struct ModalRun {
 };
 
 ModalRun modal_identification(ModalRequest request);
+
+// ---- sensitivity -------------------------------------------------------------------------------------------------
+
+struct SensitivityRequest {
+  std::string model_path;
+  std::map<std::string, std::string> set;  // --set, already checked by parse_set_options
+  RoleOptions roles;
+  bool global = false;                     // --global
+  bool bounds = false;                     // --bounds
+  double spread = 0.2;                     // --spread
+  SobolOptions sobol;                      // --samples, --seed
+  std::vector<std::string> sweeps;         // --sweep NAME=LO:HI:N, checked here as the command checks them
+  bool geometry = false;                   // the mode shapes' geometry, for a report
+};
+
+struct SensitivityRun {
+  std::string model_path;
+  ir::ModelIr declared;
+  std::unique_ptr<Model> model;
+  LocalSensitivity local;
+  ModeVisibility visibility;
+  bool global = false;
+  GlobalSensitivity global_result;
+  SobolOptions sobol;
+  std::string range_text;
+  std::vector<FeatureMap> maps;
+  std::optional<ShapeGeometry> geometry;
+  // What the JSON, the report and the summary are made from; refers into this run, which must outlive it.
+  SensitivityReportInput input() const;
+};
+
+SensitivityRun sensitivity_analysis(SensitivityRequest request);
+
+// ---- monitor -----------------------------------------------------------------------------------------------------
+
+// The settings of one monitoring run with a measured force, apart from its model and data.
+struct MonitorSettings {
+  MonitorOptions options;          // --baseline, --run-length, --structural-ratio, --starts, --warm-starts, --seed
+  std::vector<std::string> sets;   // --set, checked here
+  RoleOptions roles;
+  bool no_diagnosis = false;
+};
+
+// Monitors one machine: its model (path, or "-" for standard input) and its data sets, ordered by time; progress on
+// standard error as the command prints it.
+MonitorResult monitor_machine(const std::string& model_path, const std::vector<std::string>& data_paths,
+                              MonitorSettings settings);
+
+// `monitor --output-only`: the records' modes, monitored (and explained with a model); the outputs are left to the
+// caller (run_monitor_output_only writes them).
+struct OperationalRun {
+  OperationalMonitorResult result, raw;  // raw: without compensation, when compensated
+  bool compensated = false;
+  std::vector<std::string> channels;
+  std::string method;
+  std::string model_path;
+  std::optional<OperationalModelModes> model_modes;
+  std::vector<ChangeExplanation> explanations;
+  // What the JSON, the report and the summary are made from; refers into this run, which must outlive it.
+  OperationalReportInput input() const;
+};
+
+OperationalRun monitor_output_only(const OperationalRequest& request);
+
+// ---- export ------------------------------------------------------------------------------------------------------
+
+struct ExportRequest {
+  std::string model_path;
+  std::string what = "matrices";           // --what: matrices, state-space, modes, frf
+  std::string format = "json";             // --format: json, csv, uff, mat
+  std::string grid;                        // --frf LO:HI:N, with --what frf only
+  std::string fit_result;                  // --fit-result FIT.json, "" for none
+  std::optional<std::string> fit_result_text;  // the fit result's JSON itself (Python's), named fit_result in messages
+  std::map<std::string, std::string> set;  // --set, already checked by parse_set_options
+  std::string output;                      // -o, for the checks of what it can hold; "" when no file is written
+};
+
+// Refuses, with the command's messages, the combinations the command refuses and a malformed --frf grid.
+void check_export_request(const ExportRequest& request);
+
+// The file's text and, for UFF, its mapping file's (OUT.map); checked by check_export_request first.
+struct ExportText {
+  std::string data, mapping;
+};
+
+ExportText export_model(const ExportRequest& request);
 
 }  // namespace mbgen::cli

@@ -12,8 +12,10 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
+#include "cli/command_runs.hpp"
 #include "cli/commands.hpp"
 #include "cli/export_mat.hpp"
 #include "cli/mat_file.hpp"
@@ -48,11 +50,17 @@ std::string number(double v) {
   return text;
 }
 
-// The values of a `mbgen fit --json` result (schema mbgen-fit/1) put into `p`; DataError for another file or a
-// parameter the model does not have.
-void take_fit_result(const std::string& path, const ModelInfo& info, Eigen::VectorXd& p) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DataError(path, 0, 0, "cannot read the file");
+// The values of a `mbgen fit --json` result (schema mbgen-fit/1) put into `p`: the file `path`, or `text` when given
+// (named `path` in messages); DataError for another file or a parameter the model does not have.
+void take_fit_result(const std::string& path, const std::optional<std::string>& text, const ModelInfo& info,
+                     Eigen::VectorXd& p) {
+  std::ifstream file;
+  std::istringstream given(text ? *text : std::string());
+  if (!text) {
+    file.open(path, std::ios::binary);
+    if (!file) throw DataError(path, 0, 0, "cannot read the file");
+  }
+  std::istream& in = text ? static_cast<std::istream&>(given) : file;
   Json j;
   try {
     j = Json::parse(in);
@@ -175,8 +183,8 @@ UffFiles frf_uff(const ir::ModelIr& model, const std::string& model_path, const 
   return out;
 }
 
-// The model's modes at its sensor points as UFF 55, the points' coordinates as UFF 15 before them, and the mapping
-// file that names the points. A shape at an output is the motion of its point along its axis: the output map's row
+// The model's modes at its sensor points as UFF 55, the points' coordinates as UFF 15 and the lines between them
+// as UFF 82 (sensor_geometry) before them, and the mapping file that names the points. A shape at an output is the motion of its point along its axis: the output map's row
 // (displacement, velocity or acceleration map; one of them holds the output) applied to the mode's coordinates.
 UffFiles modes_uff(const ir::ModelIr& model, const std::string& model_path, const ModelInfo& info,
                    const Eigen::VectorXd& p, const std::map<std::string, std::string>& sets, const ModelMatrices& m) {
@@ -200,7 +208,7 @@ UffFiles modes_uff(const ir::ModelIr& model, const std::string& model_path, cons
   }
   UffFiles out;
   out.data = uff55_modes_text(points, eigenvalues, shapes, 8, "mbgen export " + model_path, "model modes",
-                              geometry.nodes);
+                              geometry.nodes, geometry.traces);
   out.mapping = uff_points_mapping("mbgen export " + model_path, info.outputs, points);
   return out;
 }
@@ -234,6 +242,73 @@ Json modes_json(const std::vector<Mode>& modes) {
 
 }  // namespace
 
+void check_export_request(const ExportRequest& r) {
+  const std::string &what = r.what, &format = r.format, &output = r.output;
+  if (what == "frf" && r.grid.empty()) throw CLI::ValidationError("--frf", "--what frf needs the grid: --frf LO:HI:N");
+  if (what != "frf" && !r.grid.empty()) throw CLI::ValidationError("--frf", "only with --what frf");
+  if (format == "csv" && (what == "matrices" || what == "state-space"))
+    throw CLI::ValidationError("--format", "csv holds one table: frf or modes; matrices and the state space are json");
+  if (format == "uff" && what != "frf" && what != "modes")
+    throw CLI::ValidationError("--format", "uff holds FRFs (--what frf, UFF 58) or modes (--what modes, UFF 55)");
+  if (format == "uff" && output == "-")
+    throw CLI::ValidationError("-o", "a UFF file comes with its mapping file (OUT.map): name a file");
+  if (format == "mat" && !mat_file_available())
+    throw CLI::ValidationError("--format", "mat needs libmatio, and this mbgen was built without it (install "
+                                           "libmatio-dev, scripts/setup does, and build again)");
+  if (format == "mat" && output == "-") throw CLI::ValidationError("-o", "a .mat file is binary: name a file");
+  if (what == "frf") frequency_grid(r.grid);
+}
+
+ExportText export_model(const ExportRequest& request) {
+  check_export_request(request);
+  const std::string &model_path = request.model_path, &what = request.what, &format = request.format;
+  const std::vector<double> f = what == "frf" ? frequency_grid(request.grid) : std::vector<double>{};
+  symbolic::DeriveOptions derive;
+  derive.set = request.set;
+  const ir::ModelIr model = frontend::parse_file(model_path);
+  const auto evaluator = evaluator::make_evaluator(model, derive);
+  const ModelInfo& info = evaluator->info();
+  Eigen::VectorXd p = info.default_values();
+  if (!request.fit_result.empty()) take_fit_result(request.fit_result, request.fit_result_text, info, p);
+  ModelMatrices m;
+  evaluator->evaluate(p, m);
+
+  if (format == "mat") {
+    const FrfResult frfs = what == "frf" ? frf(*evaluator, p, f) : FrfResult{};
+    return {export_mat(model_path, what, info, p, m, what == "frf" ? &frfs : nullptr), ""};
+  }
+  if (format == "uff") {
+    const UffFiles files = what == "modes" ? modes_uff(model, model_path, info, p, derive.set, m)
+                                           : frf_uff(model, model_path, info, frf(*evaluator, p, f));
+    return {files.data, files.mapping};
+  }
+  if (format == "csv")
+    return {what == "frf" ? frf_csv(info, frf(*evaluator, p, f)) : modes_csv(info, modal_analysis(m.M, m.C, m.K)), ""};
+  Json j;
+  j["schema"] = "mbgen-export/1";
+  j["model"] = model_path;
+  j["what"] = what;
+  Json values = Json::object();
+  for (std::size_t i = 0; i < info.parameters.size(); ++i)
+    values[info.parameters[i].name] = p[static_cast<Eigen::Index>(i)];
+  j["parameters"] = values;
+  j["coordinates"] = info.coordinates;
+  j["inputs"] = info.inputs;
+  j["outputs"] = info.outputs;
+  if (what == "matrices") {
+    j["M"] = matrix_json(m.M), j["C"] = matrix_json(m.C), j["K"] = matrix_json(m.K), j["B"] = matrix_json(m.B);
+    j["Cd"] = matrix_json(m.Cd), j["Cv"] = matrix_json(m.Cv), j["Ca"] = matrix_json(m.Ca);
+  } else if (what == "state-space") {
+    const StateSpace ss = state_space(m);
+    j["A"] = matrix_json(ss.A), j["B"] = matrix_json(ss.B), j["C"] = matrix_json(ss.C), j["D"] = matrix_json(ss.D);
+  } else if (what == "modes") {
+    j["modes"] = modes_json(modal_analysis(m.M, m.C, m.K));
+  } else {
+    j["frf"] = frf_json(info, frf(*evaluator, p, f));
+  }
+  return {j.dump(2) + "\n", ""};
+}
+
 int run_export(int argc, char** argv) {
   CLI::App app{"Write a model's numbers for another tool: M, C, K, B and the output maps, the state space, the modes "
                "or FRFs on a frequency grid, at the model's values or at a fit's estimate.",
@@ -246,7 +321,8 @@ int run_export(int argc, char** argv) {
   app.add_option("--frf", grid, "with --what frf: the frequency grid LO:HI:N (Hz; N lines, both ends included)");
   app.add_option("--format", format, "json (default, schema mbgen-export/1), csv (frf: the FRF CSV layout mbgen "
                                      "reads; modes: one row per mode) or uff (frf: UFF 58; modes: UFF 55 at the sensor "
-                                     "points with their UFF 15 nodes; the .map beside it names the points) or mat (MATLAB "
+                                     "points with their UFF 15 nodes and UFF 82 trace lines; the .map beside it names "
+                                     "the points) or mat (MATLAB "
                                      "variables, the JSON's content)")
       ->check(CLI::IsMember({"json", "csv", "uff", "mat"}));
   app.add_option("--fit-result", fit_result, "the parameters' values from a `mbgen fit --json` result");
@@ -254,75 +330,24 @@ int run_export(int argc, char** argv) {
   app.add_option("-o,--output", output, "file to write (default: standard output)");
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
-    if (what == "frf" && grid.empty()) throw CLI::ValidationError("--frf", "--what frf needs the grid: --frf LO:HI:N");
-    if (what != "frf" && !grid.empty()) throw CLI::ValidationError("--frf", "only with --what frf");
-    if (format == "csv" && (what == "matrices" || what == "state-space"))
-      throw CLI::ValidationError("--format", "csv holds one table: frf or modes; matrices and the state space are json");
-    if (format == "uff" && what != "frf" && what != "modes")
-      throw CLI::ValidationError("--format", "uff holds FRFs (--what frf, UFF 58) or modes (--what modes, UFF 55)");
-    if (format == "uff" && output == "-")
-      throw CLI::ValidationError("-o", "a UFF file comes with its mapping file (OUT.map): name a file");
-    if (format == "mat" && !mat_file_available())
-      throw CLI::ValidationError("--format", "mat needs libmatio, and this mbgen was built without it (install "
-                                             "libmatio-dev, scripts/setup does, and build again)");
-    if (format == "mat" && output == "-") throw CLI::ValidationError("-o", "a .mat file is binary: name a file");
-    const std::vector<double> f = what == "frf" ? frequency_grid(grid) : std::vector<double>{};
-    symbolic::DeriveOptions derive;
-    derive.set = parse_set_options(sets);
+    ExportRequest request;
+    request.model_path = model_path;
+    request.what = what;
+    request.format = format;
+    request.grid = grid;
+    request.fit_result = fit_result;
+    request.output = output;
+    check_export_request(request);
+    request.set = parse_set_options(sets);
     OutputPlan plan;
     plan.files = {{"-o", output}, {"-o (its UFF mapping file)", format == "uff" ? output + ".map" : ""}};
     plan.inputs = {model_path};
     if (!fit_result.empty()) plan.inputs.push_back(fit_result);
     plan.check();
-    const ir::ModelIr model = frontend::parse_file(model_path);
-    const auto evaluator = evaluator::make_evaluator(model, derive);
-    const ModelInfo& info = evaluator->info();
-    Eigen::VectorXd p = info.default_values();
-    if (!fit_result.empty()) take_fit_result(fit_result, info, p);
-    ModelMatrices m;
-    evaluator->evaluate(p, m);
-
-    std::string text;
-    if (format == "mat") {
-      const FrfResult frfs = what == "frf" ? frf(*evaluator, p, f) : FrfResult{};
-      text = export_mat(model_path, what, info, p, m, what == "frf" ? &frfs : nullptr);
-    } else if (format == "uff") {
-      const UffFiles files = what == "modes" ? modes_uff(model, model_path, info, p, derive.set, m)
-                                             : frf_uff(model, model_path, info, frf(*evaluator, p, f));
-      OutputFiles out;
-      out.add(output, files.data);
-      out.add(output + ".map", files.mapping);
-      out.commit();
-      return 0;
-    } else if (format == "csv") {
-      text = what == "frf" ? frf_csv(info, frf(*evaluator, p, f)) : modes_csv(info, modal_analysis(m.M, m.C, m.K));
-    } else {
-      Json j;
-      j["schema"] = "mbgen-export/1";
-      j["model"] = model_path;
-      j["what"] = what;
-      Json values = Json::object();
-      for (std::size_t i = 0; i < info.parameters.size(); ++i)
-        values[info.parameters[i].name] = p[static_cast<Eigen::Index>(i)];
-      j["parameters"] = values;
-      j["coordinates"] = info.coordinates;
-      j["inputs"] = info.inputs;
-      j["outputs"] = info.outputs;
-      if (what == "matrices") {
-        j["M"] = matrix_json(m.M), j["C"] = matrix_json(m.C), j["K"] = matrix_json(m.K), j["B"] = matrix_json(m.B);
-        j["Cd"] = matrix_json(m.Cd), j["Cv"] = matrix_json(m.Cv), j["Ca"] = matrix_json(m.Ca);
-      } else if (what == "state-space") {
-        const StateSpace ss = state_space(m);
-        j["A"] = matrix_json(ss.A), j["B"] = matrix_json(ss.B), j["C"] = matrix_json(ss.C), j["D"] = matrix_json(ss.D);
-      } else if (what == "modes") {
-        j["modes"] = modes_json(modal_analysis(m.M, m.C, m.K));
-      } else {
-        j["frf"] = frf_json(info, frf(*evaluator, p, f));
-      }
-      text = j.dump(2) + "\n";
-    }
+    const ExportText text = export_model(request);
     OutputFiles out;
-    out.add(output, text);
+    out.add(output, text.data);
+    if (format == "uff") out.add(output + ".map", text.mapping);
     out.commit();
     return 0;
   }, &model_path);

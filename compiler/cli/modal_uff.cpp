@@ -45,12 +45,16 @@ UffText identified_modes_uff(const ModalData& data, const ModalIdentification& r
 
   std::vector<UffMapping> mappings;
   std::vector<Uff15Node> nodes;
+  std::vector<Uff82TraceLine> traces;  // the data's geometry, kept: written with the modes
   for (const std::string& path : data_paths) {
     if (path == "-") continue;
     if (std::filesystem::exists(path + ".map")) mappings.push_back(read_uff_mapping(path + ".map"));
     std::ifstream in(path, std::ios::binary);
     try {
       for (const Uff15Node& n : read_uff15(in, path)) nodes.push_back(n);
+      in.clear();
+      in.seekg(0);
+      for (Uff82TraceLine& t : read_uff82(in, path)) traces.push_back(std::move(t));
     } catch (const DataError&) {
       // Read as data already: a CSV file, which holds no nodes.
     }
@@ -86,6 +90,7 @@ UffText identified_modes_uff(const ModalData& data, const ModalIdentification& r
       points[k] = geometry->outputs.at(names[k]);
     }
     nodes = geometry->nodes;
+    traces = geometry->traces;
   }
 
   Eigen::MatrixXcd shapes(static_cast<Eigen::Index>(channels.size()), static_cast<Eigen::Index>(result.modes.size()));
@@ -99,7 +104,7 @@ UffText identified_modes_uff(const ModalData& data, const ModalIdentification& r
   const std::string& input = data.inputs[static_cast<std::size_t>(reference)];
   UffText out;
   out.data = uff55_modes_text(points, eigenvalues, shapes, specific_data_type(data.quantity), "mbgen modal",
-                              "residues of reference " + input, nodes);
+                              "residues of reference " + input, nodes, traces);
   out.mapping = uff_points_mapping("mbgen modal", names, points);
   return out;
 }

@@ -16,6 +16,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/command_runs.hpp"
 #include "cli/commands.hpp"
 #include "cli/parameter_roles.hpp"
 #include "cli/fleet_manifest.hpp"
@@ -68,13 +69,7 @@ double residual_misfit(const Model& model, const DataSet& set, const FitResult& 
   return analyse_residuals(channels).mean_z;
 }
 
-// The settings of one monitoring run, apart from its model and data.
-struct MonitorSettings {
-  MonitorOptions options;
-  std::vector<std::string> sets;
-  RoleOptions roles;
-  bool no_diagnosis = false;
-};
+}  // namespace
 
 // Monitors one machine: its model (path, or "-" for standard input) and its data sets, ordered by time.
 MonitorResult monitor_machine(const std::string& model_path, const std::vector<std::string>& data_paths,
@@ -157,6 +152,8 @@ MonitorResult monitor_machine(const std::string& model_path, const std::vector<s
 
   return result;
 }
+
+namespace {
 
 // Everything a fleet item's result depends on, one fact per line: when it equals the digest written with the item's
 // last result, the item is up to date.

@@ -13,6 +13,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "cli/command_runs.hpp"
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
 #include "cli/output_files.hpp"
@@ -47,7 +48,8 @@ OperationalSet identify_set(const std::string& path, const OperationalRequest& r
 
 }  // namespace
 
-int run_monitor_output_only(const OperationalRequest& request) {
+OperationalRun monitor_output_only(const OperationalRequest& request) {
+  OperationalRun run;
   // Time order (as `monitor`), then the conditions of each file in that order.
   std::vector<std::optional<MeasurementTime>> stamps;
   for (const std::string& path : request.data_paths) stamps.push_back(read_measurement_time(path));
@@ -62,42 +64,50 @@ int run_monitor_output_only(const OperationalRequest& request) {
   const ConditionTable conditions = condition_table(paths, lines);
 
   std::vector<OperationalSet> sets;
-  std::vector<std::string> channels;
   for (std::size_t i = 0; i < paths.size(); ++i) {
-    OperationalSet set = identify_set(paths[i], request, channels);
+    OperationalSet set = identify_set(paths[i], request, run.channels);
     set.time = times[i];
     set.conditions = conditions.values[i];
     std::cerr << "monitor: data set " << i << "/" << paths.size() << " " << paths[i] << ": " << set.modes.size()
               << " modes\n";
     sets.push_back(std::move(set));
   }
-  OperationalMonitorResult result, raw;
   try {
-    result = monitor_operational(sets, conditions.names, request.options);
+    run.result = monitor_operational(sets, conditions.names, request.options);
     OperationalMonitorOptions plain = request.options;
     plain.compensate = false;
-    if (request.options.compensate) raw = monitor_operational(sets, conditions.names, plain);
+    if (request.options.compensate) run.raw = monitor_operational(sets, conditions.names, plain);
   } catch (const std::invalid_argument& e) {
     throw DataError(e.what());
   }
 
-  OperationalReportInput in{result, channels, output_only_method_name(request.identification.method),
-                            request.options.compensate ? &raw : nullptr, "", nullptr, {}};
-  std::optional<OperationalModelModes> model_modes;
+  run.compensated = request.options.compensate;
+  run.method = output_only_method_name(request.identification.method);
   if (!request.model_path.empty()) {
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(request.sets);
     const ir::ModelIr declared = read_model_with_roles(request.model_path, request.roles, derive.set).model;
     const auto model = evaluator::make_evaluator(declared, derive);
     try {
-      model_modes = operational_model_modes(*model, model->info().default_values(), channels, result);
+      run.model_modes = operational_model_modes(*model, model->info().default_values(), run.channels, run.result);
     } catch (const std::invalid_argument& e) {
       throw DataError(request.model_path + ": " + e.what());
     }
-    in.model = request.model_path;
-    in.model_modes = &*model_modes;
-    for (const OperationalChange& c : result.changes) in.explanations.push_back(explain_change(*model_modes, result, c));
+    run.model_path = request.model_path;
+    for (const OperationalChange& c : run.result.changes)
+      run.explanations.push_back(explain_change(*run.model_modes, run.result, c));
   }
+  return run;
+}
+
+OperationalReportInput OperationalRun::input() const {
+  return {result, channels, method, compensated ? &raw : nullptr, model_path, model_modes ? &*model_modes : nullptr,
+          explanations};
+}
+
+int run_monitor_output_only(const OperationalRequest& request) {
+  const OperationalRun run = monitor_output_only(request);
+  const OperationalReportInput in = run.input();
   OutputFiles out;
   if (!request.json_path.empty()) out.add(request.json_path, operational_monitor_json(in));
   if (!request.report_dir.empty()) write_operational_monitor_report(out.stage_directory(request.report_dir), in);

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/command_runs.hpp"
 #include "cli/commands.hpp"
 #include "cli/parameter_roles.hpp"
 #include "cli/load_data.hpp"
@@ -94,6 +95,57 @@ void check_sweep(const Sweep& s, const Model& model, const ir::ModelIr& declared
 
 }  // namespace
 
+SensitivityRun sensitivity_analysis(SensitivityRequest request) {
+  SensitivityRun run;
+  run.model_path = request.model_path;
+  run.sobol = request.sobol;
+  run.global = request.global;
+  symbolic::DeriveOptions derive;
+  derive.set = request.set;
+  run.declared = read_model_with_roles(request.model_path, request.roles, derive.set).model;
+  run.model = evaluator::make_evaluator(run.declared, derive);
+  const Model& model = *run.model;
+  const ModelInfo& info = model.info();
+  std::vector<Sweep> parsed;
+  for (const std::string& s : request.sweeps) parsed.push_back(parse_sweep(s, info));
+  for (const Sweep& s : parsed) check_sweep(s, model, run.declared);
+  const Eigen::VectorXd p = info.default_values();
+
+  run.local = local_sensitivity(model, p);
+  run.visibility = mode_visibility(model, p);
+  if (request.global) {
+    std::vector<ParameterRange> ranges;
+    try {
+      ranges = parameter_ranges(info, p, request.spread, request.bounds);
+    } catch (const std::invalid_argument& e) {
+      throw CLI::ValidationError(request.bounds ? "--bounds" : "--spread", e.what());
+    }
+    std::ostringstream spread_text;
+    spread_text << request.spread;
+    run.range_text = request.bounds ? "their declared bounds"
+                                    : "value * [1 - " + spread_text.str() + ", 1 + " + spread_text.str() +
+                                          "] within their bounds";
+    progress_line("sensitivity: Sobol indices, " + std::to_string(request.sobol.samples * (ranges.size() + 2)) +
+                  " modal analyses on " + std::to_string(request.sobol.threads) + " threads");
+    run.global_result = global_sensitivity(model, p, ranges, request.sobol);
+    progress_done();
+  }
+  for (const Sweep& s : parsed) {
+    progress_line("sensitivity: sweeping " + info.parameters[static_cast<std::size_t>(s.index)].name);
+    run.maps.push_back(feature_map(model, p, s.index, s.lo, s.hi, s.points));
+    progress_done();
+  }
+  if (request.geometry) run.geometry = evaluator::shape_geometry(run.declared, derive.set);
+  return run;
+}
+
+SensitivityReportInput SensitivityRun::input() const {
+  SensitivityReportInput in{model_path, model->info(), local,     visibility, global ? &global_result : nullptr,
+                            sobol,      range_text,    maps};
+  if (geometry) in.geometry = &*geometry;
+  return in;
+}
+
 int run_sensitivity(int argc, char** argv) {
   CLI::App app{
       "How the model's modes depend on its parameters: local (normalized) sensitivities of each mode's "
@@ -129,48 +181,18 @@ int run_sensitivity(int argc, char** argv) {
     plan.report_dir = report_dir;
     plan.inputs = {model_path};
     plan.check();
-    symbolic::DeriveOptions derive;
-    derive.set = parse_set_options(sets);
-    const ir::ModelIr declared = read_model_with_roles(model_path, roles, derive.set).model;
-    const auto model = evaluator::make_evaluator(declared, derive);
-    const ModelInfo& info = model->info();
-    std::vector<Sweep> parsed;
-    for (const std::string& s : sweeps) parsed.push_back(parse_sweep(s, info));
-    for (const Sweep& s : parsed) check_sweep(s, *model, declared);
-    const Eigen::VectorXd p = info.default_values();
-
-    const LocalSensitivity local = local_sensitivity(*model, p);
-    const ModeVisibility visibility = mode_visibility(*model, p);
-    GlobalSensitivity global_result;
-    std::string range_text;
-    if (global) {
-      std::vector<ParameterRange> ranges;
-      try {
-        ranges = parameter_ranges(info, p, spread, bounds);
-      } catch (const std::invalid_argument& e) {
-        throw CLI::ValidationError(bounds ? "--bounds" : "--spread", e.what());
-      }
-      std::ostringstream spread_text;
-      spread_text << spread;
-      range_text = bounds
-                       ? "their declared bounds"
-                       : "value * [1 - " + spread_text.str() + ", 1 + " + spread_text.str() + "] within their bounds";
-      progress_line("sensitivity: Sobol indices, " + std::to_string(sobol.samples * (ranges.size() + 2)) +
-                    " modal analyses on " + std::to_string(sobol.threads) + " threads");
-      global_result = global_sensitivity(*model, p, ranges, sobol);
-      progress_done();
-    }
-    std::vector<FeatureMap> maps;
-    for (const Sweep& s : parsed) {
-      progress_line("sensitivity: sweeping " + info.parameters[static_cast<std::size_t>(s.index)].name);
-      maps.push_back(feature_map(*model, p, s.index, s.lo, s.hi, s.points));
-      progress_done();
-    }
-
-    SensitivityReportInput in{model_path, info,       local, visibility, global ? &global_result : nullptr,
-                              sobol,      range_text, maps};
-    std::optional<ShapeGeometry> geometry;  // the report draws the modes on it
-    if (!report_dir.empty()) in.geometry = &geometry.emplace(evaluator::shape_geometry(declared, derive.set));
+    SensitivityRequest request;
+    request.model_path = model_path;
+    request.set = parse_set_options(sets);
+    request.roles = roles;
+    request.global = global;
+    request.bounds = bounds;
+    request.spread = spread;
+    request.sobol = sobol;
+    request.sweeps = sweeps;
+    request.geometry = !report_dir.empty();  // the report draws the modes on it
+    const SensitivityRun run = sensitivity_analysis(std::move(request));
+    const SensitivityReportInput in = run.input();
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, sensitivity_json(in));
     if (!report_dir.empty()) write_sensitivity_report(out.stage_directory(report_dir), in);

@@ -53,6 +53,42 @@ SensorGeometry sensor_geometry(const ir::ModelIr& model, const std::map<std::str
     n.xyz = places[k].second;
     g.nodes.push_back(n);
   }
+  // The lines: node pairs (ascending, each once) on one body, then across the elements between bodies.
+  std::set<std::pair<int, int>> lines;
+  const auto add = [&](std::size_t a, std::size_t b) {
+    if (a != b) lines.insert({static_cast<int>(std::min(a, b)) + 1, static_cast<int>(std::max(a, b)) + 1});
+  };
+  for (std::size_t k = 0; k < places.size(); ++k)
+    for (std::size_t next = k + 1; next < places.size(); ++next)
+      if (places[next].first == places[k].first) {
+        add(k, next);
+        break;
+      }
+  // The node on `frame` nearest to the point `at`; places.size() when the frame has none.
+  const auto nearest = [&](const ir::Attachment& at) {
+    const std::array<double, 3> xyz = {values.of(at.point[0]), values.of(at.point[1]), values.of(at.point[2])};
+    std::size_t best = places.size();
+    double best_distance = 0;
+    for (std::size_t k = 0; k < places.size(); ++k) {
+      if (places[k].first != at.frame) continue;
+      double d = 0;
+      for (int i = 0; i < 3; ++i) d += (places[k].second[i] - xyz[i]) * (places[k].second[i] - xyz[i]);
+      if (best == places.size() || d < best_distance) best = k, best_distance = d;
+    }
+    return best;
+  };
+  for (const ir::Element& e : model.elements) {
+    if (model.is_ground(e.a.frame) || model.is_ground(e.b.frame)) continue;
+    const std::size_t a = nearest(e.a), b = nearest(e.b);
+    if (a < places.size() && b < places.size()) add(a, b);
+  }
+  for (const auto& [a, b] : lines) {
+    Uff82TraceLine t;
+    t.number = static_cast<int>(g.traces.size()) + 1;
+    t.id = "mbgen: the model's structure";
+    t.nodes = {a, b};
+    g.traces.push_back(std::move(t));
+  }
   return g;
 }
 
@@ -75,14 +111,22 @@ bool parse_uff_point_key(const std::string& key, UffPoint& point) {
 
 std::string uff55_modes_text(const std::vector<UffPoint>& points, const std::vector<std::complex<double>>& eigenvalues,
                              const Eigen::MatrixXcd& shapes, int specific_data_type, const std::string& id1,
-                             const std::string& id2, const std::vector<Uff15Node>& nodes) {
+                             const std::string& id2, const std::vector<Uff15Node>& nodes,
+                             const std::vector<Uff82TraceLine>& traces) {
   std::set<int> used;
   for (const UffPoint& p : points) used.insert(p.node);
   std::ostringstream out;
   std::vector<Uff15Node> geometry;
   for (const Uff15Node& n : nodes)
     if (used.count(n.node)) geometry.push_back(n);
-  if (!geometry.empty()) write_uff15(out, geometry);
+  if (!geometry.empty()) {
+    write_uff15(out, geometry);
+    std::set<int> placed;
+    for (const Uff15Node& n : geometry) placed.insert(n.node);
+    for (const Uff82TraceLine& t : traces)
+      if (std::all_of(t.nodes.begin(), t.nodes.end(), [&](int n) { return n == 0 || placed.count(n); }))
+        write_uff82(out, t);
+  }
   const std::vector<int> node_list(used.begin(), used.end());
   // Rotations measured (directions 4 to 6): six values per node, else the three translations.
   const bool six = std::any_of(points.begin(), points.end(), [](const UffPoint& p) { return std::abs(p.direction) > 3; });

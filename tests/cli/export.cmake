@@ -131,6 +131,25 @@ file(READ "${WORK}/bare_modes.uff" modes)
 if(NOT modes MATCHES "^    -1\n    15 *\n         1         0         0         0  0.00000E[+]00  1.00000E[+]00[^\n]*\n         2 [^\n]*\n    -1\n    -1\n    55")
   message(SEND_ERROR "modal --uff did not carry the data's nodes 1 and 2 (dataset 15) before the modes")
 endif()
+# Trace lines (dataset 82) in the data are kept as geometry: modal --uff writes those between the nodes it writes
+# (1-2, as read), not those to a node it does not write (the reference node 1001), byte for byte as they were.
+set(trace "    -1\n    82                                                                          \n         1         2         0\nsensors\n         1         2\n    -1\n")
+set(to_reference "    -1\n    82                                                                          \n         2         2         0\nforce\n         2      1001\n    -1\n")
+file(WRITE "${WORK}/traced.uff" "${nodes}    -1\n${trace}${to_reference}${frfs}")
+expect_run(STATUS 0 ARGS modal --data traced.uff --uff traced_modes.uff)
+file(READ "${WORK}/traced_modes.uff" modes)
+if(NOT modes MATCHES "^    -1\n    15 *\n[^-]*    -1\n    -1\n    82 *\n         1         2         0\nsensors *\n         1         2\n    -1\n    -1\n    55")
+  message(SEND_ERROR "modal --uff did not keep the data's trace line 1-2 (dataset 82) after the nodes:\n${modes}")
+endif()
+if(modes MATCHES "\nforce *\n")
+  message(SEND_ERROR "modal --uff wrote a trace line to the reference node 1001, which it writes no node for")
+endif()
+# frame3's storeys in a chain (columns 1-2 and 2-3; column 1 goes to the floor, which has no node): two lines.
+expect_run(STATUS 0 ARGS export ${SOURCE}/examples/frame3/frame3.mdl --what modes --format uff -o frame3.uff)
+file(READ "${WORK}/frame3.uff" modes)
+if(NOT modes MATCHES "    -1\n    82 *\n         1         2         0\n[^\n]*\n         1         2\n    -1\n    -1\n    82 *\n         2         2         0\n[^\n]*\n         2         3\n    -1\n    -1\n    55")
+  message(SEND_ERROR "export frame3 modes: not the trace lines 1-2 and 2-3 of its columns:\n${modes}")
+endif()
 # CSV FRFs name no points: modal places them by the model's sensor points, or refuses naming the output.
 expect_run(STATUS 0 ARGS modal --data frf.csv --model ${MDOF2} --uff modal_csv.uff)
 expect_run(STATUS 1 STDERR "frf.csv: error: --uff: the output `d1` has no UFF node and direction"

@@ -1,7 +1,9 @@
 """Checks UFF 55 mode files by a reader written from the specification (fixed columns, not mbgen's code): the modes
 `mbgen export --what modes --format uff` writes are the exported JSON modes at the outputs (Cd + Cv + Ca times the
 shape, six significant digits), and those `mbgen modal --uff` writes from the model's FRFs are the same modes (the
-frequencies, and the shapes by MAC). The UFF 15 nodes come before the modes, one per output's point.
+frequencies, and the shapes by MAC). The UFF 15 nodes come before the modes, one per output's point, and after them
+the UFF 82 trace lines of the model's structure: mdof2's one element between its two masses, the helix (the beams go
+to the wall, which has no node), is the one line from node 1 to node 2.
 usage: uff55_check.py MATRICES.json MODES.json EXPORTED.uff IDENTIFIED.uff"""
 import json
 import math
@@ -61,11 +63,17 @@ def main():
     maps = np.array(mats["Cd"]) + np.array(mats["Cv"]) + np.array(mats["Ca"])
     problems = []
     exported = datasets(sys.argv[3])
-    if exported[0][0] != "15" or len([d for d in exported if d[0] == "55"]) != len(modes):
-        problems.append("export: expected a dataset 15 then one 55 per mode, found %s" % [d[0] for d in exported])
+    if (exported[0][0] != "15" or [d[0] for d in exported[1:]] != ["82"] + ["55"] * len(modes)):
+        problems.append("export: expected a dataset 15, an 82, then one 55 per mode, found %s" % [d[0] for d in exported])
     nodes = {int(l[:10]) for l in exported[0][1]}
+    for number, body in exported:
+        if number == "82":
+            count = int(body[0][10:20])  # record 1: 3I10; record 3: 8I10
+            trace = [int(l[k:k + 10]) for l in body[2:] for k in range(0, len(l), 10) if l[k:k + 10].strip()]
+            if count != len(trace) or trace != [1, 2]:
+                problems.append("export: trace line %s (count %d), expected [1, 2]" % (trace, count))
     model_shapes = []
-    for number, body in exported[1:]:
+    for number, body in [d for d in exported if d[0] == "55"]:
         n, lam, specific, shapes = read_mode(body)
         m = modes[n - 1]
         if specific != 8 or set(shapes) != nodes:

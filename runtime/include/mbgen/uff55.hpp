@@ -1,8 +1,10 @@
-// Universal File Format dataset 55 (data at nodes: here mode shapes, one dataset per mode) and dataset 15 (nodes
-// with their coordinates, the geometry the shapes are drawn on), ASCII. What mbgen writes and reads: docs/data.md.
+// Universal File Format dataset 55 (data at nodes: here mode shapes, one dataset per mode), dataset 15 (nodes with
+// their coordinates, the geometry the shapes are drawn on) and dataset 82 (trace lines between nodes, which a viewer
+// draws as the structure), ASCII. What mbgen writes and reads: docs/data.md.
 //
 // Layout followed (SDRC's dataset descriptions as the ARTeMIS Modal help reproduces them, "UFF Data Set Number 55"
-// and "Number 15", and pyuff's dataset_55.py/dataset_15.py, which read and write the same fields):
+// "Number 15" and "Number 82", and pyuff's dataset_55.py/dataset_15.py/dataset_82.py, which read and write the same
+// fields):
 //   55 record 1-5   ID lines (40A2)
 //      record 6     6I10: model type (1 structural), analysis type (2 normal mode, 3 complex eigenvalue first order,
 //                   7 complex eigenvalue second order), data characteristic (1 scalar, 2 three translations,
@@ -13,6 +15,9 @@
 //                   complex mode: eigenvalue (re, im; rad/s), modal A (re, im), modal B (re, im)
 //      record 9     I10: node number;  record 10  6E13.5: its values (complex: re, im of each), repeated per node
 //   15 record 1     4I10,1P3E13.5: node label, definition and displacement coordinate systems, colour, x, y, z
+//   82 record 1     3I10: trace line number, number of nodes (entries of record 3, at most 250), colour
+//      record 2     80A1: identification line
+//      record 3     8I10: the nodes, a line drawn to each from the one before; 0 lifts the pen (a move to the next)
 // E13.5 holds six significant digits: that is the precision of everything in these datasets.
 #pragma once
 
@@ -74,5 +79,22 @@ struct Uff15Node {
 void write_uff15(std::ostream& out, const std::vector<Uff15Node>& nodes);
 // Every node of the file's datasets 15 (none: an empty list); DataError naming file and line for a malformed one.
 std::vector<Uff15Node> read_uff15(std::istream& in, const std::string& file_name);
+
+// One dataset 82: a trace line through nodes.
+struct Uff82TraceLine {
+  int number = 0;          // record 1 field 1
+  int colour = 0;          // field 3
+  std::string id;          // record 2, trimmed
+  std::vector<int> nodes;  // record 3: node numbers, 0 a pen lift
+  int line = 0;            // of the dataset number, when read
+};
+
+// Writes one dataset 82. std::invalid_argument for fewer than 2 or more than 250 entries, or a negative one.
+void write_uff82(std::ostream& out, const Uff82TraceLine& trace);
+// Every dataset 82 of the file, in file order (none: an empty list); record 3 is read to the dataset's end whatever
+// record 1's count says (writers count differently). DataError naming file and line for a malformed one (a record 1
+// that is not three integers, a node that is not an integer >= 0) or for malformed datasets 55 and 15 in the file.
+// read_uff55 and the FRF reader (read_uff58) skip datasets 82.
+std::vector<Uff82TraceLine> read_uff82(std::istream& in, const std::string& file_name);
 
 }  // namespace mbgen

@@ -1,4 +1,5 @@
-// Reading datasets 55 (mode shapes at nodes) and 15 (nodes) from a UFF file; every other dataset is skipped, binary
+// Reading datasets 55 (mode shapes at nodes), 15 (nodes) and 82 (trace lines) from a UFF file; every other dataset
+// is skipped, binary
 // 58b by its declared byte count (runtime/include/mbgen/uff55.hpp names the layout and where it comes from).
 #include <algorithm>
 #include <cmath>
@@ -177,6 +178,27 @@ void read_15(Lines& c, std::vector<Uff15Node>& nodes) {
   }
 }
 
+// Record 3 is read to the closing delimiter, whatever record 1's count: writers count differently (pyuff counts the
+// changes of node, not the entries).
+void read_82(Lines& c, std::vector<Uff82TraceLine>& traces) {
+  Uff82TraceLine t;
+  t.line = c.line();
+  const std::vector<double> head = numbers(c, c.required("82", t.line), "UFF 82 record 1", 3, true);
+  t.number = static_cast<int>(head[0]);
+  t.colour = static_cast<int>(head[2]);
+  t.id = std::string(trim(c.required("82", t.line)));
+  std::string line;
+  while (true) {
+    if (!c.next(line)) throw DataError(c.file(), t.line, 0, "UFF dataset 82 is not closed by '    -1'");
+    if (is_delimiter(line)) break;
+    for (const double v : numbers(c, line, "UFF 82 record 3", 0, true)) {
+      if (v < 0) throw DataError(c.file(), c.line(), 0, "UFF 82 record 3: a node number is >= 0");
+      t.nodes.push_back(static_cast<int>(v));
+    }
+  }
+  traces.push_back(std::move(t));
+}
+
 // A binary 58b: its header line declares the bytes after its 11 ASCII lines.
 void skip_58b(Lines& c, const std::string& number_line) {
   const int start = c.line();
@@ -200,9 +222,11 @@ void skip_58b(Lines& c, const std::string& number_line) {
 struct Contents {
   std::vector<Uff55Record> modes;
   std::vector<Uff15Node> nodes;
+  std::vector<Uff82TraceLine> traces;
 };
 
-Contents scan(std::istream& in, const std::string& file) {
+// Datasets 82 are read only when `traces` is asked for; the modes' reader skips them as any other dataset.
+Contents scan(std::istream& in, const std::string& file, bool traces = false) {
   Lines c(in, file);
   Contents out;
   std::string line;
@@ -220,6 +244,8 @@ Contents scan(std::istream& in, const std::string& file) {
       out.modes.push_back(read_55(c));
     } else if (number == "15") {
       read_15(c, out.nodes);
+    } else if (number == "82" && traces) {
+      read_82(c, out.traces);
     } else if (number == "58b") {
       skip_58b(c, line);
     } else if (!number.empty() && number.back() == 'b') {
@@ -252,6 +278,10 @@ std::vector<Uff55Record> read_uff55(const std::string& path) {
 
 std::vector<Uff15Node> read_uff15(std::istream& in, const std::string& file_name) {
   return scan(in, file_name).nodes;
+}
+
+std::vector<Uff82TraceLine> read_uff82(std::istream& in, const std::string& file_name) {
+  return scan(in, file_name, true).traces;
 }
 
 }  // namespace mbgen

@@ -195,3 +195,83 @@ TEST_CASE("uff55: malformed records are refused with file and line") {
   t.replace(t.find(" 1.00000E+00"), 12, " 1.0000xE+00");
   CHECK_THAT(error_of(t), Catch::Contains("modes.uff:12") && Catch::Contains("not a finite number"));
 }
+
+TEST_CASE("uff82: trace lines read back as written, and the modes' and FRFs' readers skip them") {
+  Uff82TraceLine long_line;  // 10 entries: two lines of record 3, a pen lift in the middle
+  long_line.number = 1;
+  long_line.colour = 8;
+  long_line.id = "frame";
+  long_line.nodes = {1, 2, 3, 4, 0, 5, 6, 7, 1001, 1};
+  Uff82TraceLine pair;
+  pair.number = 2;
+  pair.nodes = {7, 3};
+  std::ostringstream out;
+  write_uff15(out, {{1, 0, 0, 0, {0.0, 0.5, -1.25}, 0}, {7, 0, 0, 0, {1e3, 0.0, 2.0}, 0}});
+  write_uff82(out, long_line);
+  write_uff82(out, pair);
+  Uff58Record frf;
+  frf.function_type = 4;
+  frf.ordinate_data_type = 6;
+  frf.abscissa_min = 1;
+  frf.abscissa_increment = 1;
+  frf.x = Eigen::VectorXd::LinSpaced(3, 1, 3);
+  frf.y = Eigen::VectorXcd::Constant(3, {1, -1});
+  write_uff58(out, frf);
+  write_uff55(out, complex_mode());
+  const std::string text = out.str();
+  // The fixed columns of the specification: 3I10, the ID line, 8I10 then the rest.
+  CHECK(text.find("    -1\n    82" + std::string(74, ' ') + "\n         1        10         8\nframe" +
+                  std::string(75, ' ') + "\n         1         2         3         4         0         5         6"
+                                         "         7\n      1001         1\n    -1\n") != std::string::npos);
+  std::istringstream in(text);
+  const auto traces = read_uff82(in, "geometry.uff");
+  REQUIRE(traces.size() == 2);
+  CHECK(traces[0].number == 1);
+  CHECK(traces[0].colour == 8);
+  CHECK(traces[0].id == "frame");
+  CHECK(traces[0].nodes == long_line.nodes);
+  CHECK(traces[0].line == 7);  // after the 15 (lines 1 to 5) and its opening delimiter
+  CHECK(traces[1].id == "NONE");
+  CHECK(traces[1].nodes == std::vector<int>{7, 3});
+  std::ostringstream again;
+  write_uff82(again, traces[0]);
+  write_uff82(again, traces[1]);
+  CHECK(text.find(again.str()) != std::string::npos);  // the same bytes again (but the empty ID, written NONE)
+  CHECK(read_text(text).size() == 1);                   // the modes' reader skips the 82s
+  std::istringstream frfs(text);
+  CHECK(read_uff58(frfs, "geometry.uff").size() == 1);  // and so does the FRFs'
+  std::istringstream nodes(text);
+  CHECK(read_uff15(nodes, "geometry.uff").size() == 2);
+  // A file with none has none.
+  std::istringstream plain(text_of(complex_mode()));
+  CHECK(read_uff82(plain, "modes.uff").empty());
+}
+
+TEST_CASE("uff82: malformed trace lines are refused with file and line, and writing checks its entries") {
+  const auto error = [](const std::string& text) -> std::string {
+    std::istringstream in(text);
+    try {
+      read_uff82(in, "geometry.uff");
+    } catch (const DataError& e) {
+      return e.what();
+    }
+    FAIL("no DataError for:\n" << text);
+    return {};
+  };
+  CHECK_THAT(error("    -1\n    82\n         1         2\nNONE\n         1         2\n    -1\n"),
+             Catch::Contains("geometry.uff:3") && Catch::Contains("UFF 82 record 1: expected 3 numbers"));
+  CHECK_THAT(error("    -1\n    82\n         1         2         0\nNONE\n         1       2.5\n    -1\n"),
+             Catch::Contains("geometry.uff:5") && Catch::Contains("is not an integer"));
+  CHECK_THAT(error("    -1\n    82\n         1         2         0\nNONE\n         1        -3\n    -1\n"),
+             Catch::Contains("geometry.uff:5") && Catch::Contains("a node number is >= 0"));
+  CHECK_THAT(error("    -1\n    82\n         1         2         0\nNONE\n         1         2\n"),
+             Catch::Contains("geometry.uff:2") && Catch::Contains("not closed"));
+  std::ostringstream out;
+  Uff82TraceLine t;
+  t.nodes = {1};
+  CHECK_THROWS_AS(write_uff82(out, t), std::invalid_argument);
+  t.nodes = std::vector<int>(251, 1);
+  CHECK_THROWS_AS(write_uff82(out, t), std::invalid_argument);
+  t.nodes = {1, -2};
+  CHECK_THROWS_AS(write_uff82(out, t), std::invalid_argument);
+}

@@ -1,4 +1,4 @@
-// Writing datasets 55 (mode shapes at nodes) and 15 (nodes) in ASCII, in the fixed columns of the specification
+// Writing datasets 55 (mode shapes at nodes), 15 (nodes) and 82 (trace lines) in ASCII, in the fixed columns of the specification
 // (runtime/include/mbgen/uff55.hpp names the layout and where it comes from).
 #include <cmath>
 #include <ostream>
@@ -94,6 +94,20 @@ void write_uff15(std::ostream& out, const std::vector<Uff15Node>& nodes) {
     for (const double x : n.xyz) out << format("%13.5E", x);
     out << "\n";
   }
+  out << "    -1\n";
+}
+
+void write_uff82(std::ostream& out, const Uff82TraceLine& trace) {
+  if (trace.nodes.size() < 2 || trace.nodes.size() > 250)
+    throw std::invalid_argument("write_uff82: a trace line has 2 to 250 entries");
+  for (const int n : trace.nodes)
+    if (n < 0) throw std::invalid_argument("write_uff82: a node number is >= 0");
+  out << "    -1\n" << text_field("    82", 80) << "\n";
+  out << integer(trace.number, 10) << integer(static_cast<long>(trace.nodes.size()), 10) << integer(trace.colour, 10)
+      << "\n";
+  out << text_field(trace.id.empty() ? "NONE" : trace.id, 80) << "\n";
+  for (std::size_t k = 0; k < trace.nodes.size(); ++k)
+    out << integer(trace.nodes[k], 10) << (k % 8 == 7 || k + 1 == trace.nodes.size() ? "\n" : "");
   out << "    -1\n";
 }
 
