@@ -71,6 +71,16 @@ inline symbolic::SymbolicModel check_candidate(const Extension& x) {
   const Eigen::MatrixXd M = symbolic::test::to_eigen(sm.M, sm.values());
   CHECK(M.rows() > 0);
   CHECK(std::abs(M.determinant()) > 0);
+  // The text describes the model numerically too: the written form leaves out what it takes as implied (a point
+  // that is its body's centre of mass), so equal written forms alone can hide a point the text lost.
+  const symbolic::SymbolicModel from_text = symbolic::derive(parsed, options);
+  const auto same = [&](const auto& a, const auto& b) {
+    const Eigen::MatrixXd x = symbolic::test::to_eigen(a, sm.values()), y = symbolic::test::to_eigen(b, from_text.values());
+    return x.rows() == y.rows() && x.cols() == y.cols() && (x - y).norm() <= 1e-12 * (1 + x.norm());
+  };
+  CHECK(same(sm.M, from_text.M));
+  CHECK(same(sm.C, from_text.C));
+  CHECK(same(sm.K, from_text.K));
   return sm;
 }
 

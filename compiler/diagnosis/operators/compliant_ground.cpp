@@ -117,13 +117,17 @@ std::string ground_to_body(Draft& d, const OperatorInput& in, const ir::Ground& 
   return fixed.name;
 }
 
+// A spring3 from `body` at `point` to the fixed ground at the same point. `body_point_written`: the point is not the
+// body's centre of mass (a foot), so the text must say where it is.
 ir::Element spring3(const std::string& name, const std::string& body, const std::string& fixed, const ir::Vec3& point,
-                    bool fixed_point_written, std::vector<ir::Expr> k, std::vector<ir::Expr> c) {
+                    bool body_point_written, bool fixed_point_written, std::vector<ir::Expr> k,
+                    std::vector<ir::Expr> c) {
   ir::Element e;
   e.name = name;
   e.kind = ir::ElementKind::Spring3;
   e.a.frame = body;
   e.a.point = point;
+  e.a.has_point = body_point_written;
   e.b.frame = fixed;
   e.b.point = point;
   e.b.has_point = fixed_point_written;
@@ -172,7 +176,7 @@ Extension simple(const OperatorInput& in, const ir::Ground& ground, const Attach
   body.dofs = translations_needed(m, g, in.values);
   const std::string fixed = ground_to_body(d, in, ground, body, at.centred);
   d.add_resonating_body(g);
-  d.add_element(spring3(d.names().fresh(g + "_support"), g, fixed, body.position, !at.centred,
+  d.add_element(spring3(d.names().fresh(g + "_support"), g, fixed, body.position, false, !at.centred,
                         {sym(k_g), sym(k_g), sym(k_g)}, {sym(c_g), sym(c_g), sym(c_g)}));
   return d.finish("ground " + g + " is not rigid: it becomes a body of mass " + m_g + " held to a fixed " + fixed +
                   " by springs of stiffness " + k_g + " and damping " + c_g + " in every direction");
@@ -307,7 +311,8 @@ Extension on_feet(const OperatorInput& in, const ir::Ground& ground, const Attac
   d.add_resonating_body(g);
   for (std::size_t i = 0; i < at.distinct.size(); ++i)
     d.add_element(spring3(d.names().fresh(g + "_foot" + std::to_string(i + 1)), g, fixed,
-                          has_depth ? offset_point(at.distinct[i], down, d_g, 2) : point_expr(at.distinct[i]), true, k, c));
+                          has_depth ? offset_point(at.distinct[i], down, d_g, 2) : point_expr(at.distinct[i]), true, true,
+                          k, c));
   const std::string where = has_depth ? " (its centre of mass " + d_g + " below the points where the model's elements "
                                         "meet it)"
                                       : "";

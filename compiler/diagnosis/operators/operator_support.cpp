@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "diagnosis/expr_build.hpp"
 #include "frontend/model_writer.hpp"
@@ -67,7 +68,37 @@ void Draft::add_filter(ir::Filter f) {
   ext_.model.filters.push_back(std::move(f));
 }
 
+namespace {
+
+// The point an attachment without `at` means: its body's centre of mass, a ground's origin.
+ir::Vec3 implicit_point(const ir::ModelIr& m, const std::string& frame) {
+  for (const ir::Body& b : m.bodies)
+    if (b.name == frame) return b.position;
+  return {ir::Expr::number("0"), ir::Expr::number("0"), ir::Expr::number("0")};
+}
+
+// The text writes an attachment's point only where `has_point` is set: one that is not set must be the implicit
+// point, or the candidate's text (what is written, and what later rounds extend) describes another model than the
+// one fitted. A base on feet once kept its feet at its bottom in the model and at its centre of mass in the text.
+void check_points_written(const ir::ModelIr& m) {
+  const ModelValues values(m, {});
+  for (const ir::Element& e : m.elements)
+    for (const ir::Attachment* a : {&e.a, &e.b}) {
+      if (a->has_point) continue;
+      const ir::Vec3 implicit = implicit_point(m, a->frame);
+      for (int k = 0; k < 3; ++k) {
+        const double here = values.of(a->point[k]), there = values.of(implicit[k]);
+        if (std::abs(here - there) > 1e-12 * (1 + std::abs(there)))
+          throw std::logic_error("diagnosis: element " + e.name + "'s point on " + a->frame +
+                                 " is not its implicit point but is not written");
+      }
+    }
+}
+
+}  // namespace
+
 Extension Draft::finish(const std::string& description) {
+  check_points_written(ext_.model);
   ext_.description = description;
   patch_.append(declarations_ + statements_);
   ext_.mdl_text = patch_.result(ext_.id + ": " + description);
