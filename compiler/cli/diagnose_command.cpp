@@ -29,15 +29,25 @@ namespace {
 
 // Findings listed on standard output; a long list goes on in the JSON and the report.
 constexpr std::size_t kSummaryFindings = 8;
+// Findings listed under each selected extension as those it explains.
+constexpr std::size_t kSummaryExplained = 3;
 
 std::string summary(const diagnosis::DiagnosisResult& r) {
   std::ostringstream out;
   for (const std::string& w : r.warnings) out << "warning: " << w << "\n";
   out << "verdict: " << r.verdict << "\n";
-  // Each selected extension with what it says.
-  for (const std::string& id : r.selected) {
-    out << "selected: " << id << "\n";
-    if (const diagnosis::CandidateOutcome* o = diagnosis::selected_outcome(r, id)) out << "  " << o->description << "\n";
+  // Each selected extension with what it says and which findings it explains.
+  const std::vector<Discrepancy>& nominal_findings = r.nominal.residual.discrepancies;
+  for (std::size_t i = 0; i < r.selected.size(); ++i) {
+    out << "selected: " << r.selected[i] << "\n";
+    if (const diagnosis::CandidateOutcome* o = diagnosis::selected_outcome(r, r.selected[i]))
+      out << "  " << o->description << "\n";
+    if (i >= r.explains.size() || r.explains[i].empty()) continue;
+    out << "  it explains:\n";
+    for (std::size_t k = 0; k < r.explains[i].size() && k < kSummaryExplained; ++k)
+      out << "    - " << nominal_findings[r.explains[i][k]].text << "\n";
+    if (r.explains[i].size() > kSummaryExplained)
+      out << "    ... and " << r.explains[i].size() - kSummaryExplained << " more (--json, --report)\n";
   }
   if (!r.nominal.fit.converged)
     out << "warning: the nominal model's fit did not converge (" << r.nominal.fit.stop_reason

@@ -47,6 +47,13 @@ struct Extension {
     std::map<std::string, std::pair<std::string, double>> from;  // new parameter -> (sibling's parameter, factor)
   };
   VariantStart start_from_variant;
+  // Values of new parameters at which the extended model is the current one again (an untied copy at the shared
+  // parameter's value, a joining spring at zero stiffness), where such a point exists and is not already the
+  // start; empty otherwise (a compliant ground or a resonator reaches the current model only in a limit). The
+  // fits around the current estimate also start there: at the current model's own optimum, from which a fit can
+  // only improve on it (docs/diagnosis.md, "Screening"). Starts elsewhere alone, near the noise level a fit
+  // could end far above the current model and the candidate be screened out for that.
+  std::map<std::string, double> nesting;
   // New bodies whose own resonance the candidate puts forward as the explanation (a compliant ground's base, a
   // resonator's mass): the data must show one of their modes (docs/diagnosis.md, step 6). Empty for candidates
   // that claim no resonance of their own (a sensor's mounting may resonate far above the band).

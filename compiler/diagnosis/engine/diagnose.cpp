@@ -238,14 +238,16 @@ class Diagnoser {
   // The same with `model` already derived (`evaluator`), the fit on `workers`. Uses no GiNaC: safe on a worker
   // thread.
   // `held`: parameters with role estimate that this fit keeps at their values (the others are estimated).
-  // `further_starts_at`: starts of the fit's search in addition to its `starts` (FitOptions::further_starts_at).
+  // `further_starts_at`, `optimum_start_at`: starts of the fit's search in addition to its `starts` (FitOptions).
   ModelState assess(const mbgen::Model& evaluator, const ir::ModelIr& model, const std::string& text,
                     const std::map<std::string, double>& start, int starts, const Workers& workers,
                     const std::map<std::string, double>& also_start_at = {},
                     const std::vector<std::string>& held = {},
-                    const std::vector<std::map<std::string, double>>& further_starts_at = {}) const {
+                    const std::vector<std::map<std::string, double>>& further_starts_at = {},
+                    const std::map<std::string, double>& optimum_start_at = {}) const {
     FitOptions fo = options_.fit;
     fo.also_start_at = also_start_at;
+    fo.optimum_start_at = optimum_start_at;
     fo.further_starts_at = further_starts_at;
     if (!held.empty())
       for (const ParameterInfo& p : evaluator.info().parameters)
@@ -258,7 +260,7 @@ class Diagnoser {
       const int i = info.parameter_index(name);
       if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
     }
-    fo.starts = starts + static_cast<int>(further_starts_at.size());
+    fo.starts = starts + static_cast<int>(further_starts_at.size()) + static_cast<int>(!optimum_start_at.empty());
     fo.threads = workers.threads;
     fo.cores = workers.cores;
     fo.memo = workers.memo;
@@ -380,6 +382,7 @@ class Diagnoser {
     ModelState& chosen = states[static_cast<std::size_t>(best)];
     if (!explains(current, chosen, round)) return false;
     result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
+    result.explains.push_back(findings_cleared(result, current, chosen));
     for (const std::string& id : equivalents(outcomes, best))
       say("  " + id + " fits exactly as well: the same extension in another place");
     say("selected " + result.selected.back());
@@ -589,6 +592,21 @@ class Diagnoser {
     return false;
   }
 
+  // The nominal model's findings that `before` still shows and `after` no longer does (still_shows): what the
+  // extension taking `before` to `after` explains, by index into the nominal findings.
+  static std::vector<std::size_t> findings_cleared(const DiagnosisResult& result, const ModelState& before,
+                                                   const ModelState& after) {
+    std::vector<std::size_t> cleared;
+    const ModelState& nominal = result.nominal;
+    for (std::size_t k = 0; k < nominal.residual.discrepancies.size(); ++k) {
+      const Discrepancy& d = nominal.residual.discrepancies[k];
+      if (still_shows(nominal.channels, before, d, nominal.residual.threshold) &&
+          !still_shows(nominal.channels, after, d, nominal.residual.threshold))
+        cleared.push_back(k);
+    }
+    return cleared;
+  }
+
   // The selected extensions are kept only if together they explain enough; otherwise nothing is selected and the
   // current model is the nominal one again.
   void keep_only_full_explanations(DiagnosisResult& result, ModelState& current) const {
@@ -600,6 +618,7 @@ class Diagnoser {
         say("  still: " + d->text +
             format(" (band residual %.3g -> %.3g)", band_mean_z(result.nominal.channels, *d), band_mean_z(current.channels, *d)));
       result.selected.clear();
+      result.explains.clear();
       current = result.nominal;
     };
     // An extension that leaves a clear discrepancy (the residual well above the noise level) explains only part
@@ -1040,6 +1059,7 @@ class Diagnoser {
         if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
       }
       fo.also_start_at.clear();
+      fo.optimum_start_at.clear();
       fo.further_starts_at.clear();
       fo.threads = 1;
       fo.cores = cores;
@@ -1056,8 +1076,9 @@ class Diagnoser {
       fo.starts = is_base ? 1 : 2;
       if (!is_base) {
         for (const ParameterInfo& p : info.parameters) fo.also_start_at[p.name] = p.value;
+        fo.optimum_start_at = ext->nesting;
         fo.further_starts_at = ext->alternative_starts;
-        fo.starts += static_cast<int>(fo.further_starts_at.size());
+        fo.starts += static_cast<int>(fo.further_starts_at.size()) + static_cast<int>(!ext->nesting.empty());
       }
       fo.frf_weighting.averages = std::max(fo.frf_weighting.averages, screen_averages_);
       return fit(evaluator, screen_data_, fo);
@@ -1232,10 +1253,11 @@ class Diagnoser {
       std::map<std::string, double> priors;
       for (const ParameterInfo& p : evaluator.info().parameters) priors[p.name] = p.value;
       return assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts + 1, workers, priors,
-                    held, further);
+                    held, further, ext.nesting);
     }
     ModelState s =
-        assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, workers, {}, held, further);
+        assess(evaluator, ext.model, ext.mdl_text, base.values, options_.candidate_starts, workers, {}, held, further,
+               ext.nesting);
     ModelState from_priors =
         assess(evaluator, ext.model, ext.mdl_text, {}, options_.candidate_starts, workers, {}, held, further);
     if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);

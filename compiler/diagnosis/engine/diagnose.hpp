@@ -105,6 +105,9 @@ struct DiagnosisResult {
   ModelState nominal;
   std::vector<CandidateOutcome> candidates;  // every round
   std::vector<std::string> selected;
+  // Per selected extension (same order): the nominal model's findings (indices into nominal.residual.discrepancies)
+  // that the model shows before that extension is taken and no longer shows after it: what that effect explains.
+  std::vector<std::vector<std::size_t>> explains;
   std::string verdict;  // "extended", "no_extension_justified", "unexplained"
   ModelState final;     // the extended model when extended, else the nominal
 };

@@ -117,6 +117,12 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
     j["extended"] = {{"fit", fit_summary(result.final.fit, result.final.validation_nrmse)},
                      {"mean_normalized_residual", number(result.final.residual.mean_z)},
                      {"remaining_discrepancies", discrepancies(result.final.residual)}};
+    // Which of the nominal model's findings each selected extension explains (indices into "discrepancies").
+    ordered_json explains = ordered_json::array();
+    for (std::size_t i = 0; i < result.selected.size(); ++i)
+      explains.push_back({{"id", result.selected[i]},
+                          {"discrepancies", i < result.explains.size() ? result.explains[i] : std::vector<std::size_t>{}}});
+    j["extended"]["explains"] = explains;
   }
   // Invalid UTF-8 (a file name in another encoding) cannot be JSON text: such bytes become U+FFFD.
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";

@@ -82,11 +82,19 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
     doc.paragraph(selected << ". Mean normalized residual " << num(r.nominal.residual.mean_z) << " -> "
                            << num(r.final.residual.mean_z) << " (1 is the noise level); validation error "
                            << num(r.nominal.validation_nrmse) << " -> " << num(r.final.validation_nrmse) << ".");
-    // What each selected extension says.
+    // What each selected extension says, and which of the nominal model's findings it explains.
     std::vector<report::Inline> said;
-    for (const std::string& id : r.selected)
-      if (const CandidateOutcome* o = selected_outcome(r, id))
-        said.push_back(report::Inline(report::code(id)) << ": " << report::text(o->description));
+    for (std::size_t i = 0; i < r.selected.size(); ++i) {
+      const CandidateOutcome* o = selected_outcome(r, r.selected[i]);
+      if (!o) continue;
+      report::Inline& line = said.emplace_back(report::Inline(report::code(r.selected[i])) << ": "
+                                                                                          << report::text(o->description));
+      if (i < r.explains.size() && !r.explains[i].empty()) {
+        line << ". It explains: ";
+        for (std::size_t k = 0; k < r.explains[i].size(); ++k)
+          line << (k ? "; " : "") << report::text(r.nominal.residual.discrepancies[r.explains[i][k]].text);
+      }
+    }
     doc.list(std::move(said));
   } else if (r.verdict == "unexplained") {
     doc.paragraph("The model misses the data beyond the noise, and no candidate extension explains it (see the "

@@ -61,6 +61,8 @@ Extension extend(const OperatorInput& in, const ir::Element& e, const std::vecto
                                          std::nullopt, "rotational stiffness of " + e.name);
   const std::string cr = d.add_parameter("cr_" + e.name, largest(e.damping, in.values) * l2, "N m s/rad", 0.0,
                                          std::nullopt, "rotational damping of " + e.name);
+  d.nests_near_zero(kr, largest(e.stiffness, in.values) * l2);
+  d.nests_near_zero(cr, largest(e.damping, in.values) * l2);
   std::vector<std::string> about;
   for (int k : axes) {
     ir::Element t;

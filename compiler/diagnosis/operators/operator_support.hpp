@@ -54,6 +54,13 @@ class Draft {
   void set_variant(const std::string& variant) { ext_.variant = variant; }
   void set_start_from_variant(Extension::VariantStart start) { ext_.start_from_variant = std::move(start); }
   void add_resonating_body(const std::string& body) { ext_.resonating_bodies.push_back(body); }
+  // Extension::nesting: new parameter `name` at `value` gives the current model back.
+  void nests_at(const std::string& name, double value) { ext_.nesting[name] = value; }
+  // The same for a parameter that gives the current model back at its lower bound of zero (a joining spring's
+  // stiffness): a bounded fit approaches zero by factors and cannot start on it, so it starts at kNearZero times
+  // its start value, where the new element's effect is that small.
+  static constexpr double kNearZero = 1e-4;
+  void nests_near_zero(const std::string& name, double start) { ext_.nesting[name] = kNearZero * start; }
 
   Extension finish(const std::string& description);
 

@@ -150,9 +150,11 @@ Extension delay(const OperatorInput& in, const ir::Output& out, double delay_s) 
   f.output = out.name;
   f.kind = ir::FilterKind::Delay;
   f.sections = sections;
-  f.time = sym(d.add_parameter("td_" + out.name, std::min(tau, 0.5 * tau_max), "s", 0.0, tau_max,
-                               "delay of " + out.name + " against the input (bounded where its " +
-                                   std::to_string(sections) + " Pade section(s) stay accurate over the band)"));
+  const std::string td = d.add_parameter("td_" + out.name, std::min(tau, 0.5 * tau_max), "s", 0.0, tau_max,
+                                         "delay of " + out.name + " against the input (bounded where its " +
+                                             std::to_string(sections) + " Pade section(s) stay accurate over the band)");
+  f.time = sym(td);
+  d.nests_near_zero(td, std::min(tau, 0.5 * tau_max));
   d.add_filter(f);
   char text[64];
   std::snprintf(text, sizeof text, "%.3g s", tau);

@@ -67,6 +67,7 @@ Extension untie_one(const OperatorInput& in, const ir::Parameter& p, const std::
     for (const ir::SourceLoc& loc : locs) d.patch().rename(loc, p.name, copy.name);
   }
   d.add_parameter(copy, p.name + " as seen by " + element);
+  d.nests_at(copy.name, in.values.of_parameter(p.name));
   d.set_variant(element);
   const std::string others = users == 2 ? "the other element keeps " + p.name
                                         : "the other " + std::to_string(users - 1) + " keep sharing " + p.name;

@@ -72,6 +72,12 @@ struct FitOptions {
   // the random ones, when `starts` > 1. E.g. a diagnosis candidate searched around the current estimate and
   // also from the model's defaults, in one search.
   std::map<std::string, double> also_start_at;
+  // A start at (or next to) an optimum of the weighted cost already, e.g. a diagnosis candidate where it is the
+  // current model again (its new element switched off, the rest at the current estimate): the start after
+  // also_start_at, refined on the weighted residuals directly. The log-ratio search (log_search), whose optimum
+  // differs from the weighted one, would lead it away: from such starts on a spindle base on feet fitted to the
+  // noise level, every candidate's search ended 16 000 to 31 000 BIC units above the current model it contains.
+  std::map<std::string, double> optimum_start_at;
   // More starts of one's choosing, in this order after also_start_at and before the random ones, each while
   // `starts` allows (named values; the others at the prior). E.g. a diagnosis candidate's new mode started at
   // each of the data's unexplained peaks, not only at the strongest.

@@ -177,6 +177,7 @@ std::vector<Eigen::VectorXd> starting_points(const FitContext& ctx, const std::v
   };
   std::vector<Eigen::VectorXd> chosen;
   if (!options.also_start_at.empty()) chosen.push_back(chosen_start(options.also_start_at));
+  if (!options.optimum_start_at.empty()) chosen.push_back(chosen_start(options.optimum_start_at));
   for (const auto& named : options.further_starts_at) chosen.push_back(chosen_start(named));
   return estimation::start_points(ctx.estimator.internal(free, ctx.setup.prior), free, ctx.setup.transforms, options,
                                   chosen);
@@ -229,10 +230,9 @@ class SearchProblem {
 constexpr double kNoiseMargin = 0.1;
 
 // The memo key of a start's local fit (local_fit_memo.hpp); none where the residuals cannot be evaluated there.
-std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const SearchProblem& search,
-                                               const std::vector<int>& free, const Eigen::VectorXd& theta,
+std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const std::vector<int>& free, const Eigen::VectorXd& theta,
                                                const LmOptions& search_lm, const ResidualFunction& weighted,
-                                               const ResidualFunction& log_ratio) {
+                                               const ResidualFunction& log_ratio, bool log_ratio_first) {
   estimation::Fingerprint f;
   Eigen::VectorXd held = ctx.setup.prior;  // the estimator takes the parameters not fitted from the prior
   for (int i : free) held[i] = 0;
@@ -247,10 +247,10 @@ std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const Sear
     f.add(lm->cost_tolerance), f.add(lm->step_tolerance), f.add(lm->gradient_tolerance);
     f.add(lm->continue_gain), f.add(lm->continue_window), f.add(lm->iteration_cap);
   }
-  f.add(static_cast<int>(search.log_ratio_first()));
+  f.add(static_cast<int>(log_ratio_first));
   Eigen::VectorXd r;
   for (const ResidualFunction* fn : {&weighted, &log_ratio}) {
-    if (fn == &log_ratio && !search.log_ratio_first()) continue;
+    if (fn == &log_ratio && !log_ratio_first) continue;
     if (!(*fn)(theta, r, nullptr)) return std::nullopt;
     f.add(r);
   }
@@ -265,8 +265,8 @@ std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const Sear
   return key;
 }
 
-// One local fit from every starting point on the search problem: log-ratio search first where it applies, then the
-// weighted refinement. Results by start index.
+// One local fit from every starting point on the search problem: log-ratio search first where it applies (not from
+// FitOptions::optimum_start_at), then the weighted refinement. Results by start index.
 std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem& search, const std::vector<int>& free,
                                       const std::vector<Eigen::VectorXd>& start_points) {
   const int starts = static_cast<int>(start_points.size());
@@ -279,18 +279,22 @@ std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem
     rule.agree = ctx.options.agree;
     rule.ceiling = search.noise_cost() * (1 + kNoiseMargin);
   }
+  // starting_points: the prior, then also_start_at, then optimum_start_at.
+  const int optimum_start =
+      ctx.options.optimum_start_at.empty() ? -1 : 1 + static_cast<int>(!ctx.options.also_start_at.empty());
   return estimation::run_starts_until_agreed(
       starts, ctx.options.threads, rule, [&](int s, const std::function<bool()>& abandoned) {
         LmOptions search_here = search_lm, refine_here = ctx.lm;
         search_here.abandoned = refine_here.abandoned = abandoned;
         Eigen::VectorXd theta = start_points[static_cast<std::size_t>(s)];
+        const bool log_ratio_first = search.log_ratio_first() && s != optimum_start;
         const std::optional<LocalFitMemo::Key> key =
-            ctx.options.memo ? local_fit_key(ctx, search, free, theta, search_lm, weighted, log_ratio)
+            ctx.options.memo ? local_fit_key(ctx, free, theta, search_lm, weighted, log_ratio, log_ratio_first)
                              : std::nullopt;
         if (key)
           if (std::optional<LmResult> seen = ctx.options.memo->find(*key)) return *seen;
         bool whole = true;  // not abandoned part-way: a result worth keeping
-        if (search.log_ratio_first()) {
+        if (log_ratio_first) {
           const LmResult searched =
               estimation::levenberg_marquardt(log_ratio, theta, search_here, ctx.progress(s, starts, "search"));
           whole = searched.stop_reason != kAbandoned;
