@@ -154,14 +154,50 @@ void enhance(const Spectra& s, Eigen::Index peak, double dt, double window_s, do
   std::vector<double> index(zero_t.size());
   for (std::size_t k = 0; k < index.size(); ++k) index[k] = static_cast<double>(k);
   const double wd = std::acos(-1.0) / slope(index, zero_t);  // crossings every half period
-  const double sigma = -slope(ext_t, ext_log) - 1 / window_s;
+  const double sigma = -slope(ext_t, ext_log) - (window_s > 0 ? 1 / window_s : 0.0);  // 0: no lag window
   const double wn = std::sqrt(wd * wd + sigma * sigma);
   out.efdd_f_hz = wn / kTwoPi;
   out.zeta = sigma / wn;
   if (!(out.zeta > 0)) out.note = "the bell decays no faster than the lag window: damping below what it resolves";
 }
 
+// Peaks of the first singular value in lines lo..hi-1, each with its shape and EFDD's estimate.
+void pick_peaks(const Spectra& s, Eigen::Index lo, Eigen::Index hi, double dt, const FddOptions& options,
+                FddResult& out) {
+  for (const Eigen::Index j : find_peaks(s, std::max<Eigen::Index>(lo, 1), hi, options.prominence_db)) {
+    FddPeak p;
+    p.f_hz = s.f_hz[j];
+    p.shape = s.vectors[static_cast<std::size_t>(j)];
+    p.sv_db = db(s.singular(j, 0));
+    enhance(s, j, dt, out.window_s, options.bell_mac, options.bell_db, p);
+    out.peaks.push_back(std::move(p));
+  }
+}
+
+// The FRFs' lines as multiples of their spacing: index j of line f_j = j df, or an error.
+std::vector<Eigen::Index> frf_line_indices(const ModalData& frfs, double& df) {
+  const Eigen::VectorXd& f = frfs.f_hz;
+  if (f.size() < 2) throw std::invalid_argument("FDD of FRFs needs at least 2 lines");
+  df = f[1] - f[0];
+  std::vector<Eigen::Index> index;
+  for (Eigen::Index k = 0; k < f.size(); ++k) {
+    const double j = std::round(f[k] / df);
+    if (std::abs(f[k] / df - j) > 1e-6)
+      throw std::invalid_argument("FDD of FRFs needs lines equally spaced on the multiples of their spacing (" +
+                                  std::to_string(df) + " Hz); line " + std::to_string(k + 1) + " is at " +
+                                  std::to_string(f[k]) + " Hz");
+    index.push_back(static_cast<Eigen::Index>(j));
+  }
+  return index;
+}
+
 }  // namespace
+
+double frf_equivalent_dt(const ModalData& frfs) {
+  double df = 0;
+  const std::vector<Eigen::Index> index = frf_line_indices(frfs, df);
+  return 1 / (2 * static_cast<double>(index.back()) * df);
+}
 
 FddResult fdd(const ResponseData& data, const FddOptions& options) {
   Eigen::Index shortest = std::numeric_limits<Eigen::Index>::max();
@@ -181,14 +217,51 @@ FddResult fdd(const ResponseData& data, const FddOptions& options) {
   const Eigen::Index hi = options.hi_hz > 0
                                ? std::min<Eigen::Index>(K, static_cast<Eigen::Index>(options.hi_hz / df) + 1)
                                : static_cast<Eigen::Index>(0.95 * static_cast<double>(K));
-  for (const Eigen::Index j : find_peaks(s, std::max<Eigen::Index>(lo, 1), hi, options.prominence_db)) {
-    FddPeak p;
-    p.f_hz = s.f_hz[j];
-    p.shape = s.vectors[static_cast<std::size_t>(j)];
-    p.sv_db = db(s.singular(j, 0));
-    enhance(s, j, data.dt, out.window_s, options.bell_mac, options.bell_db, p);
-    out.peaks.push_back(std::move(p));
+  pick_peaks(s, lo, hi, data.dt, options, out);
+  return out;
+}
+
+// G(f) = H(f) H(f)^H (responses x responses, summed over the forces): the spectral matrix of the responses to unit
+// white forces at the inputs, on the lines j df, j = 0..K (K df the highest FRF line; lines without data zero).
+// Its inverse transform is the correlation of those responses at the interval 1 / (2 K df); nothing windows it.
+FddResult fdd_of_frfs(const ModalData& frfs, const FddOptions& options) {
+  double df = 0;
+  const std::vector<Eigen::Index> index = frf_line_indices(frfs, df);
+  const Eigen::Index K = index.back();
+  if (K < 16) throw std::invalid_argument("FDD of FRFs needs a highest line at 16 or more times the spacing");
+  // A roving hammer (fewer outputs than inputs): by reciprocity, H^T holds the responses at the hammer points to
+  // forces at the sensors, as the FRF path fits it transposed.
+  const bool transposed = frfs.outputs.size() < frfs.inputs.size();
+  const Eigen::Index l = static_cast<Eigen::Index>(transposed ? frfs.inputs.size() : frfs.outputs.size());
+  const Eigen::Index m = static_cast<Eigen::Index>(transposed ? frfs.outputs.size() : frfs.inputs.size());
+  Spectra s;
+  s.f_hz = Eigen::VectorXd::LinSpaced(K + 1, 0.0, static_cast<double>(K) * df);
+  s.singular = Eigen::MatrixXd::Zero(K + 1, l);
+  s.vectors.assign(static_cast<std::size_t>(K + 1), Eigen::VectorXcd::Unit(l, 0));
+  Eigen::MatrixXcd H(l, m);
+  for (std::size_t k = 0; k < index.size(); ++k) {
+    H.setZero();
+    for (std::size_t c = 0; c < frfs.channels.size(); ++c) {
+      const int o = frfs.channels[c].output, i = frfs.channels[c].input;
+      H(transposed ? i : o, transposed ? o : i) = frfs.H(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(c));
+    }
+    const Eigen::MatrixXcd G = H * H.adjoint();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(G);
+    const Eigen::Index j = index[k];
+    for (Eigen::Index c = 0; c < l; ++c) s.singular(j, c) = std::max(0.0, eig.eigenvalues()[l - 1 - c]);
+    s.vectors[static_cast<std::size_t>(j)] = eig.eigenvectors().col(l - 1);
   }
+  FddResult out;
+  out.window_s = 0;
+  out.f_hz = s.f_hz;
+  out.singular = s.singular;
+  out.frf_inputs = transposed ? frfs.outputs : frfs.inputs;
+  out.frf_transposed = transposed;
+  const Eigen::Index lo = options.lo_hz > 0 ? static_cast<Eigen::Index>(std::ceil(options.lo_hz / df)) : index.front();
+  const Eigen::Index hi = options.hi_hz > 0
+                               ? std::min<Eigen::Index>(K + 1, static_cast<Eigen::Index>(options.hi_hz / df) + 1)
+                               : K + 1;
+  pick_peaks(s, lo, hi, 1 / (2 * static_cast<double>(K) * df), options, out);
   return out;
 }
 
