@@ -66,8 +66,9 @@ def main():
         value = mac(a, b)
         deviation = m["f_hz"] - p["f_hz"]
         zeta = "none" if m["zeta"] is None else f"{100 * m['zeta']:.4f}"
+        note = f"  ({m['efdd_note']})" if m.get("efdd_note") else ""
         print(f"{p['f_hz']:11.3f} {p['f_std_hz']:7.4f} {m['f_hz']:11.3f} {100 * deviation / p['f_hz']:7.3f} "
-              f"{100 * p['zeta']:12.4f} {zeta:>13} {value:7.4f}" + (f"  ({m['efdd_note']})" if m.get("efdd_note") else ""))
+              f"{100 * p['zeta']:12.4f} {zeta:>13} {value:7.4f}{note}")
         if abs(deviation) > max(0.01 * p["f_hz"], p["f_std_hz"]) or abs(deviation) > half_line:
             errors.append(f"{p['f_hz']:.3f} Hz: FDD's {m['f_hz']:.3f} Hz is off by more than 1 % or half a line")
         if not value > 0.99:

@@ -197,7 +197,7 @@ void write_output_only_report(const std::string& dir, const OutputOnlyReportInpu
                          "exp(-|tau| / " + num(run.fdd.window_s) + " s)), damping by EFDD");
     else
       settings.push_back("method: frequency-domain decomposition (FDD) of the spectral matrix H H^H of the FRFs "
-                         "(unit white forces at their inputs, no lag window), damping by EFDD");
+                         "(unit white forces, as the note says; no lag window), damping by EFDD");
     settings.push_back("peaks: first singular value " + num(in.options.fdd.prominence_db) +
                        " dB above its valleys; bell: MAC >= " + num(in.options.fdd.bell_mac) + ", within " +
                        num(in.options.fdd.bell_db) + " dB of the peak");
