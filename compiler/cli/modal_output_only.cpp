@@ -51,17 +51,50 @@ OperationalUpdate update_model(const OutputOnlyRequest& request, const ResponseD
   return update;
 }
 
+// FRFs given to --output-only --method fdd: read as the spectra of unmeasured white forces at their inputs, a
+// check of FDD/EFDD on measured data (docs/modal.md).
+int run_output_only_frfs(const OutputOnlyRequest& request, const std::vector<FrfData>& frfs) {
+  if (!request.model_path.empty())
+    throw DataError(request.data_paths.front(), 0, 0, "--update needs time records of responses, not FRFs");
+  if (!request.selection.ignore.empty())
+    throw DataError(request.data_paths.front(), 0, 0, "--ignore applies to time records, not FRFs");
+  const ModalData data = modal_data(frfs, {});
+  OutputOnlyIdentification id;
+  try {
+    id = identify_output_only_frfs(data, request.options);
+  } catch (const std::invalid_argument& e) {  // lines not on the multiples of their spacing
+    throw DataError(request.data_paths.front(), 0, 0, e.what());
+  }
+  const ResponseData responses = frf_responses(data);
+  const OutputOnlyReportInput in{responses, id, request.options, nullptr, nullptr, nullptr};
+  OutputFiles out;
+  if (!request.json_path.empty()) out.add(request.json_path, output_only_json(in));
+  if (!request.report_dir.empty()) write_output_only_report(out.stage_directory(request.report_dir), in);
+  out.commit();
+  if (request.json_path != "-") std::cout << output_only_summary(in);
+  return 0;
+}
+
 }  // namespace
 
 int run_output_only(const OutputOnlyRequest& request) {
   std::vector<TimeRecord> records;
+  std::vector<FrfData> frfs;
   for (const std::string& path : request.data_paths) {
     DataSet file = read_data_file(path);
+    if (file.is_frf() && request.options.method != OutputOnlyMethod::Fdd)
+      throw DataError(path, 0, 0, "output-only modal analysis needs time records of responses for SSI-cov, but "
+                                  "this holds FRFs (--method fdd reads them as the spectra of an unmeasured white "
+                                  "force; or leave out --output-only)");
+    if (file.is_frf() ? !records.empty() : !frfs.empty())
+      throw DataError(path, 0, 0, std::string("output-only modal analysis takes time records or FRFs, not both: "
+                                              "this holds ") + (file.is_frf() ? "FRFs" : "a time record"));
     if (file.is_frf())
-      throw DataError(path, 0, 0, "output-only modal analysis needs time records of responses, but this holds FRFs "
-                                  "(leave out --output-only)");
-    records.push_back(std::get<TimeRecord>(std::move(file.content)));
+      frfs.push_back(std::get<FrfData>(std::move(file.content)));
+    else
+      records.push_back(std::get<TimeRecord>(std::move(file.content)));
   }
+  if (!frfs.empty()) return run_output_only_frfs(request, frfs);
   std::vector<ResponseData> setups = response_setups(records, request.selection);
   OutputOnlyOptions options = request.options;
   options.ssi.progress = [](int order, int max_order) {

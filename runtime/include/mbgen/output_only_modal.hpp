@@ -108,9 +108,22 @@ struct FddResult {
   Eigen::VectorXd f_hz;        // lines
   Eigen::MatrixXd singular;    // lines x channels: singular values of the spectral matrix, descending
   std::vector<FddPeak> peaks;  // by frequency
-  double window_s = 0;
+  double window_s = 0;                  // 0: no lag window (FRFs)
+  std::vector<std::string> frf_inputs;  // fdd_of_frfs: where the white forces act; empty for records
+  bool frf_transposed = false;          // fdd_of_frfs: the FRFs read by reciprocity (fewer outputs than inputs)
 };
 FddResult fdd(const ResponseData& data, const FddOptions& options = {});
+
+// FRFs read as the spectra of unmeasured unit white forces at their inputs: the output spectral matrix
+// G(f) = H(f) H(f)^H (outputs x outputs, the sum over the inputs; with fewer outputs than inputs, a roving
+// hammer, H^T by reciprocity: the responses at the inputs to forces at the outputs) on the FRFs' own lines, no
+// lag window, then FDD's peaks and EFDD as for records (the bell's correlation function at the interval
+// frf_equivalent_dt).
+// Peaks are searched over the FRFs' band (options.lo_hz/hi_hz narrow it). The lines must lie on the multiples of
+// their spacing (std::invalid_argument otherwise). A check of the estimator on measured data, not an analysis in
+// operation: the force is known to be the FRFs' input.
+FddResult fdd_of_frfs(const ModalData& frfs, const FddOptions& options = {});
+double frf_equivalent_dt(const ModalData& frfs);  // 1 / (2 f_max): the correlation's interval
 
 // ---- the whole analysis ---------------------------------------------------------------------------------------
 
@@ -152,6 +165,13 @@ struct OutputOnlyIdentification {
 };
 
 OutputOnlyIdentification identify_output_only(const ResponseData& data, const OutputOnlyOptions& options = {});
+
+// FDD of FRFs (fdd_of_frfs), the mode table as for records; options.method must be Fdd (std::invalid_argument
+// otherwise: SSI-cov needs records). frf_responses gives the responses for the JSON and report: files, channels
+// the FRFs' outputs (their inputs when transposed, as fdd_of_frfs), every one a reference, dt
+// frf_equivalent_dt, no records, a note saying what was assumed.
+OutputOnlyIdentification identify_output_only_frfs(const ModalData& frfs, const OutputOnlyOptions& options);
+ResponseData frf_responses(const ModalData& frfs);
 
 // ---- several setups: roving sensors with shared references ---------------------------------------------------
 

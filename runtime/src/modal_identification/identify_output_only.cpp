@@ -85,6 +85,15 @@ std::vector<OperationalMode> fdd_modes(const FddResult& r) {
   return modes;
 }
 
+void fill_auto_mac(OutputOnlyIdentification& out) {
+  const Eigen::Index n = static_cast<Eigen::Index>(out.modes.size());
+  out.auto_mac.resize(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j)
+      out.auto_mac(i, j) = modal_detail::shape_mac(out.modes[static_cast<std::size_t>(i)].shape,
+                                                   out.modes[static_cast<std::size_t>(j)].shape);
+}
+
 }  // namespace
 
 const char* output_only_method_name(OutputOnlyMethod m) { return m == OutputOnlyMethod::SsiCov ? "ssi-cov" : "fdd"; }
@@ -124,13 +133,34 @@ OutputOnlyIdentification identify_output_only(const ResponseData& data, const Ou
     out.fdd = fdd(data, options.fdd);
     out.modes = fdd_modes(out.fdd);
   }
-  const Eigen::Index n = static_cast<Eigen::Index>(out.modes.size());
-  out.auto_mac.resize(n, n);
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = 0; j < n; ++j)
-      out.auto_mac(i, j) = modal_detail::shape_mac(out.modes[static_cast<std::size_t>(i)].shape,
-                                                   out.modes[static_cast<std::size_t>(j)].shape);
+  fill_auto_mac(out);
   return out;
+}
+
+OutputOnlyIdentification identify_output_only_frfs(const ModalData& frfs, const OutputOnlyOptions& options) {
+  if (options.method != OutputOnlyMethod::Fdd)
+    throw std::invalid_argument("FRFs are analysed output-only by FDD only (--method fdd)");
+  OutputOnlyIdentification out;
+  out.method = options.method;
+  out.fdd = fdd_of_frfs(frfs, options.fdd);
+  out.modes = fdd_modes(out.fdd);
+  fill_auto_mac(out);
+  return out;
+}
+
+ResponseData frf_responses(const ModalData& frfs) {
+  ResponseData data;
+  data.files = frfs.files;
+  const bool transposed = frfs.outputs.size() < frfs.inputs.size();  // as fdd_of_frfs
+  data.channels = transposed ? frfs.inputs : frfs.outputs;
+  for (std::size_t c = 0; c < data.channels.size(); ++c) data.references.push_back(static_cast<int>(c));
+  data.dt = frf_equivalent_dt(frfs);
+  std::string forces;
+  for (const std::string& i : transposed ? frfs.outputs : frfs.inputs) forces += (forces.empty() ? "" : ", ") + i;
+  data.notes.push_back("FRFs read as the spectra of the responses to unmeasured unit white forces at " + forces +
+                       (transposed ? " (by reciprocity: fewer outputs than inputs)" : "") +
+                       ": G = H H^H, no lag window");
+  return data;
 }
 
 }  // namespace mbgen

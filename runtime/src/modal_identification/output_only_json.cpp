@@ -144,6 +144,7 @@ std::string output_only_json(const OutputOnlyReportInput& in) {
     j["rejected_poles"] = rejected;
   } else {
     j["window_s"] = number(run.fdd.window_s);
+    if (!run.fdd.frf_inputs.empty()) j["white_force_inputs"] = run.fdd.frf_inputs;
     j["lines"] = run.fdd.f_hz.size();
     j["df_hz"] = number(run.fdd.f_hz.size() > 1 ? run.fdd.f_hz[1] : 0.0);
     j["prominence_db"] = number(in.options.fdd.prominence_db);

@@ -143,7 +143,7 @@ std::string output_only_summary(const OutputOnlyReportInput& in) {
     out << ", orders 2.." << (run.ssi.diagram.orders.empty() ? 0 : run.ssi.diagram.orders.back()) << ", "
         << run.ssi.block_rows << " block rows";
   else
-    out << ", lag window " << num(run.fdd.window_s) << " s";
+    out << (run.fdd.frf_inputs.empty() ? ", lag window " + num(run.fdd.window_s) + " s" : std::string(", of FRFs"));
   out << "; shapes unit-norm\n";
   for (const std::string& note : in.data.notes) out << "note: " << note << "\n";
   out << detail::format("%4s %12s %10s %7s %9s %7s\n", "mode", "f [Hz]", "zeta [%]", "MPC", "MPD [deg]",
@@ -192,8 +192,12 @@ void write_output_only_report(const std::string& dir, const OutputOnlyReportInpu
                        " % of the orders or more, contributing at least " + num(in.options.min_contribution) +
                        " of the strongest mode's peak");
   } else {
-    settings.push_back("method: frequency-domain decomposition (FDD) of the spectral matrix (correlations times "
-                       "exp(-|tau| / " + num(run.fdd.window_s) + " s)), damping by EFDD");
+    if (run.fdd.frf_inputs.empty())
+      settings.push_back("method: frequency-domain decomposition (FDD) of the spectral matrix (correlations times "
+                         "exp(-|tau| / " + num(run.fdd.window_s) + " s)), damping by EFDD");
+    else
+      settings.push_back("method: frequency-domain decomposition (FDD) of the spectral matrix H H^H of the FRFs "
+                         "(unit white forces, as the note says; no lag window), damping by EFDD");
     settings.push_back("peaks: first singular value " + num(in.options.fdd.prominence_db) +
                        " dB above its valleys; bell: MAC >= " + num(in.options.fdd.bell_mac) + ", within " +
                        num(in.options.fdd.bell_db) + " dB of the peak");
