@@ -51,6 +51,16 @@ OperationalUpdate update_model(const OutputOnlyRequest& request, const ResponseD
   return update;
 }
 
+// The JSON and the report, whole or not at all, then the summary (unless the JSON went to standard output).
+int write_output_only(const OutputOnlyRequest& request, const OutputOnlyReportInput& in) {
+  OutputFiles out;
+  if (!request.json_path.empty()) out.add(request.json_path, output_only_json(in));
+  if (!request.report_dir.empty()) write_output_only_report(out.stage_directory(request.report_dir), in);
+  out.commit();
+  if (request.json_path != "-") std::cout << output_only_summary(in);
+  return 0;
+}
+
 // FRFs given to --output-only --method fdd: read as the spectra of unmeasured white forces at their inputs, a
 // check of FDD/EFDD on measured data (docs/modal.md).
 int run_output_only_frfs(const OutputOnlyRequest& request, const std::vector<FrfData>& frfs) {
@@ -67,12 +77,7 @@ int run_output_only_frfs(const OutputOnlyRequest& request, const std::vector<Frf
   }
   const ResponseData responses = frf_responses(data);
   const OutputOnlyReportInput in{responses, id, request.options, nullptr, nullptr, nullptr};
-  OutputFiles out;
-  if (!request.json_path.empty()) out.add(request.json_path, output_only_json(in));
-  if (!request.report_dir.empty()) write_output_only_report(out.stage_directory(request.report_dir), in);
-  out.commit();
-  if (request.json_path != "-") std::cout << output_only_summary(in);
-  return 0;
+  return write_output_only(request, in);
 }
 
 }  // namespace
@@ -133,12 +138,7 @@ int run_output_only(const OutputOnlyRequest& request) {
   const OutputOnlyReportInput in{merged ? merged->data : setups.front(), merged ? merged->result : single, options,
                                  options.method == OutputOnlyMethod::SsiCov ? &spectrum : nullptr,
                                  merged ? &*merged : nullptr, update ? &*update : nullptr};
-  OutputFiles out;
-  if (!request.json_path.empty()) out.add(request.json_path, output_only_json(in));
-  if (!request.report_dir.empty()) write_output_only_report(out.stage_directory(request.report_dir), in);
-  out.commit();
-  if (request.json_path != "-") std::cout << output_only_summary(in);
-  return 0;
+  return write_output_only(request, in);
 }
 
 }  // namespace mbgen::cli
