@@ -57,10 +57,11 @@ Extension extend(const OperatorInput& in, const Frame& a, const Frame& b) {
     if (f->body) mass = std::min(mass, in.values.of(f->body->mass));
   const std::string k_ab = d.add_parameter("k_" + a.name + "_" + b.name, k, "N/m", 0.0, std::nullopt,
                                            "stiffness between " + a.name + " and " + b.name + ", each axis");
-  const std::string c_ab = d.add_parameter("c_" + a.name + "_" + b.name, light_damping(k, mass), "N s/m", 0.0,
+  const double c = light_damping(k, mass);
+  const std::string c_ab = d.add_parameter("c_" + a.name + "_" + b.name, c, "N s/m", 0.0,
                                            std::nullopt, "damping between " + a.name + " and " + b.name + ", each axis");
   d.nests_near_zero(k_ab, k);
-  d.nests_near_zero(c_ab, light_damping(k, mass));
+  d.nests_near_zero(c_ab, c);
   ir::Element s;
   s.kind = ir::ElementKind::Spring3;
   s.name = d.names().fresh(a.name + "_" + b.name + "_link");

@@ -57,12 +57,13 @@ Extension extend(const OperatorInput& in, const ir::Element& e, const std::vecto
   length = std::sqrt(length);
   if (length < 1e-9) length = 0.01;
   const double l2 = length * length;
-  const std::string kr = d.add_parameter("kr_" + e.name, largest(e.stiffness, in.values) * l2, "N m/rad", 0.0,
-                                         std::nullopt, "rotational stiffness of " + e.name);
-  const std::string cr = d.add_parameter("cr_" + e.name, largest(e.damping, in.values) * l2, "N m s/rad", 0.0,
-                                         std::nullopt, "rotational damping of " + e.name);
-  d.nests_near_zero(kr, largest(e.stiffness, in.values) * l2);
-  d.nests_near_zero(cr, largest(e.damping, in.values) * l2);
+  const double kr_start = largest(e.stiffness, in.values) * l2, cr_start = largest(e.damping, in.values) * l2;
+  const std::string kr =
+      d.add_parameter("kr_" + e.name, kr_start, "N m/rad", 0.0, std::nullopt, "rotational stiffness of " + e.name);
+  const std::string cr =
+      d.add_parameter("cr_" + e.name, cr_start, "N m s/rad", 0.0, std::nullopt, "rotational damping of " + e.name);
+  d.nests_near_zero(kr, kr_start);
+  d.nests_near_zero(cr, cr_start);
   std::vector<std::string> about;
   for (int k : axes) {
     ir::Element t;
