@@ -93,7 +93,7 @@ Applied apply(const Compensator& m, const Eigen::VectorXd& x, const Eigen::Vecto
   if (m.kind != Compensation::PrincipalComponents) {
     Eigen::VectorXd z(1 + m.cbar.size());
     z[0] = 1;
-    z.tail(m.cbar.size()) = c - m.cbar;
+    if (m.kind == Compensation::Regression) z.tail(m.cbar.size()) = c - m.cbar;  // none: the conditions unused
     a.prediction = m.coefficients.transpose() * z;
     a.leverage = z.dot(m.gram_inverse * z);
     a.residual = x - a.prediction;
