@@ -165,8 +165,8 @@ FitRun fit_model(FitRequest request) {
   try {
     result = method->run({evaluator, data, options, method_options});
   } catch (const FitError& e) {
-    // A method that cannot use the data says why; the note adds what else it needs and which methods do without.
-    const std::string note = preconditions_note(*method);
+    // A method that cannot use the data says why; the note names the methods that do without what it lacks.
+    const std::string note = preconditions_note(*method, e.what());
     if (note.empty()) throw;
     throw FitError(std::string(e.what()) + "\n" + note);
   }

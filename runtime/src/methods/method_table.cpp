@@ -94,8 +94,11 @@ MethodDescriptor output_error(std::string name, std::string help, bool frf, bool
 // The direct method's sensors, which hybrid needs too (it starts from the direct estimate).
 std::vector<MethodPrecondition> direct_preconditions() {
   return {{"the motion of every coordinate the measured inputs move (outputs that give each coordinate)",
+           "needs the motion of every coordinate", {"auto", "two-step"}},
+          {"an output map that does not depend on an estimated parameter", "needs an output map that does not depend",
            {"auto", "two-step"}},
-          {"an output map that does not depend on an estimated parameter", {"auto", "two-step"}}};
+          {"outputs of one kind in a time record (all displacements, velocities or accelerations)",
+           "on time records needs outputs of one kind", {"auto", "two-step"}}};
 }
 
 std::vector<MethodDescriptor> make_table() {
@@ -114,10 +117,9 @@ std::vector<MethodDescriptor> make_table() {
   MethodDescriptor two_step;
   two_step.name = "two-step";
   two_step.takes_frf = two_step.takes_records = true;
-  two_step.preconditions = {{"one driven input per time record, with at least 20 samples per coefficient of the "
-                             "model's order",
-                             {"auto"}},
-                            {"at least as many modes in the data as the model's order needs", {"auto"}}};
+  two_step.preconditions = {
+      {"one driven model input per time record", "needs exactly one driven model input", {"auto"}},
+      {"at least 20 samples of a record per coefficient of the model's order", "samples are too few for an", {"auto"}}};
   two_step.options = two_step_options();
   two_step.run = run_two_step;
   t.push_back(two_step);
@@ -142,9 +144,11 @@ std::vector<MethodDescriptor> make_table() {
   arx.takes_records = true;
   arx.needs = "time records (sampled inputs and outputs)";
   arx.preconditions = {
-      {"displacement outputs that determine every coordinate", {"auto", "ekf"}},
-      {"the mass matrix known (no estimated parameter in M)", {"auto", "ekf"}},
-      {"records that share one sampling interval and their `# set` values", {"auto", "ekf"}}};
+      {"displacement outputs that determine every coordinate", "needs every coordinate measured as a displacement",
+       {"auto", "ekf"}},
+      {"the mass matrix known (no estimated parameter in M)", "needs the mass matrix known", {"auto", "ekf"}},
+      {"records that share one sampling interval and their `# set` values", "fits one ARX model to all records",
+       {"auto", "ekf"}}};
   arx.run = run_arx_two_stage;
   t.push_back(arx);
 
@@ -153,11 +157,12 @@ std::vector<MethodDescriptor> make_table() {
   modal.takes_frf = true;
   modal.needs = "FRFs (it identifies modes from them)";
   modal.preconditions = {
-      {"estimated parameters that each act on M or K alone, or on C alone (not in the input or output maps)",
-       {"auto"}},
-      {"enough identified modes: their frequencies, shape ratios and scales at least the mass and stiffness "
-       "parameters, their number at least the damping parameters",
-       {"auto"}}};
+      {"estimated parameters that each act on M or K alone, or on C alone", "needs each parameter to act on damping "
+       "alone or on mass/stiffness alone", {"auto"}},
+      {"estimated parameters outside the input and output maps", "enters the input or output map", {"auto"}},
+      // The numbers the identified modes give fall short: said for one configuration or several.
+      {"enough identified modes for the parameters to estimate", "--method modal: the FRFs show ", {"auto"}},
+      {"enough identified modes for the parameters to estimate", " configurations show ", {"auto"}}};
   modal.run = run_modal;
   t.push_back(modal);
 
@@ -166,7 +171,8 @@ std::vector<MethodDescriptor> make_table() {
   eiv.help = "errors in variables: a noisy measured force";
   eiv.takes_records = true;
   eiv.needs = "time records (the measured force's own spectrum and noise)";
-  eiv.preconditions = {{"the force of every model input measured in each record", {"auto"}}};
+  eiv.preconditions = {{"a record long enough for its spectra", "--method eiv needs a longer record",
+                        {"time-output-error"}}};
   eiv.run = run_eiv;
   t.push_back(eiv);
   return t;
@@ -217,12 +223,13 @@ std::string data_refusal(const MethodDescriptor& method, const DataSet& d) {
          (frf ? "FRFs" : "time records") + ": " + listed(others);
 }
 
-std::string preconditions_note(const MethodDescriptor& method) {
+std::string preconditions_note(const MethodDescriptor& method, const std::string& message) {
   std::string out;
   for (const MethodPrecondition& p : method.preconditions)
-    out += "\n  " + p.needs + " (--method " + listed(p.instead) + (p.instead.size() == 1 ? " does" : " do") +
-           " without)";
-  return out.empty() ? "" : "note: --method " + method.name + " needs" + out;
+    if (message.find(p.refusal) != std::string::npos)
+      out += std::string(out.empty() ? "" : "\n") + "note: --method " + listed(p.instead) +
+             " does without " + p.needs;
+  return out;
 }
 
 }  // namespace mbgen

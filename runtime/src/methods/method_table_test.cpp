@@ -58,6 +58,7 @@ TEST_CASE("method table: one entry per name, each complete", "[method_table]") {
     if (!m.takes_frf || !m.takes_records) CHECK_FALSE(m.needs.empty());
     for (const MethodPrecondition& p : m.preconditions) {
       CHECK_FALSE(p.needs.empty());
+      CHECK_FALSE(p.refusal.empty());
       REQUIRE_FALSE(p.instead.empty());
       for (const std::string& other : p.instead) CHECK(find_method(other) != nullptr);
     }
@@ -136,11 +137,22 @@ TEST_CASE("method table: each entry runs its own method", "[method_table]") {
   CHECK(find_method("frf-output-error")->run({model, data, fit, options}).method == "frf-output-error");
 }
 
-TEST_CASE("method table: preconditions note", "[method_table]") {
-  CHECK(preconditions_note(*find_method("auto")).empty());
-  CHECK(preconditions_note(*find_method("arx-two-stage")) ==
-        "note: --method arx-two-stage needs\n"
-        "  displacement outputs that determine every coordinate (--method auto or ekf do without)\n"
-        "  the mass matrix known (no estimated parameter in M) (--method auto or ekf do without)\n"
-        "  records that share one sampling interval and their `# set` values (--method auto or ekf do without)");
+TEST_CASE("method table: a refusal that shows a precondition gets a note naming the methods that do without",
+          "[method_table]") {
+  const MethodDescriptor& arx = *find_method("arx-two-stage");
+  CHECK(preconditions_note(arx, "fit: --method arx-two-stage needs the mass matrix known (C = -M F1, ...): the "
+                                "estimated parameters m1, m2 enter M") ==
+        "note: --method auto or ekf does without the mass matrix known (no estimated parameter in M)");
+  CHECK(preconditions_note(arx, "fit: --method arx-two-stage: lags must be 2 to 8").empty());
+  CHECK(preconditions_note(*find_method("auto"), "anything").empty());
+  // Each precondition's refusal is a text its method says (checked on a refusal the run gives).
+  const std::string two_step = refusal_of_run("two-step", DataSet([] {
+                                                TimeRecord r = time_record();
+                                                r.t.conservativeResize(41);
+                                                for (Signal& s : r.signals) s.values.conservativeResize(41);
+                                                return r;
+                                              }()));
+  INFO(two_step);
+  CHECK(preconditions_note(*find_method("two-step"), two_step) ==
+        "note: --method auto does without at least 20 samples of a record per coefficient of the model's order");
 }

@@ -42,10 +42,12 @@ struct MethodOption {
   double& (*number)(MethodOptions&) = nullptr;
 };
 
-// What a method needs beyond the kind of data, and the methods that do without it: a refusal names them.
+// What a method needs beyond the kind of data, how its refusal reads when the data lack it, and the methods that do
+// without: a refusal that shows `refusal` is followed by a note naming them.
 struct MethodPrecondition {
   std::string needs;                 // "the mass matrix known (no estimated parameter in M)"
-  std::vector<std::string> instead;  // methods that do not need it, e.g. {"auto"}
+  std::string refusal;               // a part of the method's refusal text: "needs the mass matrix known"
+  std::vector<std::string> instead;  // methods that do not need it, e.g. {"auto", "ekf"}
 };
 
 // What a method's run gets.
@@ -86,8 +88,8 @@ const MethodOption* find_method_option(const std::string& flag);
 // followed by the methods that take that kind of data.
 std::string data_refusal(const MethodDescriptor& method, const DataSet& d);
 
-// A note on what `method` needs beyond its data and the methods that do without each; "" for a method without
-// preconditions. A refusal from the method's run is followed by it.
-std::string preconditions_note(const MethodDescriptor& method);
+// For a refusal `message` from `method`'s run: a note naming the methods that do without what it lacks (those of
+// each precondition whose `refusal` the message shows); "" when it shows none.
+std::string preconditions_note(const MethodDescriptor& method, const std::string& message);
 
 }  // namespace mbgen
