@@ -29,24 +29,15 @@ Eigen::VectorXd values_for(const Model& model, const DataSet& d, const Eigen::Ve
 void fill_common(const Model& model, const std::vector<DataSet>& data, const MethodSetup& setup,
                  const Eigen::VectorXd& values, const std::string& method, FitResult& r) {
   const ModelInfo& info = model.info();
-  r.model = info.name;
-  r.data.clear();
-  for (const auto& d : data) r.data.push_back(d.file());
-  r.method = method;
-  r.prior_values = setup.prior;
+  describe_run(info, data, method, setup.prior, r);
   r.values = values;
   r.parameters.clear();
   r.estimated.clear();
   for (int i : setup.candidates) {
-    const ParameterInfo& pi = info.parameters[static_cast<std::size_t>(i)];
-    ParameterEstimate e;
-    e.name = pi.name;
-    e.unit = pi.unit;
-    e.prior = setup.prior[i];
-    e.value = values[i];
+    ParameterEstimate e = parameter_estimate(info, i, setup.prior, values);
     e.estimated = true;
     r.parameters.push_back(e);
-    r.estimated.push_back(pi.name);
+    r.estimated.push_back(e.name);
   }
   // The output-error numbers as every method reports them (method_result.hpp): the same residual mbgen::fit
   // minimises, so that the methods compare with it and with each other.
