@@ -90,9 +90,8 @@ py::object fit_command(const py::object& model, const py::object& data, const st
                        const py::object& band, const std::string& two_step_route, const py::object& two_step_model,
                        const py::object& two_step_criterion, const py::object& two_step_weighting,
                        const py::object& ekf_drift, const py::object& validate, const py::object& residual_lags) {
-  member("--method", method, {"auto", "frf-output-error", "time-output-error", "direct", "two-step", "hybrid", "ekf",
-                              "arx-two-stage", "modal", "eiv"});
-  member("--two-step-route", two_step_route, {"auto", "analytical", "numerical", "minimisation"});
+  member("--method", method, method_names());
+  member("--two-step-route", two_step_route, find_method_option("--two-step-route")->choices);
   ModelOptions options = model_options(set, fix, free, bound);
   cli::FitRequest request;
   request.model_path = model_file(model, options);
@@ -103,22 +102,20 @@ py::object fit_command(const py::object& model, const py::object& data, const st
   search_options(request.options, starts, seed);
   request.start_from_modes = start_from_modes;
   if (!band.is_none()) request.band = band_text(band);
-  request.two_step_route = two_step_route;
-  if (!two_step_model.is_none()) {
-    request.two_step.model = two_step_model.cast<std::string>();
-    member("--two-step-model", request.two_step.model, {"armax", "arx"});
-  }
-  if (!two_step_criterion.is_none()) {
-    request.two_step.criterion = two_step_criterion.cast<std::string>();
-    member("--two-step-criterion", request.two_step.criterion, {"aic", "bic", "fpe"});
-  }
-  if (!two_step_weighting.is_none()) {
-    request.two_step.weighting = two_step_weighting.cast<std::string>();
-    member("--two-step-weighting", request.two_step.weighting, {"normalised", "covariance"});
-  }
+  // The methods' options, checked against the choices the method table declares (as the command does).
+  MethodOptions& methods = request.method_options;
+  const auto choose = [&methods](const char* flag, const std::string& value) {
+    const MethodOption& o = *find_method_option(flag);
+    member(flag, value, o.choices);
+    o.text(methods) = value;
+  };
+  choose("--two-step-route", two_step_route);
+  if (!two_step_model.is_none()) choose("--two-step-model", two_step_model.cast<std::string>());
+  if (!two_step_criterion.is_none()) choose("--two-step-criterion", two_step_criterion.cast<std::string>());
+  if (!two_step_weighting.is_none()) choose("--two-step-weighting", two_step_weighting.cast<std::string>());
   if (!ekf_drift.is_none()) {
     check("--ekf-drift", cli::non_negative_number(), option_text(ekf_drift));
-    request.ekf.drift = ekf_drift.cast<double>();
+    find_method_option("--ekf-drift")->number(methods) = ekf_drift.cast<double>();
   }
   if (!validate.is_none()) request.validate_paths = paths(validate, "--validate");
   if (!residual_lags.is_none()) {

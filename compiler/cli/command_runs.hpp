@@ -8,8 +8,7 @@
 
 #include <mbgen/data_set.hpp>
 #include <mbgen/fit.hpp>
-#include <mbgen/methods/ekf.hpp>
-#include <mbgen/methods/two_step.hpp>
+#include <mbgen/methods/method_table.hpp>
 #include <mbgen/modal_identification.hpp>
 #include <mbgen/modal_report.hpp>
 #include <mbgen/model.hpp>
@@ -41,9 +40,7 @@ struct FitRequest {
   FitOptions options;                 // --starts, --seed; progress as the caller wants it
   bool start_from_modes = false;      // --start-from-modes (output error only)
   std::string band;                   // --band LO:HI, "" for every line
-  TwoStepOptions two_step;            // --two-step-model, --two-step-criterion, --two-step-weighting
-  std::string two_step_route = "auto";
-  EkfOptions ekf;                     // --ekf-drift
+  MethodOptions method_options;       // the methods' own options (--two-step-route, --ekf-drift, ...)
   std::vector<std::string> validate_paths;  // --validate: data scored at the estimate, not fitted
   int residual_lags = 25;             // the residual tests' largest lag L
 };

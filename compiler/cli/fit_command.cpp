@@ -1,19 +1,15 @@
 // `mbgen fit MODEL.mdl --data FILE [--data FILE ...] [--method NAME] [--json OUT.json] [--report DIR]`:
 // estimates the model's `estimate` parameters from measured FRFs or time records (runtime/include/mbgen/fit.hpp).
 #include <mbgen/fit_report.hpp>
-#include <mbgen/methods/arx_two_stage.hpp>
-#include <mbgen/methods/direct.hpp>
-#include <mbgen/methods/eiv.hpp>
-#include <mbgen/methods/ekf.hpp>
-#include <mbgen/methods/hybrid.hpp>
-#include <mbgen/methods/modal.hpp>
-#include <mbgen/methods/two_step.hpp>
+#include <mbgen/methods/method_table.hpp>
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "cli/command_runs.hpp"
@@ -29,7 +25,6 @@
 #include "cli/starts_option.hpp"
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
-#include "frontend/message.hpp"
 #include "frontend/parser.hpp"
 #include "methods/analytical_solver.hpp"
 #include "symbolic/derive.hpp"
@@ -103,23 +98,43 @@ std::string summary(const FitResult& r) {
   return out;
 }
 
-// Maps --two-step-route to the runtime's solver and, where the analytical route may be taken, gives it GiNaC's exact
-// solver on the model's symbolic coefficients (compiler/methods/analytical_solver.hpp).
-TwoStepOptions two_step_options(const ir::ModelIr& model, const symbolic::DeriveOptions& derive, TwoStepOptions o,
-                                const std::string& route) {
-  o.solver = route == "numerical" ? "newton" : route;
-  if (route == "auto" || route == "analytical") {
+// two-step's exact solver, made when its route may take it: GiNaC's on the model's symbolic coefficients
+// (compiler/methods/analytical_solver.hpp), which the runtime cannot make for lack of computer algebra.
+std::function<AnalyticalSolver()> analytical_solver(const ir::ModelIr& model, const symbolic::DeriveOptions& derive) {
+  return [&model, &derive] {
     symbolic::DeriveOptions d = derive;
     d.transfer_functions = false;  // derived per pair, as the solver needs them
-    o.analytical = analytical::make_analytical_solver(std::make_shared<const symbolic::SymbolicModel>(symbolic::derive(model, d)));
+    return analytical::make_analytical_solver(std::make_shared<const symbolic::SymbolicModel>(symbolic::derive(model, d)));
+  };
+}
+
+// --method's help: the table's methods with their few words.
+std::string method_help() {
+  const std::vector<MethodDescriptor>& table = method_table();
+  std::string out;
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    out += (i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + table[i].name;
+    if (!table[i].help.empty()) out += " (" + table[i].help + ")";
   }
-  return o;
+  return out + "; docs/methods.md";
+}
+
+// The methods' own options, as the table declares them, bound to their members of `options`.
+void add_method_options(CLI::App& app, MethodOptions& options) {
+  for (const MethodDescriptor& m : method_table())
+    for (const MethodOption& o : m.options) {
+      if (o.kind == MethodOption::Kind::Choice)
+        app.add_option(o.flag, o.text(options), o.help)->check(CLI::IsMember(o.choices));
+      else
+        app.add_option(o.flag, o.number(options), o.help)->check(non_negative_number());
+    }
 }
 
 }  // namespace
 
 FitRun fit_model(FitRequest request) {
-  const std::string& method = request.method;
+  const MethodDescriptor* const method = find_method(request.method);
+  if (!method) throw FitError("fit: no method `" + request.method + "` (--method takes " + method_help() + ")");
   symbolic::DeriveOptions derive;
   derive.set = std::move(request.set);
   const ir::ModelIr model = read_model_with_roles(request.model_path, request.roles, derive.set).model;
@@ -130,17 +145,10 @@ FitRun fit_model(FitRequest request) {
   data = load_data(request.data_paths, evaluator.info(), model, derive.set);
   if (!request.band.empty()) data = within_band(data, parse_band("--band", request.band));
   // A named method that cannot use the data is bad input (status 1), as docs/interfaces.md says.
-  for (const DataSet& d : data) {
-    if (method == "frf-output-error" && !d.is_frf())
-      throw FitError(
-          frontend::error_text(d.file(), "--method frf-output-error needs FRF data, but this is a time record"));
-    if (method == "time-output-error" && d.is_frf())
-      throw FitError(
-          frontend::error_text(d.file(), "--method time-output-error needs time records, but this file holds FRFs"));
-  }
-  const bool output_error = method == "auto" || method == "frf-output-error" || method == "time-output-error";
-  if (request.start_from_modes && !output_error)
-    throw FitError("fit: error: --start-from-modes starts the output-error search; --method " + method +
+  for (const DataSet& d : data)
+    if (const std::string refusal = data_refusal(*method, d); !refusal.empty()) throw FitError(refusal);
+  if (request.start_from_modes && !method->output_error)
+    throw FitError("fit: error: --start-from-modes starts the output-error search; --method " + method->name +
                    " has its own starts (drop --start-from-modes or use --method auto)");
   // Validation data are read and checked before the fit, so that a bad file stops the command at once. They are not
   // cut to --band: they are scored as they are.
@@ -152,14 +160,16 @@ FitRun fit_model(FitRequest request) {
   if (request.start_from_modes) modal_start = add_start_from_modes(evaluator, data, request.options, "fit");
   const FitOptions& options = request.options;
   FitResult& result = run.result;
-  if (method == "direct") result = fit_direct(evaluator, data, options);
-  else if (method == "two-step") result = fit_two_step(evaluator, data, options, two_step_options(model, derive, request.two_step, request.two_step_route));
-  else if (method == "hybrid") result = fit_hybrid(evaluator, data, options);
-  else if (method == "ekf") result = fit_ekf(evaluator, data, options, request.ekf);
-  else if (method == "arx-two-stage") result = fit_arx_two_stage(evaluator, data, options);
-  else if (method == "modal") result = fit_modal(evaluator, data, options);
-  else if (method == "eiv") result = fit_eiv(evaluator, data, options);
-  else result = fit(evaluator, data, options);
+  MethodOptions& method_options = request.method_options;
+  method_options.analytical_solver = analytical_solver(model, derive);
+  try {
+    result = method->run({evaluator, data, options, method_options});
+  } catch (const FitError& e) {
+    // A method that cannot use the data says why; the note names the methods that do without what it lacks.
+    const std::string note = preconditions_note(*method, e.what());
+    if (note.empty()) throw;
+    throw FitError(std::string(e.what()) + "\n" + note);
+  }
   if (modal_start) result.method_details["start_from_modes"] = start_from_modes_details(*modal_start);
   result.model = request.model_path;
   result.seed = options.seed;
@@ -193,10 +203,7 @@ int run_fit(int argc, char** argv) {
   FitOptions options;
   app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable, fitted jointly")->required();
-  app.add_option("--method", method, "auto (by the data), frf-output-error, time-output-error, direct, two-step, "
-                 "hybrid, ekf, arx-two-stage, modal or eiv (errors in variables: a noisy measured force; docs/methods.md)")
-      ->check(CLI::IsMember({"auto", "frf-output-error", "time-output-error", "direct", "two-step", "hybrid", "ekf",
-                             "arx-two-stage", "modal", "eiv"}));
+  app.add_option("--method", method, method_help())->check(CLI::IsMember(method_names()));
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   std::vector<std::string> validate_paths;
   app.add_option("--validate", validate_paths, "score the estimate on other data (same kinds as --data; repeatable): "
@@ -216,22 +223,8 @@ int run_fit(int argc, char** argv) {
   app.add_flag("--start-from-modes", from_modes, "output error: also start the search where the model's modes "
                "match the data's own (LSCF modes paired by MAC; docs/estimation.md)");
   app.add_option("--band", band, "fit only the FRF lines within LO:HI Hz (the band the model is meant to represent)");
-  TwoStepOptions two_step;
-  std::string two_step_route = "auto";
-  app.add_option("--two-step-route", two_step_route, "two-step: step two's route: auto (analytical where the "
-                 "coefficient equations have a closed form, else numerical where square, else minimisation), "
-                 "analytical, numerical or minimisation")
-      ->check(CLI::IsMember({"auto", "analytical", "numerical", "minimisation"}));
-  app.add_option("--two-step-model", two_step.model, "two-step from records: step one's model, armax (default: the "
-                 "prediction-error method) or arx (least squares)")->check(CLI::IsMember({"armax", "arx"}));
-  app.add_option("--two-step-criterion", two_step.criterion, "two-step from records: the order criterion, aic (default), "
-                 "bic or fpe")->check(CLI::IsMember({"aic", "bic", "fpe"}));
-  app.add_option("--two-step-weighting", two_step.weighting, "two-step: step two's residuals, normalised (default: the "
-                 "thesis's) or covariance (whitened by step one's coefficient covariance)")
-      ->check(CLI::IsMember({"normalised", "covariance"}));
-  EkfOptions ekf;
-  app.add_option("--ekf-drift", ekf.drift, "ekf: each parameter's random walk, its relative std over the whole data "
-                 "(default 0.05; 0: constant parameters)")->check(non_negative_number());
+  MethodOptions method_options;
+  add_method_options(app, method_options);
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     FitRequest request;
@@ -256,9 +249,7 @@ int run_fit(int argc, char** argv) {
                     ", iteration " + std::to_string(p.iteration) + ", cost " + std::to_string(p.cost));
     };
     request.band = band;
-    request.two_step = two_step;
-    request.two_step_route = two_step_route;
-    request.ekf = ekf;
+    request.method_options = method_options;
     const FitRun run = fit_model(std::move(request));
     progress_done();
     const FitResult& result = run.result;

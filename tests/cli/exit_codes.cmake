@@ -56,6 +56,11 @@ expect_run(STATUS 1 STDERR "^one_frf.csv: error: --method time-output-error need
 file(WRITE "${WORK}/rec.csv" "t,F,y\n0,1,0\n0.001,1,0.0001\n0.002,1,0.0002\n0.003,1,0.0003\n")
 expect_run(STATUS 1 STDERR "^rec.csv: error: --method frf-output-error needs FRF data"
   ARGS fit one.mdl --data rec.csv --starts 1 --method frf-output-error)
+# The refusal names the methods that take the data given (the method table, mbgen/methods/method_table.hpp).
+expect_run(STATUS 1 STDERR "needs FRF data, but this is a time record\nnote: methods that take time records: auto, time-output-error, direct, two-step, hybrid, ekf, arx-two-stage or eiv\n"
+  ARGS fit one.mdl --data rec.csv --starts 1 --method frf-output-error)
+expect_run(STATUS 1 STDERR "^one_frf.csv: error: --method ekf needs time records \\(sampled inputs and outputs\\), but this file holds FRFs\nnote: methods that take FRFs: auto, frf-output-error, direct, two-step, hybrid or modal\n"
+  ARGS ${FAST_FIT} --method ekf)
 
 # A UFF file read from standard input or under another name: the FRFs' quantity is still the one its records declare.
 # It was taken from the records only for a name ending in .uff (by reading the file again), so the beam came out

@@ -11,7 +11,7 @@ endif()
 
 # The driving point alone: two modes, but per mode only frequency and scale: 4 numbers for 5 mass/stiffness parameters.
 write_mdof2_d1_only(d1_only.csv)
-expect_run(STATUS 1 STDERR "--method modal: the FRFs show 2 mode\\(s\\) .* which give 4 numbers .* fewer than the 5 mass/stiffness parameters"
+expect_run(STATUS 1 STDERR "--method modal: the FRFs show 2 mode\\(s\\) .* which give 4 numbers .* fewer than the 5 mass/stiffness parameters.*\nnote: --method auto does without enough identified modes for the parameters to estimate\n"
   ARGS fit ${MDOF2} --data d1_only.csv --method modal)
 
 expect_run(STATUS 0 STDOUT "modal\\)" ARGS fit ${MDOF2} --data ${MDOF2_FRF} --method modal --starts 4 --json m.json)

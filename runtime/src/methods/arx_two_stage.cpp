@@ -41,7 +41,7 @@ Coordinates coordinates_from(const Model& model, const MethodSetup& setup, const
                              const ModelDerivatives& d, const TimeRecord& t) {
   const ModelInfo& info = model.info();
   const auto n = static_cast<Eigen::Index>(info.coordinates.size());
-  const std::set<int> estimated(setup.estimated.begin(), setup.estimated.end());
+  const std::set<int> estimated(setup.candidates.begin(), setup.candidates.end());
   Coordinates c;
   std::vector<std::string> dependent;
   for (std::size_t o = 0; o < info.outputs.size(); ++o) {
@@ -137,7 +137,7 @@ FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data
   {
     std::set<std::string> in_mass;
     for (const DerivativeEntry& e : d.M)
-      if (std::find(setup.estimated.begin(), setup.estimated.end(), e.param) != setup.estimated.end() && e.value != 0)
+      if (std::find(setup.candidates.begin(), setup.candidates.end(), e.param) != setup.candidates.end() && e.value != 0)
         in_mass.insert(info.parameters[static_cast<std::size_t>(e.param)].name);
     if (!in_mass.empty())
       throw FitError("fit: --method arx-two-stage needs the mass matrix known (C = -M F1, K = -M F2; the free response "
@@ -239,7 +239,7 @@ FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data
 
   // Stage 3: the estimated parameters whose K(p), C(p) reproduce K_id and C_id, each matrix relative to its norm.
   const double k_norm = std::max(K_id.norm(), 1e-300), c_norm = std::max(C_id.norm(), 1e-300);
-  std::vector<int> free = setup.estimated;
+  std::vector<int> free = setup.candidates;
   auto residual = [&](const std::vector<int>& params, const Eigen::VectorXd& th, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
     Eigen::VectorXd p = base;
     for (std::size_t j = 0; j < params.size(); ++j)
@@ -270,8 +270,8 @@ FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data
     return th;
   };
   // What K and C cannot determine (a parameter in neither, or only in a combination) stays at its prior.
-  std::vector<bool> identifiable(setup.estimated.size(), true);
-  std::vector<std::vector<std::string>> confounded(setup.estimated.size());
+  std::vector<bool> identifiable(setup.candidates.size(), true);
+  std::vector<std::vector<std::string>> confounded(setup.candidates.size());
   {
     Eigen::VectorXd r;
     Eigen::MatrixXd J;
@@ -315,9 +315,9 @@ FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data
   FitResult result;
   methods::fill_common(model, data, setup, values, kMethod, result);
   result.estimated.clear();
-  for (std::size_t j = 0; j < setup.estimated.size(); ++j) {
+  for (std::size_t j = 0; j < setup.candidates.size(); ++j) {
     ParameterEstimate& e = result.parameters[j];
-    const auto bound = at_bound.find(setup.estimated[j]);
+    const auto bound = at_bound.find(setup.candidates[j]);
     e.identifiable = identifiable[j] && bound == at_bound.end();
     if (bound != at_bound.end()) e.at_bound = bound->second;
     e.confounded_with = confounded[j];

@@ -190,10 +190,7 @@ FitResult fit_direct(const Model& model, const std::vector<DataSet>& data, const
   const Iteration& other = iv_wins ? runs[1] : runs[0];
 
   FitResult result;
-  result.model = info.name;
-  for (const auto& d : data) result.data.push_back(d.file());
-  result.method = "direct";
-  result.prior_values = prior;
+  methods::describe_run(info, data, "direct", prior, result);
   result.values = it.values;
   for (int i : it.free) result.estimated.push_back(info.parameters[static_cast<std::size_t>(i)].name);
   if (!it.free.empty()) {
@@ -202,12 +199,7 @@ FitResult fit_direct(const Model& model, const std::vector<DataSet>& data, const
     result.correlation = result.covariance.cwiseQuotient(sd * sd.transpose());
   }
   for (int i : candidates) {
-    const ParameterInfo& pi = info.parameters[static_cast<std::size_t>(i)];
-    ParameterEstimate e;
-    e.name = pi.name;
-    e.unit = pi.unit;
-    e.prior = prior[i];
-    e.value = result.values[i];
+    ParameterEstimate e = methods::parameter_estimate(info, i, prior, result.values);
     e.estimated = std::find(it.dropped.begin(), it.dropped.end(), i) == it.dropped.end();
     e.identifiable = e.estimated && !it.at_bound.count(i);
     if (it.at_bound.count(i)) e.at_bound = it.at_bound[i];

@@ -50,7 +50,7 @@ Record prepare(const Model& model, const DataSet& d, const MethodSetup& setup) {
   for (std::size_t c = 0; c < r.names.size(); ++c) r.y.col(static_cast<Eigen::Index>(c)) = t.at(r.names[c]).values;
   r.dt = t.dt();
   r.hold = t.hold == HoldMode::None ? InputHold::FirstOrder : InputHold::ZeroOrder;
-  for (int i : setup.estimated) r.overridden.push_back(d.set().count(info.parameters[static_cast<std::size_t>(i)].name) > 0);
+  for (int i : setup.candidates) r.overridden.push_back(d.set().count(info.parameters[static_cast<std::size_t>(i)].name) > 0);
   return r;
 }
 
@@ -87,12 +87,12 @@ class Filter {
  public:
   Filter(const Model& model, const MethodSetup& setup, const EkfOptions& ekf, double total_duration)
       : model_(model), setup_(setup), ekf_(ekf) {
-    const auto np = static_cast<Eigen::Index>(setup.estimated.size());
+    const auto np = static_cast<Eigen::Index>(setup.candidates.size());
     theta0_.resize(np);
     q_rate_.resize(np);
     P0_.setZero(np, np);
     for (Eigen::Index j = 0; j < np; ++j) {
-      const int i = setup.estimated[static_cast<std::size_t>(j)];
+      const int i = setup.candidates[static_cast<std::size_t>(j)];
       const ParameterTransform& t = setup.transforms[static_cast<std::size_t>(i)];
       theta0_[j] = t.to_internal(setup.prior[i]);
       // A relative size in physical units, as a size in theta at the prior.
@@ -105,17 +105,17 @@ class Filter {
 
   Eigen::VectorXd physical(const Eigen::VectorXd& theta) const {
     Eigen::VectorXd p = setup_.prior;
-    for (std::size_t j = 0; j < setup_.estimated.size(); ++j) {
-      const int i = setup_.estimated[j];
+    for (std::size_t j = 0; j < setup_.candidates.size(); ++j) {
+      const int i = setup_.candidates[j];
       p[i] = setup_.transforms[static_cast<std::size_t>(i)].to_physical(theta[static_cast<Eigen::Index>(j)]);
     }
     return p;
   }
   Eigen::VectorXd slopes(const Eigen::VectorXd& theta) const {  // dp/dtheta
     Eigen::VectorXd g(theta.size());
-    for (std::size_t j = 0; j < setup_.estimated.size(); ++j)
+    for (std::size_t j = 0; j < setup_.candidates.size(); ++j)
       g[static_cast<Eigen::Index>(j)] =
-          setup_.transforms[static_cast<std::size_t>(setup_.estimated[j])].derivative(theta[static_cast<Eigen::Index>(j)]);
+          setup_.transforms[static_cast<std::size_t>(setup_.candidates[j])].derivative(theta[static_cast<Eigen::Index>(j)]);
     return g;
   }
 
@@ -134,7 +134,7 @@ class Filter {
   };
 
   Pass run(const std::vector<Record>& records, const std::vector<Eigen::VectorXd>& R, int stride) const {
-    const auto np = static_cast<Eigen::Index>(setup_.estimated.size());
+    const auto np = static_cast<Eigen::Index>(setup_.candidates.size());
     Pass pass;
     pass.theta = theta0_;
     pass.P = P0_;
@@ -257,7 +257,7 @@ class Filter {
   }
 
   Linearization linearize(const Record& r, const Eigen::VectorXd& theta, double t) const {
-    const auto np = static_cast<Eigen::Index>(setup_.estimated.size());
+    const auto np = static_cast<Eigen::Index>(setup_.candidates.size());
     const Eigen::VectorXd p = methods::values_for(model_, *r.set, physical(theta));
     const Eigen::VectorXd g = slopes(theta);
     ModelMatrices m;
@@ -271,7 +271,7 @@ class Filter {
       const std::vector<StateSpace> all = state_space_derivatives(m, d, static_cast<int>(p.size()));
       std::vector<StateSpace> dss;
       for (Eigen::Index j = 0; j < np; ++j) {
-        StateSpace s = all[static_cast<std::size_t>(setup_.estimated[static_cast<std::size_t>(j)])];
+        StateSpace s = all[static_cast<std::size_t>(setup_.candidates[static_cast<std::size_t>(j)])];
         const double f = r.overridden[static_cast<std::size_t>(j)] ? 0.0 : g[j];  // `# set` holds it in this record
         s.A *= f;
         s.B *= f;
@@ -382,13 +382,13 @@ FitResult fit_ekf(const Model& model, const std::vector<DataSet>& data, const Fi
   traj["data"] = pass.traj_record;
   traj["t"] = pass.traj_t;
   nlohmann::json value = nlohmann::json::object(), sd = nlohmann::json::object();
-  for (std::size_t jj = 0; jj < setup.estimated.size(); ++jj) {
+  for (std::size_t jj = 0; jj < setup.candidates.size(); ++jj) {
     Eigen::VectorXd v(static_cast<Eigen::Index>(pass.traj_t.size())), s(v.size());
     for (std::size_t k = 0; k < pass.traj_t.size(); ++k) {
       const Eigen::VectorXd p = filter.physical(pass.traj_theta[k]);
       const Eigen::VectorXd gk = filter.slopes(pass.traj_theta[k]);
       const auto jx = static_cast<Eigen::Index>(jj);
-      v[static_cast<Eigen::Index>(k)] = p[setup.estimated[jj]];
+      v[static_cast<Eigen::Index>(k)] = p[setup.candidates[jj]];
       s[static_cast<Eigen::Index>(k)] = std::abs(gk[jx]) * std::sqrt(std::max(pass.traj_var[k][jx], 0.0));
     }
     value[result.estimated[jj]] = numbers(v);

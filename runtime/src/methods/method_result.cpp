@@ -12,6 +12,26 @@
 
 namespace mbgen::methods {
 
+void describe_run(const ModelInfo& info, const std::vector<DataSet>& data, const std::string& method,
+                  const Eigen::VectorXd& prior, FitResult& r) {
+  r.model = info.name;
+  r.data.clear();
+  for (const auto& d : data) r.data.push_back(d.file());
+  r.method = method;
+  r.prior_values = prior;
+}
+
+ParameterEstimate parameter_estimate(const ModelInfo& info, int i, const Eigen::VectorXd& prior,
+                                     const Eigen::VectorXd& values) {
+  const ParameterInfo& pi = info.parameters[static_cast<std::size_t>(i)];
+  ParameterEstimate e;
+  e.name = pi.name;
+  e.unit = pi.unit;
+  e.prior = prior[i];
+  e.value = values[i];
+  return e;
+}
+
 double output_error_cost(const Model& model, const std::vector<DataSet>& data, const FitOptions& options,
                          const Eigen::VectorXd& values) {
   const estimation::OutputErrorProblem problem(model, data, options.frf_weighting);

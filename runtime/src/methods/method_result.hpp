@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace mbgen::methods {
@@ -14,6 +15,14 @@ namespace mbgen::methods {
 // The prior values, checked, and the parameters to estimate: as mbgen::fit takes them (fit_inputs.hpp).
 using estimation::candidate_parameters;
 using estimation::checked_prior;
+
+// The members of a result that say what was run: model (the model's name), data (the files), method, prior_values.
+void describe_run(const ModelInfo& info, const std::vector<DataSet>& data, const std::string& method,
+                  const Eigen::VectorXd& prior, FitResult& r);
+
+// Model parameter i's estimate before the method's verdicts on it: its name, unit, prior and value.
+ParameterEstimate parameter_estimate(const ModelInfo& info, int i, const Eigen::VectorXd& prior,
+                                     const Eigen::VectorXd& values);
 
 // The output-error cost (weighted residual sum of squares, as mbgen::fit's) at `values`.
 double output_error_cost(const Model& model, const std::vector<DataSet>& data, const FitOptions& options,

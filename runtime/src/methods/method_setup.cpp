@@ -1,7 +1,6 @@
 #include "method_setup.hpp"
 
 #include "method_result.hpp"
-#include "../estimation/fit_setup.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,13 +15,9 @@ MethodSetup method_setup(const Model& model, const std::vector<DataSet>& data, c
     if (d.is_frf())
       throw FitError(d.file() + ": error: --method " + method +
                      " needs time records (sampled inputs and outputs), but this file holds FRFs");
-  estimation::FitSetup setup = estimation::prepare_fit(model, data, options);
+  MethodSetup setup = estimation::prepare_fit(model, data, options);
   if (setup.candidates.empty()) throw FitError("fit: --method " + method + ": the model has no parameter to estimate");
-  MethodSetup s;
-  s.prior = std::move(setup.prior);
-  s.estimated = std::move(setup.candidates);
-  s.transforms = std::move(setup.transforms);
-  return s;
+  return setup;
 }
 
 Eigen::VectorXd values_for(const Model& model, const DataSet& d, const Eigen::VectorXd& values) {
@@ -34,28 +29,19 @@ Eigen::VectorXd values_for(const Model& model, const DataSet& d, const Eigen::Ve
 void fill_common(const Model& model, const std::vector<DataSet>& data, const MethodSetup& setup,
                  const Eigen::VectorXd& values, const std::string& method, FitResult& r) {
   const ModelInfo& info = model.info();
-  r.model = info.name;
-  r.data.clear();
-  for (const auto& d : data) r.data.push_back(d.file());
-  r.method = method;
-  r.prior_values = setup.prior;
+  describe_run(info, data, method, setup.prior, r);
   r.values = values;
   r.parameters.clear();
   r.estimated.clear();
-  for (int i : setup.estimated) {
-    const ParameterInfo& pi = info.parameters[static_cast<std::size_t>(i)];
-    ParameterEstimate e;
-    e.name = pi.name;
-    e.unit = pi.unit;
-    e.prior = setup.prior[i];
-    e.value = values[i];
+  for (int i : setup.candidates) {
+    ParameterEstimate e = parameter_estimate(info, i, setup.prior, values);
     e.estimated = true;
     r.parameters.push_back(e);
-    r.estimated.push_back(pi.name);
+    r.estimated.push_back(e.name);
   }
   // The output-error numbers as every method reports them (method_result.hpp): the same residual mbgen::fit
   // minimises, so that the methods compare with it and with each other.
-  score_by_output_error(model, data, FitOptions{}, setup.estimated, static_cast<int>(setup.estimated.size()), r);
+  score_by_output_error(model, data, FitOptions{}, setup.candidates, static_cast<int>(setup.candidates.size()), r);
 }
 
 void set_covariance(const Eigen::MatrixXd& covariance, FitResult& r) {

@@ -4,8 +4,8 @@
 // result can be compared with the output-error fit on the same terms. Internal header.
 #pragma once
 
+#include "../estimation/fit_setup.hpp"
 #include "mbgen/fit.hpp"
-#include "mbgen/parameterization.hpp"
 
 #include <Eigen/Core>
 
@@ -14,11 +14,10 @@
 
 namespace mbgen::methods {
 
-struct MethodSetup {
-  Eigen::VectorXd prior;                       // all model parameters: defaults with FitOptions::values over them
-  std::vector<int> estimated;                  // model indices: FitOptions::estimate, or the role Estimate
-  std::vector<ParameterTransform> transforms;  // per model parameter (meaningful for `estimated`)
-};
+// The setup is output error's own (estimation/fit_setup.hpp): the prior of all model parameters (defaults with
+// FitOptions::values over them), the parameters to estimate (`candidates`: FitOptions::estimate, or the role
+// Estimate) and their bounds transforms.
+using MethodSetup = estimation::FitSetup;
 
 // Checks the values and the data as fit() does (FitError / DataError) and that every data set is a time record
 // (`method` names the method in the message: "--method ekf needs time records ...").

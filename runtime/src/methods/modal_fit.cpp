@@ -448,18 +448,11 @@ FitResult fit_modal(const Model& model, const std::vector<DataSet>& data, const 
   details["agreement"] = agreement;
 
   FitResult result;
-  result.model = info.name;
-  for (const auto& d : data) result.data.push_back(d.file());
-  result.method = "modal";
-  result.prior_values = prior;
+  methods::describe_run(info, data, "modal", prior, result);
   result.values = p;
   for (int i : candidates) {
     const ParameterInfo& q = info.parameters[static_cast<std::size_t>(i)];
-    ParameterEstimate e;
-    e.name = q.name;
-    e.unit = q.unit;
-    e.prior = prior[i];
-    e.value = p[i];
+    ParameterEstimate e = methods::parameter_estimate(info, i, prior, p);
     e.estimated = std::find(uninfluential.begin(), uninfluential.end(), i) == uninfluential.end() &&
                   std::find(set_everywhere.begin(), set_everywhere.end(), i) == set_everywhere.end();
     const double tol = 1e-9 * std::max(std::abs(p[i]), 1.0);

@@ -153,10 +153,7 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
   const auto n_eq = static_cast<Eigen::Index>(problem.targets().size());
 
   FitResult result;
-  result.model = info.name;
-  for (const auto& d : data) result.data.push_back(d.file());
-  result.method = "two-step";
-  result.prior_values = prior;
+  methods::describe_run(info, data, "two-step", prior, result);
 
   // Identifiability at the prior, on the coefficient residuals (relative sensitivities).
   IdentifiabilityOptions id_options;
@@ -366,12 +363,7 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
   result.singular_values = analyse_identifiability(scaled_jacobian(candidates, values), id_options).singular_values;
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int i = candidates[c];
-    const ParameterInfo& pi = info.parameters[static_cast<std::size_t>(i)];
-    ParameterEstimate e;
-    e.name = pi.name;
-    e.unit = pi.unit;
-    e.prior = prior[i];
-    e.value = values[i];
+    ParameterEstimate e = methods::parameter_estimate(info, i, prior, values);
     e.estimated = identifiable[c];
     e.identifiable = identifiable[c] && !at_bound.count(i);
     if (at_bound.count(i)) e.at_bound = at_bound[i];
