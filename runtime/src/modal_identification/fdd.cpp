@@ -95,7 +95,7 @@ Spectra spectral_matrix(const ResponseData& data, Eigen::Index K, double window_
   return s;
 }
 
-// A frequency for a note: 6 significant digits.
+// A number for a note: 6 significant digits.
 std::string number_text(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
@@ -378,7 +378,7 @@ void check_resolved(const Spectra& s, FddPeak& peak) {
   const double lo = f * (1 - peak.zeta), hi = f * (1 + peak.zeta);
   if (peak.zeta > 0 && std::floor(hi / df) >= std::ceil(lo / df)) return;
   peak.note = "damping not determined: " +
-              (peak.zeta > 0 ? "the half-power band " + number_text(lo) + " .. " + number_text(hi) + " Hz holds no line"
+              (peak.zeta > 0 ? "its half-power band, 2 zeta f = " + number_text(hi - lo) + " Hz wide, holds no line"
                              : "the bell decays no faster than the lag window") +
               " (lines every " + number_text(df) + " Hz)";
   peak.zeta = std::numeric_limits<double>::quiet_NaN();
