@@ -336,8 +336,6 @@ void enhance(const Spectra& s, Eigen::Index peak, double dt, double window_s, do
   }
 }
 
-
-
 // EFDD's damping with the neighbours filtered out. The first singular value is |h|^2 when one force drives the
 // modes, h = sum_m phi_m q_m: beside the mode's own bell it holds the neighbours' tails and their cross-terms with
 // the mode, which skew the bell (the spindle's second mode: +10 % to +32 %, +19 % on average over six draws). The
