@@ -7,6 +7,8 @@
 #include <mbgen/methods/operational_update.hpp>
 #include <mbgen/output_only_report.hpp>
 
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -51,13 +53,35 @@ OperationalUpdate update_model(const OutputOnlyRequest& request, const ResponseD
   return update;
 }
 
-// The JSON and the report, whole or not at all, then the summary (unless the JSON went to standard output).
+// A warning for each FDD mode whose damping is not determined (EFDD's note says why: e.g. lines too coarse for its
+// half-power band), so that a missing damping ratio is not read past in the table.
+std::string damping_warnings(const OutputOnlyReportInput& in) {
+  const OutputOnlyIdentification& r = in.result;
+  if (r.method != OutputOnlyMethod::Fdd || in.setups || r.fdd.peaks.size() != r.modes.size()) return {};
+  std::string text;
+  for (std::size_t m = 0; m < r.modes.size(); ++m)
+    if (!std::isfinite(r.modes[m].zeta)) {
+      char f[32];
+      std::snprintf(f, sizeof f, "%.4f", r.modes[m].f_hz);
+      const std::string& note = r.fdd.peaks[m].note;
+      const std::string what = "damping not determined";
+      text += "warning: mode " + std::to_string(m + 1) + " (" + f + " Hz): " +
+              (note.rfind(what, 0) == 0 ? note : note.empty() ? what : what + " (" + note + ")") + "\n";
+    }
+  return text;
+}
+
+// The JSON and the report, whole or not at all, then the summary and the warnings (on standard error when the JSON
+// went to standard output).
 int write_output_only(const OutputOnlyRequest& request, const OutputOnlyReportInput& in) {
   OutputFiles out;
   if (!request.json_path.empty()) out.add(request.json_path, output_only_json(in));
   if (!request.report_dir.empty()) write_output_only_report(out.stage_directory(request.report_dir), in);
   out.commit();
-  if (request.json_path != "-") std::cout << output_only_summary(in);
+  if (request.json_path != "-")
+    std::cout << output_only_summary(in) << damping_warnings(in);
+  else
+    std::cerr << damping_warnings(in);
   return 0;
 }
 

@@ -2,12 +2,9 @@
 // --kind oma): unmeasured white forces, responses only, 40 dB output noise; the same records as ssi_cov_test, seeds
 // fixed before the results were seen.
 //
-// What meets issue 34's targets and what does not (docs/modal.md, "Output-only modal analysis"): every frequency
-// within 1 % (at most 0.35 % off on draws 1-6) and no spurious peak, and mdof2's shapes and EFDD damping, pass.
-// Known to miss, on the spindle: its second mode's shape (MAC 0.925 to 0.953: its one force drives all modes
-// coherently, so the first singular vector at the weaker mode's peak holds some of the strong neighbour's) and that
-// mode's damping on two of six draws (+26 %, +32 %). Those are checked in the [!mayfail] case below, which reports
-// them without failing the suite.
+// Every draw meets issue 34's targets (docs/modal.md, "Output-only modal analysis", has the table): frequencies
+// within 1 % and no spurious peak, MAC > 0.95, EFDD damping within 25 %, on mdof2 and on the spindle, whose one
+// force drives its modes coherently (shapes from the half spectra's residues, damping from the modal filter).
 #include "mbgen/output_only_modal.hpp"
 #include "oma_truth.hpp"
 
@@ -29,15 +26,6 @@ OutputOnlyIdentification run_fdd(const test::OmaTruth& t) {
   return r;
 }
 
-// Frequencies and no spurious peak; with `shapes` also MAC > 0.95.
-void check_fdd(const std::string& example, int draw, int seed, bool shapes) {
-  const test::OmaTruth t = test::oma_truth("fdd_truth", example, draw, seed);
-  test::Targets targets;
-  targets.damping = false;
-  targets.shape = shapes;
-  test::check_against_truth(run_fdd(t).modes, t.modes, targets);
-}
-
 // Every target, damping by EFDD included.
 void check_all_targets(const std::string& example, int draw, int seed) {
   const test::OmaTruth t = test::oma_truth("fdd_truth_all", example, draw, seed);
@@ -46,16 +34,10 @@ void check_all_targets(const std::string& example, int draw, int seed) {
 
 }  // namespace
 
-TEST_CASE("FDD: mdof2 frequencies and shapes", "[fdd]") {
-  for (int draw = 1; draw <= 6; ++draw) check_fdd("mdof2", draw, 10 + draw, true);
-}
-TEST_CASE("FDD: spindle frequencies", "[fdd]") {
-  for (int draw = 1; draw <= 6; ++draw) check_fdd("spindle", draw, 20 + draw, false);
-}
 TEST_CASE("FDD: mdof2 all targets, EFDD damping included", "[fdd]") {
   for (int draw = 1; draw <= 6; ++draw) check_all_targets("mdof2", draw, 10 + draw);
 }
-TEST_CASE("FDD: spindle all targets, EFDD damping included (known to miss)", "[fdd][!mayfail]") {
+TEST_CASE("FDD: spindle all targets, EFDD damping included", "[fdd]") {
   for (int draw = 1; draw <= 6; ++draw) check_all_targets("spindle", draw, 20 + draw);
 }
 
@@ -147,4 +129,23 @@ TEST_CASE("FDD of FRFs: refused for SSI-cov and for lines off the multiples of t
   OutputOnlyOptions options;
   options.method = OutputOnlyMethod::Fdd;
   CHECK_THROWS_AS(identify_output_only_frfs(frfs, options), std::invalid_argument);
+}
+
+// Lines too coarse for a lightly damped mode: its half-power band (0.16 Hz at 40.5 Hz) falls between two 1 Hz
+// lines, so the damping is not determined: NaN and a note naming the line spacing. (On these noise-free FRFs the
+// bell fit to the skirts would give it within 1 %; on measured ones the skirts hardly depend on it, docs/modal.md.)
+// The well-damped mode (4 Hz band at 100 Hz) keeps its damping.
+TEST_CASE("FDD of FRFs: damping not determined when the half-power band holds no line", "[fdd][frf]") {
+  const std::vector<HandMode> modes = {{40.5, 0.002, {1.0, 0.5}}, {100, 0.02, {0.6, -1.0}}};
+  const ModalData frfs = hand_frfs(modes, {0, 1}, {0}, 1.0, 200);
+  OutputOnlyOptions options;
+  options.method = OutputOnlyMethod::Fdd;
+  const OutputOnlyIdentification r = identify_output_only_frfs(frfs, options);
+  REQUIRE(r.modes.size() == 2);
+  INFO("first mode: " << r.fdd.peaks[0].note);
+  CHECK(std::isnan(r.modes[0].zeta));
+  CHECK(r.fdd.peaks[0].note.find("damping not determined") == 0);
+  CHECK(r.fdd.peaks[0].note.find("lines every 1 Hz") != std::string::npos);
+  INFO("second mode: zeta " << r.modes[1].zeta << ", " << r.fdd.peaks[1].note);
+  CHECK(std::abs(r.modes[1].zeta / 0.02 - 1) < 0.25);
 }
