@@ -98,7 +98,9 @@ struct FddPeak {
   double f_hz = 0;        // the peak's line (FDD)
   double efdd_f_hz = 0;   // undamped frequency from the bell's correlation function (EFDD); NaN when it failed
   double zeta = 0;        // EFDD, window decay removed; NaN when it failed
-  Eigen::VectorXcd shape; // first singular vector at the peak
+  // From records: the residue of the mode's pole term in the half spectra; from FRFs: the first singular vector at
+  // the peak.
+  Eigen::VectorXcd shape;
   double sv_db = 0;       // first singular value at the peak [dB]
   int bell_lines = 0;     // lines in the bell
   std::string note;       // why EFDD failed, empty otherwise

@@ -226,8 +226,9 @@ void write_output_only_report(const std::string& dir, const OutputOnlyReportInpu
                       "unit norm, largest component real and positive. *Contribution*: the mode's resonance peak in "
                       "the correlations relative to the strongest."
                     : "f and zeta by EFDD from the correlation function of the mode's bell (the peak's line when that "
-                      "failed). Shapes are the first singular vector at the peak, unit norm, largest component real "
-                      "and positive (unscaled).");
+                      "failed). Shapes from records: the residue of the mode's pole term fitted in the half spectra "
+                      "over its bell (its left singular vector); from FRFs: the first singular vector at the peak. "
+                      "Unit norm, largest component real and positive (unscaled).");
   report::Table modes{{"mode", "f [Hz]", "zeta [%]", "MPC", "MPD [deg]"}, {}};
   if (ssi)
     for (const char* h : {"scatter f [Hz]", "scatter zeta [%]", "orders", "contribution"}) modes.header.push_back(h);
