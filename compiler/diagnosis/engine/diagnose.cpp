@@ -18,7 +18,9 @@
 #include <mbgen/spectral_companion.hpp>
 
 #include "diagnosis/engine/driving_points.hpp"
+#include "diagnosis/engine/judging.hpp"
 #include "diagnosis/engine/new_body_modes.hpp"
+#include "diagnosis/engine/text_format.hpp"
 #include "diagnosis/engine/thresholds.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
@@ -35,12 +37,6 @@ constexpr std::size_t kChainFits = 3;
 // How close the slope of log |data / model| against log f must come to a whole number k for data of another form
 // ((i w)^k off the model) to be taken as evidence: a quarter of a decade per decade.
 constexpr double kFormSlopeTolerance = 0.25;
-
-std::string format(const char* pattern, double a, double b = 0, double c = 0) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
-  return buffer;
-}
 
 // Parameters the data sets set to different values (e.g. a spin speed), counting "not set" as a value of its own:
 // what a model must follow across data sets.
@@ -125,40 +121,6 @@ void declare_held_known(ModelState& s) {
     s.text = with_role_known(s.text, name);
   }
   s.held.clear();
-}
-
-// The mean normalized residual over finding d's band, on its channel and data set; minus one when the model has
-// no such lines.
-double band_mean_z(const std::vector<ChannelResidual>& channels, const Discrepancy& d) {
-  for (const ChannelResidual& c : channels) {
-    if (c.channel != d.channel || c.data_set != d.data_set) continue;
-    double sum = 0;
-    int lines = 0;
-    for (std::size_t k = 0; k < c.f_hz.size(); ++k) {
-      if (c.f_hz[k] < d.f_lo || c.f_hz[k] > d.f_hi) continue;
-      const auto i = static_cast<Eigen::Index>(k);
-      sum += normalized_residual(c.measured[i], c.model[i], c.sigma[i]);
-      ++lines;
-    }
-    return lines > 0 ? sum / lines : -1.0;
-  }
-  return -1.0;
-}
-
-// Whether the extended model still shows the nominal model's finding d. It is explained when the residual over
-// d's band, on d's channel, falls below the threshold that made it a finding and its excess over the noise at least
-// halves (the rule the whole residual must meet). Comparing the lists of findings instead misjudges: a grossly wrong
-// nominal model has findings spanning whole channels (on a loose-mount record, 8-1056 Hz), and a more exact model
-// can show a small misfit the larger one drowned (there, a weakly excited mode near 700 Hz). Both conditions
-// matter on the spindle's Maxwell-bearing data: one soft mount in z halves its largest finding but leaves it at 9.7.
-bool still_shows(const std::vector<ChannelResidual>& nominal, const ModelState& extended, const Discrepancy& d,
-                 double threshold) {
-  if (d.kind == "parameter_at_bound")  // the extended model's fit still presses that parameter against a bound
-    return std::any_of(extended.residual.discrepancies.begin(), extended.residual.discrepancies.end(),
-                       [&](const Discrepancy& e) { return e.kind == d.kind && e.parameter == d.parameter; });
-  const double before = band_mean_z(nominal, d), after = band_mean_z(extended.channels, d);
-  if (before < 0 || after < 0) return true;  // not judged again: counts as shown
-  return after > threshold || after - 1.0 > thresholds::kExplainedExcessFraction * (before - 1.0);
 }
 
 // Whether the fit pressed an estimate against one of its bounds: it stands at the bound (within a thousandth of
@@ -378,9 +340,15 @@ class Diagnoser {
     const std::size_t first_of_round = result.candidates.size() - outcomes.size();
     const int best = best_after_refits(result, current, outcomes, states, first_of_round);
     if (best < 0) return false;
-    if (!predicts_as_well(outcomes, best)) return false;
+    const Judgement agreed = predicts_as_well(outcomes, best);
+    if (!agreed.holds) {
+      say(agreed.why);
+      return false;
+    }
     ModelState& chosen = states[static_cast<std::size_t>(best)];
-    if (!explains(current, chosen, round)) return false;
+    const Judgement explained = explains(current, chosen, round < options_.max_extensions);
+    if (!explained.why.empty()) say(explained.why);
+    if (!explained.holds) return false;
     result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
     result.explains.push_back(findings_cleared(result, current, chosen));
     for (const std::string& id : equivalents(outcomes, best))
@@ -546,141 +514,20 @@ class Diagnoser {
     return best;
   }
 
-  // The two judges must agree: the best candidate by BIC (the fitted lines) must also predict the held-back data
-  // about as well as any other qualifying candidate. When another predicts them far better, each fits the data in
-  // its own way and neither is the cause: an mdof2 support with a Maxwell element (outside the library) drew a
-  // 683 kg wall damped at 20 % (delta BIC -992, validation nrmse 0.018) against a damper between the masses (-640,
-  // 0.0082), and the two together were "explained". In every correct extension of the test cases the winner by
-  // BIC also had the lowest validation error of its round.
-  bool predicts_as_well(const std::vector<CandidateOutcome>& outcomes, int best) const {
-    const CandidateOutcome& winner = outcomes[static_cast<std::size_t>(best)];
-    const CandidateOutcome* better = nullptr;
-    for (const CandidateOutcome& o : outcomes)
-      if (o.qualifies && (!better || o.validation_nrmse < better->validation_nrmse)) better = &o;
-    if (!better || winner.validation_nrmse <= thresholds::kValidationDisagreement * better->validation_nrmse)
-      return true;
-    say(winner.id + " wins by BIC but " + better->id +
-        format(" predicts the held-back data %.1f times better (validation nrmse %.4g against %.4g): the evidence "
-               "disagrees; not extending",
-               winner.validation_nrmse / better->validation_nrmse, winner.validation_nrmse, better->validation_nrmse));
-    return false;
-  }
-
-  // The extension must explain the discrepancy, not merely shave the cost: the residual's excess over the noise
-  // level (mean normalized residual minus 1) at least halves. Otherwise it is a partial, likely wrong, explanation
-  // and is not taken.
-  // Whether the round's best candidate explains what the current model gets wrong: the residual's excess over the
-  // noise at least halves; or, while another round may follow, it clears one of the current model's findings and
-  // lowers the excess, a partial explanation that a later round may complete (two effects at once: a compliant base
-  // alone halved neither a low-pass's phase drift nor the excess, 244 -> 126, and both went unnamed). Either way the
-  // final model is judged whole (keep_only_full_explanations: near the noise, most findings cleared, the strongest
-  // among them).
-  bool explains(const ModelState& current, const ModelState& chosen, int round) const {
-    const double before = current.residual.mean_z, after = chosen.residual.mean_z;
-    if (before > 1.0 && after - 1.0 <= thresholds::kExplainedExcessFraction * (before - 1.0)) return true;
-    if (round < options_.max_extensions && after < before) {
-      for (const Discrepancy& d : current.residual.discrepancies)
-        if (!still_shows(current.channels, chosen, d, current.residual.threshold)) {
-          say(format("best candidate leaves the mean normalized residual at %.3g (from %.3g) and clears: ", after,
-                     before) +
-              d.text + "; a partial explanation, taken for a further round");
-          return true;
-        }
-    }
-    say(format("best candidate leaves the mean normalized residual at %.3g (from %.3g; noise alone gives 1): "
-               "not an explanation", after, before));
-    return false;
-  }
-
-  // The nominal model's findings that `before` still shows and `after` no longer does (still_shows): what the
-  // extension taking `before` to `after` explains, by index into the nominal findings.
-  static std::vector<std::size_t> findings_cleared(const DiagnosisResult& result, const ModelState& before,
-                                                   const ModelState& after) {
-    std::vector<std::size_t> cleared;
-    const ModelState& nominal = result.nominal;
-    for (std::size_t k = 0; k < nominal.residual.discrepancies.size(); ++k) {
-      const Discrepancy& d = nominal.residual.discrepancies[k];
-      if (still_shows(nominal.channels, before, d, nominal.residual.threshold) &&
-          !still_shows(nominal.channels, after, d, nominal.residual.threshold))
-        cleared.push_back(k);
-    }
-    return cleared;
-  }
-
-  // The selected extensions are kept only if together they explain enough; otherwise nothing is selected and the
-  // current model is the nominal one again.
+  // The selected extensions are kept only if together they explain enough (full_explanation); otherwise nothing is
+  // selected, the reasons are said with the nominal findings that still show, and the current model is the nominal
+  // one again.
   void keep_only_full_explanations(DiagnosisResult& result, ModelState& current) const {
     if (result.selected.empty()) return;
-    // Says why, lists the nominal model's findings that still show, and takes the nominal model back.
-    const auto reject = [&](const std::string& why, const std::vector<const Discrepancy*>& still) {
-      say(why);
-      for (const Discrepancy* d : still)
-        say("  still: " + d->text +
-            format(" (band residual %.3g -> %.3g)", band_mean_z(result.nominal.channels, *d), band_mean_z(current.channels, *d)));
-      result.selected.clear();
-      result.explains.clear();
-      current = result.nominal;
-    };
-    // An extension that leaves a clear discrepancy (the residual well above the noise level) explains only part
-    // of what is wrong: better to say so than to extend with a confident, partly wrong model.
-    if (current.residual.mean_z > options_.max_final_residual)
-      return reject(format("the extended model still leaves a mean normalized residual of %.3g (noise alone gives 1): "
-                           "a clear discrepancy remains; not extending", current.residual.mean_z),
-                    {});
-    // Likewise when most of the nominal model's findings remain: the extension shaved the cost of a discrepancy
-    // it does not explain (on the spindle, a Maxwell element in a bearing was "explained" by one soft mount in z,
-    // which left 6 of 9 findings; the correct extensions of the test cases leave at most 1 of 3 to 9).
-    const std::size_t before_findings = result.nominal.residual.discrepancies.size();
-    std::vector<const Discrepancy*> kept;
-    for (const Discrepancy& d : result.nominal.residual.discrepancies)
-      if (still_shows(result.nominal.channels, current, d, result.nominal.residual.threshold)) kept.push_back(&d);
-    // And the strongest of them must not be among those left: an extension that leaves the main discrepancy
-    // standing explains lesser ones only. (An mdof2 support with a Maxwell element, outside the library, was
-    // "explained" by a 430 kg wall on a spring damped at 35 %, which cleared two weak findings and left the first
-    // mode's misfit at 20 times the noise level.)
-    const Discrepancy* strongest = nullptr;
-    for (const Discrepancy& d : result.nominal.residual.discrepancies)
-      if (d.kind != "parameter_at_bound" && (!strongest || d.significance > strongest->significance)) strongest = &d;
-    if (strongest && std::find(kept.begin(), kept.end(), strongest) != kept.end())
-      return reject("the extended model still shows the nominal model's strongest finding: it does not explain it; "
-                    "not extending",
-                    {strongest});
-    // Nor may it move a mode the nominal model had right (thresholds::kNewShiftDistance): a shift where the nominal
-    // model showed nothing is the extension's own error, a sign that it mimics an effect it does not model.
-    for (const Discrepancy& d : current.residual.discrepancies) {
-      if (d.kind != "frequency_shift") continue;
-      const bool nominal_there = std::any_of(
-          result.nominal.residual.discrepancies.begin(), result.nominal.residual.discrepancies.end(),
-          [&](const Discrepancy& n) { return n.f_hz > 0 && std::abs(n.f_hz - d.f_hz) <= thresholds::kNewShiftDistance * d.f_hz; });
-      if (!nominal_there)
-        return reject("the extended model moves a mode the nominal model had right (" + d.text +
-                          "): it mimics what it does not model; not extending",
-                      {});
-    }
-    if (static_cast<double>(kept.size()) > options_.max_remaining_findings * static_cast<double>(before_findings))
-      reject(format("the extended model still shows %.0f of the nominal model's %.0f findings: it does not explain "
-                    "them; not extending",
-                    static_cast<double>(kept.size()), static_cast<double>(before_findings)),
-             kept);
-  }
-
-  static std::string verdict_of(const DiagnosisResult& result) {
-    if (!result.selected.empty()) return "extended";
-    if (!result.nominal.residual.discrepancies.empty()) return "unexplained";
-    return "no_extension_justified";
-  }
-
-  // The qualifying candidate with the lowest BIC. Candidates that tie (within 0.01 in BIC: e.g. a torsion spring
-  // between the same two bodies at different points is one and the same extension) go to the first in
-  // enumeration order, so the choice does not hang on rounding.
-  static int best_qualifying(const std::vector<CandidateOutcome>& outcomes) {
-    int best = -1;
-    for (std::size_t k = 0; k < outcomes.size(); ++k)
-      if (outcomes[k].qualifies &&
-          (best < 0 ||
-           outcomes[k].delta_bic < outcomes[static_cast<std::size_t>(best)].delta_bic - thresholds::kBicTie))
-        best = static_cast<int>(k);
-    return best;
+    const Judgement kept = full_explanation(result, current, options_);
+    if (kept.holds) return;
+    say(kept.why);
+    for (const Discrepancy* d : kept.still)
+      say("  still: " + d->text +
+          format(" (band residual %.3g -> %.3g)", band_mean_z(result.nominal.channels, *d), band_mean_z(current.channels, *d)));
+    result.selected.clear();
+    result.explains.clear();
+    current = result.nominal;
   }
 
   // The variants of one candidate (consecutive, one id) are one candidate: the one with the lowest BIC stands
@@ -1071,6 +918,7 @@ class Diagnoser {
         fo.max_iterations = 3;
         return fit(evaluator, split_.fit, fo);
       }
+      fo.frf_weighting.averages = std::max(fo.frf_weighting.averages, screen_averages_);
       // Converged local fits: cut to 40 or 100 iterations, or stopped after the log-ratio search, the compliant
       // base of the spindle's base-mode data ranked below the six kept (screening delta BIC +359 against -15103).
       fo.starts = is_base ? 1 : 2;
@@ -1080,7 +928,6 @@ class Diagnoser {
         fo.further_starts_at = ext->alternative_starts;
         fo.starts += static_cast<int>(fo.further_starts_at.size()) + static_cast<int>(!ext->nesting.empty());
       }
-      fo.frf_weighting.averages = std::max(fo.frf_weighting.averages, screen_averages_);
       return fit(evaluator, screen_data_, fo);
     };
     const std::vector<Kind> kinds = has_records_ ? std::vector<Kind>{Kind::Spectral, Kind::Records}
