@@ -879,9 +879,11 @@ class Diagnoser {
   // Screening (DiagnoseOptions::full_fits): cheaper fits of every candidate, ranked by BIC against the current
   // model fitted the same way; candidates outside the `full_fits` best are screened out: their outcome is the
   // screening fit, and they cannot qualify. Fills `screen_delta_bic` of every candidate in `fitted`.
-  //  - On FRFs (the measured ones, or the records' H1 estimates: no simulation), two local fits to convergence,
-  //    from the current estimate and from the priors (the centres of the full fit's two searches, without its
-  //    random starts, validation or residual analysis), and one from each of the candidate's alternative starts.
+  //  - On FRFs (the measured ones, or the records' H1 estimates: no simulation): a candidate that contains the
+  //    current model (Extension::nesting) descends from the point where it is the current model, once, to
+  //    convergence (the score test carried through); any other, two local fits to convergence, from the current
+  //    estimate and from the priors (the centres of the full fit's two searches, without its random starts,
+  //    validation or residual analysis), and one from each of the candidate's alternative starts.
   //  - With time records also a few Gauss-Newton steps on the records from the current estimate: an effect the
   //    records show but their H1 estimates' coarse lines blur (the gyroscopic split of the spindle's modes at
   //    300 rev/s, a few Hz under 8 Hz lines: screening delta BIC +17.9 on the H1 estimates, -20681 fitted on the
@@ -919,14 +921,26 @@ class Diagnoser {
         return fit(evaluator, split_.fit, fo);
       }
       fo.frf_weighting.averages = std::max(fo.frf_weighting.averages, screen_averages_);
+      // A candidate that contains the current model (Extension::nesting) is screened near the current estimate
+      // only: from its new parameters' start values and from the point where it is the current model again.
+      // Descending from that point is the score test carried to convergence (its first step is the Gauss-Newton step
+      // whose predicted gain is the Lagrange-multiplier statistic; the cost can only fall below the current
+      // model's); the other start finds what a score test cannot see, an effect of second order at the nesting
+      // point (a mount's stiffness untied from its mirror image: x-direction data see only the pair's sum until
+      // the asymmetry couples the planes). The searches from the priors and the alternative starts are the full
+      // fit's.
+      if (!is_base && !ext->nesting.empty()) {
+        fo.starts = 2;
+        fo.optimum_start_at = ext->nesting;
+        return fit(evaluator, screen_data_, fo);
+      }
       // Converged local fits: cut to 40 or 100 iterations, or stopped after the log-ratio search, the compliant
       // base of the spindle's base-mode data ranked below the six kept (screening delta BIC +359 against -15103).
       fo.starts = is_base ? 1 : 2;
       if (!is_base) {
         for (const ParameterInfo& p : info.parameters) fo.also_start_at[p.name] = p.value;
-        fo.optimum_start_at = ext->nesting;
         fo.further_starts_at = ext->alternative_starts;
-        fo.starts += static_cast<int>(fo.further_starts_at.size()) + static_cast<int>(!ext->nesting.empty());
+        fo.starts += static_cast<int>(fo.further_starts_at.size());
       }
       return fit(evaluator, screen_data_, fo);
     };
