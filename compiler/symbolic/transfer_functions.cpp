@@ -12,6 +12,7 @@
 #include "symbolic/geometry.hpp"
 #include "symbolic/modular.hpp"
 #include "symbolic/pencil_determinants.hpp"
+#include "numerics/constants.hpp"
 
 namespace mbgen::symbolic {
 
@@ -69,7 +70,7 @@ std::string describe_roots(const GiNaC::ex& factor, const GiNaC::symbol& s) {
     if (r.imag() > 1e-9 * std::max(1.0, std::abs(r))) {
       const double wn = std::abs(r);
       const double zeta = -r.real() / wn;
-      text += format_number(wn / (2 * M_PI)) + " Hz (zeta " + format_number(zeta == 0 ? 0.0 : zeta) + ")";
+      text += format_number(wn / numerics::kTwoPi) + " Hz (zeta " + format_number(zeta == 0 ? 0.0 : zeta) + ")";
     } else {
       text += "s = " + format_number(r.real());
     }

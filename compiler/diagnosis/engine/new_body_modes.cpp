@@ -4,11 +4,12 @@
 #include <complex>
 
 #include <mbgen/state_modes.hpp>
+#include "numerics/constants.hpp"
 
 namespace mbgen::diagnosis {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 
 bool of_bodies(const std::string& coordinate, const std::vector<std::string>& bodies) {
   return std::any_of(bodies.begin(), bodies.end(), [&](const std::string& b) {

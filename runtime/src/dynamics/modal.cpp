@@ -1,8 +1,9 @@
 #include "mbgen/modal.hpp"
 
-#include "balance.hpp"
+#include "numerics/balance.hpp"
 #include "matrix_checks.hpp"
 #include "mbgen/dynamics_error.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -13,13 +14,13 @@
 namespace mbgen {
 namespace {
 
-constexpr double two_pi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 
 Mode make_mode(std::complex<double> lambda, const Eigen::VectorXcd& state_vector, Eigen::Index n) {
   Mode mode;
   mode.eigenvalue = lambda;
   const double magnitude = std::abs(lambda);
-  mode.f_hz = magnitude / two_pi;
+  mode.f_hz = magnitude / kTwoPi;
   mode.zeta = magnitude > 0 ? -lambda.real() / magnitude : 0.0;
   mode.shape = state_vector.head(n);
   // Scale so that the largest entry is exactly 1: removes the solver's arbitrary complex factor.
@@ -51,7 +52,7 @@ std::vector<Mode> modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd
                         "stiffnesses or dampings too far apart)");
 
   // Balance first (Eigen's EigenSolver does not): stiff systems have -M^-1 K ~ 1e9 next to the identity block.
-  const Eigen::VectorXd scale = detail::balancing_scale(A);
+  const Eigen::VectorXd scale = numerics::balancing_scale(A);
   const Eigen::MatrixXd A_balanced = scale.cwiseInverse().asDiagonal() * A * scale.asDiagonal();
   Eigen::EigenSolver<Eigen::MatrixXd> solver(A_balanced, /*computeEigenvectors=*/true);
   if (solver.info() != Eigen::Success) throw DynamicsError("modal_analysis: the eigenvalue iteration did not converge");
@@ -83,7 +84,7 @@ Eigen::VectorXd undamped_natural_frequencies_hz(const Eigen::MatrixXd& M, const 
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(Ks, Ms, Eigen::EigenvaluesOnly | Eigen::Ax_lBx);
   if (solver.info() != Eigen::Success) throw DynamicsError(std::string(where) + ": eigen solver failed");
   Eigen::VectorXd f = solver.eigenvalues();  // ascending
-  for (Eigen::Index i = 0; i < f.size(); ++i) f[i] = std::sqrt(std::max(f[i], 0.0)) / two_pi;
+  for (Eigen::Index i = 0; i < f.size(); ++i) f[i] = std::sqrt(std::max(f[i], 0.0)) / kTwoPi;
   return f;
 }
 

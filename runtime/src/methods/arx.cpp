@@ -1,6 +1,7 @@
 #include "arx.hpp"
 
 #include "polynomial.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -248,7 +249,7 @@ void prune_and_fit_residues(const Eigen::VectorXd& A, const std::vector<Eigen::V
     ArxPole pole;
     const Complex lambda = std::log(z) / dt;
     pole.lambda = lambda;
-    pole.f_hz = std::abs(lambda) / (2 * M_PI);
+    pole.f_hz = std::abs(lambda) / numerics::kTwoPi;
     pole.zeta = std::abs(lambda) > 0 ? -lambda.real() / std::abs(lambda) : 1.0;
     Eigen::VectorXd h(O);
     pole.nearest_zero = std::numeric_limits<double>::infinity();

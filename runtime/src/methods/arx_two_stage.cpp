@@ -5,6 +5,7 @@
 #include "../estimation/levenberg_marquardt.hpp"
 
 #include "mbgen/identifiability.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -362,10 +363,10 @@ FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data
       nlohmann::json mode;
       const double w2 = ge.eigenvalues()[i];
       const Eigen::VectorXd phi = ge.eigenvectors().col(i);
-      mode["f_undamped_hz"] = w2 > 0 ? std::sqrt(w2) / (2 * std::acos(-1.0)) : 0.0;
+      mode["f_undamped_hz"] = w2 > 0 ? std::sqrt(w2) / numerics::kTwoPi : 0.0;
       mode["zeta_modal"] = w2 > 0 ? phi.dot(C_id * phi) / (2 * std::sqrt(w2)) : std::numeric_limits<double>::quiet_NaN();
       if (static_cast<std::size_t>(i) < poles.size()) {
-        mode["f_hz"] = std::abs(poles[static_cast<std::size_t>(i)]) / (2 * std::acos(-1.0));
+        mode["f_hz"] = std::abs(poles[static_cast<std::size_t>(i)]) / numerics::kTwoPi;
         mode["zeta"] = -poles[static_cast<std::size_t>(i)].real() / std::abs(poles[static_cast<std::size_t>(i)]);
       }
       modes.push_back(mode);

@@ -1,6 +1,7 @@
 #include "validation.hpp"
 
 #include "polynomial.hpp"
+#include "numerics/constants.hpp"
 
 #include <cmath>
 #include <limits>
@@ -20,7 +21,7 @@ std::vector<Complex> upper(const std::vector<Complex>& roots) {
   return out;
 }
 
-double f_hz(Complex r) { return std::abs(r) / (2 * M_PI); }
+double f_hz(Complex r) { return std::abs(r) / numerics::kTwoPi; }
 double zeta(Complex r) { return std::abs(r) > 0 ? -r.real() / std::abs(r) : 1.0; }
 
 // The nearest of `candidates` to r, relative to |r|; index -1 when there are none.

@@ -1,6 +1,7 @@
 #include "mbgen/state_modes.hpp"
 
 #include "mbgen/dynamics_error.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -11,9 +12,7 @@
 
 namespace mbgen {
 
-namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-}  // namespace
+using numerics::kTwoPi;
 
 double StateModes::f_hz(Eigen::Index e) const { return std::abs(lambda[e]) / kTwoPi; }
 
