@@ -1,6 +1,6 @@
 #include "symbolic/transfer_functions.hpp"
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -13,6 +13,7 @@
 #include "symbolic/modular.hpp"
 #include "symbolic/pencil_determinants.hpp"
 #include "numerics/constants.hpp"
+#include "numerics/polynomial_roots.hpp"
 
 namespace mbgen::symbolic {
 
@@ -52,15 +53,9 @@ std::string format_number(double x) {
 // Readable list of the roots of a polynomial in s with numeric coefficients: modes as f/zeta, real roots as s.
 std::string describe_roots(const GiNaC::ex& factor, const GiNaC::symbol& s) {
   const int degree = factor.degree(s);
-  std::vector<double> c;
-  for (int k = 0; k <= degree; ++k) c.push_back(GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(factor.coeff(s, k))).to_double());
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(degree, degree);
-  for (int k = 0; k < degree; ++k) {
-    companion(0, k) = -c[degree - 1 - k] / c[degree];
-    if (k + 1 < degree) companion(k + 1, k) = 1;
-  }
-  const Eigen::VectorXcd roots = companion.eigenvalues();
-  std::vector<std::complex<double>> sorted(roots.data(), roots.data() + roots.size());
+  Eigen::VectorXd c(degree + 1);
+  for (int k = 0; k <= degree; ++k) c[k] = GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(factor.coeff(s, k))).to_double();
+  std::vector<std::complex<double>> sorted = numerics::polynomial_roots(c);
   std::sort(sorted.begin(), sorted.end(),
             [](auto a, auto b) { return std::abs(a) != std::abs(b) ? std::abs(a) < std::abs(b) : a.imag() < b.imag(); });
   std::string text;

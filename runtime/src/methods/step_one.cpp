@@ -5,6 +5,7 @@
 #include "model_coefficients.hpp"
 #include "rational_fit.hpp"
 #include "mbgen/frf_noise.hpp"
+#include "numerics/polynomial_roots.hpp"
 #include "polynomial.hpp"
 #include "numerics/constants.hpp"
 
@@ -74,7 +75,7 @@ void truncate_if_short(StepOneTf& s, const std::vector<int>& model_degree) {
     s.pattern.push_back(p);
   }
   s.truncated_to.clear();
-  for (const auto& r : poly_roots(s.tf.denominator))
+  for (const auto& r : numerics::polynomial_roots(s.tf.denominator))
     if (r.imag() > 0) s.truncated_to.push_back(r);
 }
 
@@ -178,7 +179,7 @@ StepOne run_step_one(const Model& model, const std::vector<DataSet>& data, const
           Eigen::VectorXd dD = Eigen::VectorXd::Zero(order);
           for (int k = 1; k <= order; ++k) dD[k - 1] = k * s.tf.denominator[k];
           int shown = 0;
-          for (const std::complex<double>& l : poly_roots(s.tf.denominator)) {
+          for (const std::complex<double>& l : numerics::polynomial_roots(s.tf.denominator)) {
             if (l.imag() <= 0) continue;
             const double fz = std::abs(l) / numerics::kTwoPi, zeta = -l.real() / std::abs(l);
             double peak = 0;
