@@ -1,6 +1,7 @@
 // The eigendecomposition of a model's state matrix A = [[0, I], [-M^-1 K, -M^-1 C]], with its modes listed as
 // `mbgen inspect` (modal_analysis) lists them: one per conjugate pair (Im lambda > 0) and one per real eigenvalue,
-// sorted by frequency, then damping. Right and left eigenvectors serve residues (modal_pairing) and eigenvalue
+// sorted by frequency, then damping, by the same eigensolver as modal_analysis (with the velocity block scaled
+// rather than the matrix balanced). Right and left eigenvectors serve residues (modal_pairing) and eigenvalue
 // derivatives (sensitivity).
 #pragma once
 

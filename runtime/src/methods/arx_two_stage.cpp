@@ -6,6 +6,7 @@
 
 #include "mbgen/identifiability.hpp"
 #include "numerics/constants.hpp"
+#include "numerics/state_eigen.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -351,10 +352,10 @@ FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data
   Fm.block(n, 0, n, n).setIdentity();
   nlohmann::json modes = nlohmann::json::array();
   {
-    const Eigen::EigenSolver<Eigen::MatrixXd> es(Fm, false);
+    const auto eig = numerics::state_eigen(Fm, numerics::EigenVectors::none);
     std::vector<std::complex<double>> poles;
-    for (Eigen::Index i = 0; i < 2 * n; ++i)
-      if (es.eigenvalues()[i].imag() > 0) poles.push_back(es.eigenvalues()[i]);
+    for (Eigen::Index i = 0; eig && i < 2 * n; ++i)
+      if (eig->lambda[i].imag() > 0) poles.push_back(eig->lambda[i]);
     std::sort(poles.begin(), poles.end(), [](auto a, auto b) { return std::abs(a) < std::abs(b); });
     // The paper's modal damping ratios (its Eqs. 21-22): the undamped modes of M and K, mass-normalised,
     // Gamma = Phi^T C Phi, zeta_i = Gamma_ii / (2 omega_i).
