@@ -62,7 +62,7 @@ NewBodyMode best_seen_new_body_mode(const Model& model, const Eigen::VectorXd& p
       if (slash == std::string::npos) continue;
       const int o = info.output_index(c.channel.substr(0, slash)), i = info.input_index(c.channel.substr(slash + 1));
       if (o < 0 || i < 0 || !(t.response(o, i) > 0)) continue;
-      const double share = t.term(o, i) / t.response(o, i);
+      const double share = t.share(o, i);
       if (best.channel.empty() || share > best.share) {
         best.f_hz = sm.f_hz(e), best.zeta = sm.zeta(e);
         best.share = share;

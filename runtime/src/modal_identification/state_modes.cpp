@@ -42,6 +42,7 @@ std::vector<ModeTerm> mode_terms(const StateModes& sm, const std::vector<Eigen::
     const std::complex<double> s(0, t.w);
     t.term.resize(outputs, inputs);
     t.response.resize(outputs, inputs);
+    t.share.resize(outputs, inputs);
     for (Eigen::Index o = 0; o < outputs; ++o)
       for (Eigen::Index i = 0; i < inputs; ++i) {
         std::complex<double> h = sm.ss.D(o, i);
@@ -49,6 +50,7 @@ std::vector<ModeTerm> mode_terms(const StateModes& sm, const std::vector<Eigen::
         const std::complex<double> residue = CV(o, e) * WB(e, i);
         t.term(o, i) = std::abs(residue / (s - lambda) + (pair ? std::conj(residue) / (s - std::conj(lambda)) : 0.0));
         t.response(o, i) = std::abs(h);
+        t.share(o, i) = t.response(o, i) > 0 ? t.term(o, i) / t.response(o, i) : 0.0;
       }
     out.push_back(std::move(t));
   }
