@@ -1,4 +1,5 @@
 #include "diagnosis/model_values.hpp"
+#include "numerics/constants.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -20,7 +21,7 @@ double ModelValues::of(const ir::Expr& e) const {
   using K = ir::Expr::Kind;
   switch (e.kind) {
     case K::Number: return ir::literal_value(e.text);
-    case K::Symbol: return e.text == "pi" ? std::acos(-1.0) : of_parameter(e.text);
+    case K::Symbol: return e.text == "pi" ? numerics::kPi : of_parameter(e.text);
     case K::Add: {
       double sum = 0;
       for (const ir::Expr& term : e.args) sum += of(term);

@@ -13,6 +13,7 @@
 
 #include "mbgen/frf_data.hpp"
 #include "mbgen/model.hpp"
+#include "numerics/constants.hpp"
 
 #include <cmath>
 #include <complex>
@@ -75,7 +76,7 @@ inline std::vector<std::complex<double>> accelerance(const std::vector<double>& 
                                                      double f_hz) {
   using cd = std::complex<double>;
   const std::size_t n = m.size();
-  const double w = 2 * 3.14159265358979323846 * f_hz;
+  const double w = numerics::kTwoPi * f_hz;
   auto z = [&](std::size_t j) { return cd(k[j], w * c[j]); };  // spring-damper j's dynamic stiffness
   std::vector<cd> diag(n), off(n);                              // off[i]: entry (i, i+1) = (i+1, i)
   for (std::size_t i = 0; i < n; ++i) {

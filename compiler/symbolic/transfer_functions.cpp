@@ -1,6 +1,6 @@
 #include "symbolic/transfer_functions.hpp"
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -12,6 +12,8 @@
 #include "symbolic/geometry.hpp"
 #include "symbolic/modular.hpp"
 #include "symbolic/pencil_determinants.hpp"
+#include "numerics/constants.hpp"
+#include "numerics/polynomial_roots.hpp"
 
 namespace mbgen::symbolic {
 
@@ -51,15 +53,9 @@ std::string format_number(double x) {
 // Readable list of the roots of a polynomial in s with numeric coefficients: modes as f/zeta, real roots as s.
 std::string describe_roots(const GiNaC::ex& factor, const GiNaC::symbol& s) {
   const int degree = factor.degree(s);
-  std::vector<double> c;
-  for (int k = 0; k <= degree; ++k) c.push_back(GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(factor.coeff(s, k))).to_double());
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(degree, degree);
-  for (int k = 0; k < degree; ++k) {
-    companion(0, k) = -c[degree - 1 - k] / c[degree];
-    if (k + 1 < degree) companion(k + 1, k) = 1;
-  }
-  const Eigen::VectorXcd roots = companion.eigenvalues();
-  std::vector<std::complex<double>> sorted(roots.data(), roots.data() + roots.size());
+  Eigen::VectorXd c(degree + 1);
+  for (int k = 0; k <= degree; ++k) c[k] = GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(factor.coeff(s, k))).to_double();
+  std::vector<std::complex<double>> sorted = numerics::polynomial_roots(c);
   std::sort(sorted.begin(), sorted.end(),
             [](auto a, auto b) { return std::abs(a) != std::abs(b) ? std::abs(a) < std::abs(b) : a.imag() < b.imag(); });
   std::string text;
@@ -69,7 +65,7 @@ std::string describe_roots(const GiNaC::ex& factor, const GiNaC::symbol& s) {
     if (r.imag() > 1e-9 * std::max(1.0, std::abs(r))) {
       const double wn = std::abs(r);
       const double zeta = -r.real() / wn;
-      text += format_number(wn / (2 * M_PI)) + " Hz (zeta " + format_number(zeta == 0 ? 0.0 : zeta) + ")";
+      text += format_number(wn / numerics::kTwoPi) + " Hz (zeta " + format_number(zeta == 0 ? 0.0 : zeta) + ")";
     } else {
       text += "s = " + format_number(r.real());
     }

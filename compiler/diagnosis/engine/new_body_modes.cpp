@@ -4,11 +4,12 @@
 #include <complex>
 
 #include <mbgen/state_modes.hpp>
+#include "numerics/constants.hpp"
 
 namespace mbgen::diagnosis {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 
 bool of_bodies(const std::string& coordinate, const std::vector<std::string>& bodies) {
   return std::any_of(bodies.begin(), bodies.end(), [&](const std::string& b) {
@@ -61,7 +62,7 @@ NewBodyMode best_seen_new_body_mode(const Model& model, const Eigen::VectorXd& p
       if (slash == std::string::npos) continue;
       const int o = info.output_index(c.channel.substr(0, slash)), i = info.input_index(c.channel.substr(slash + 1));
       if (o < 0 || i < 0 || !(t.response(o, i) > 0)) continue;
-      const double share = t.term(o, i) / t.response(o, i);
+      const double share = t.share(o, i);
       if (best.channel.empty() || share > best.share) {
         best.f_hz = sm.f_hz(e), best.zeta = sm.zeta(e);
         best.share = share;

@@ -11,6 +11,7 @@
 #include "diagnosis/model_values.hpp"
 #include "diagnosis/names.hpp"
 #include "diagnosis/text_patch.hpp"
+#include "numerics/constants.hpp"
 
 namespace mbgen::diagnosis {
 
@@ -101,7 +102,7 @@ std::string add_body_on_axial_spring(Draft& d, const std::string& name, const st
 
 // Start value of a damping for stiffness k on mass m: 2 % of critical damping, c = 2*0.02*sqrt(k*m).
 double light_damping(double k, double m);
-constexpr double kTwoPi = 6.283185307179586;
+using numerics::kTwoPi;
 
 // ---- the operators (one file each; docs/extensions.md) -------------------------------------------------------
 std::vector<Extension> measurement_chain(const OperatorInput& in);

@@ -26,6 +26,7 @@
 #include "diagnosis/expr_build.hpp"
 #include "diagnosis/operators/operator_support.hpp"
 #include "frontend/model_writer.hpp"
+#include "numerics/constants.hpp"
 
 namespace mbgen::diagnosis {
 
@@ -142,7 +143,7 @@ Extension delay(const OperatorInput& in, const ir::Output& out, double delay_s) 
   // residual's delay, up to half a cycle at the band's top: a fit that bends the structure hides a delay's phase
   // trend, and with the reach of four times 0.2 rad, 0.8 rad, mdof2's delays of 0.93 ms (2.3 rad at 400 Hz) were
   // out of bounds and ended `unexplained`.
-  const double reach = delay_s > 0 ? 4 * tau : M_PI / w_hi;
+  const double reach = delay_s > 0 ? 4 * tau : numerics::kPi / w_hi;
   const int sections = std::clamp(static_cast<int>(std::ceil(reach * w_hi / 1.7)), 1, 16);
   const double tau_max = sections * 1.7 / w_hi;
   ir::Filter f;

@@ -1,6 +1,7 @@
 // The eigendecomposition of a model's state matrix A = [[0, I], [-M^-1 K, -M^-1 C]], with its modes listed as
 // `mbgen inspect` (modal_analysis) lists them: one per conjugate pair (Im lambda > 0) and one per real eigenvalue,
-// sorted by frequency, then damping. Right and left eigenvectors serve residues (modal_pairing) and eigenvalue
+// sorted by frequency, then damping, by the same eigensolver as modal_analysis (with the velocity block scaled
+// rather than the matrix balanced). Right and left eigenvectors serve residues (modal_pairing) and eigenvalue
 // derivatives (sensitivity).
 #pragma once
 
@@ -30,11 +31,13 @@ StateModes state_modes(const ModelMatrices& m);
 // Eigenvalue e's term in every output/input channel's response at its frequency w (|Im lambda_e|; |lambda_e| for
 // a real eigenvalue), from the exact partial fractions H(s) = D + sum_k C v_k w_k^T B / (s - lambda_k):
 // |R/(iw - lambda_e) + conj(R)/(iw - conj(lambda_e))| with R = C v_e w_e^T B (the conjugate term only when
-// lambda_e is complex), and the whole |H(iw)| beside it. Both outputs x inputs. One per index of `eigenvalues`
-// (indices into sm.lambda), in that order.
+// lambda_e is complex), the whole |H(iw)| beside it, and the mode's visibility in each channel, share = term /
+// response (0 where the response is 0). All outputs x inputs. One per index of `eigenvalues` (indices into
+// sm.lambda), in that order. The one computation of how well a mode shows at the sensors: the sensitivity's
+// mode visibility and the diagnosis's new-body modes both read it.
 struct ModeTerm {
   double w = 0;
-  Eigen::MatrixXd term, response;
+  Eigen::MatrixXd term, response, share;
 };
 std::vector<ModeTerm> mode_terms(const StateModes& sm, const std::vector<Eigen::Index>& eigenvalues);
 

@@ -7,6 +7,7 @@
 
 #include "mbgen/uff55.hpp"
 #include "uff_fields.hpp"
+#include "numerics/constants.hpp"
 
 namespace mbgen {
 
@@ -14,7 +15,7 @@ using namespace uff_detail;
 
 double Uff55Record::f_hz() const {
   if (analysis_type == 2) return frequency_hz;
-  return std::abs(eigenvalue) / (2 * M_PI);
+  return std::abs(eigenvalue) / numerics::kTwoPi;
 }
 
 double Uff55Record::zeta() const {

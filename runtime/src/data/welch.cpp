@@ -9,6 +9,7 @@
 
 #include "mbgen/data_error.hpp"
 #include "mbgen/fftw_mutex.hpp"
+#include "numerics/constants.hpp"
 
 namespace mbgen {
 
@@ -48,7 +49,7 @@ class RealFft {
 Eigen::VectorXd window_values(WelchWindow window, Eigen::Index n) {
   Eigen::VectorXd w(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double c = std::cos(2 * M_PI * static_cast<double>(i) / static_cast<double>(n));
+    const double c = std::cos(numerics::kTwoPi * static_cast<double>(i) / static_cast<double>(n));
     switch (window) {
       case WelchWindow::Hann: w[i] = 0.5 - 0.5 * c; break;
       case WelchWindow::Hamming: w[i] = 0.54 - 0.46 * c; break;
@@ -66,7 +67,7 @@ std::mutex& fftw_planner_mutex() {
 }
 
 std::complex<double> zero_order_hold_response(double f_hz, double dt) {
-  const double x = M_PI * f_hz * dt;
+  const double x = numerics::kPi * f_hz * dt;
   const double sinc = x == 0 ? 1.0 : std::sin(x) / x;
   return std::polar(sinc, -x);
 }

@@ -1,4 +1,5 @@
 #include "mbgen/chain_scores.hpp"
+#include "numerics/constants.hpp"
 
 #include <cmath>
 #include <limits>
@@ -89,7 +90,7 @@ double form_gain(const std::vector<ChannelResidual>& channels, const std::string
     if (output_of(c.channel) != output) continue;
     for (Eigen::Index k = 0; k < c.measured.size(); ++k) {
       const double w = weight(c.sigma[k]);
-      const std::complex<double> iw(0, 2 * M_PI * c.f_hz[static_cast<std::size_t>(k)]);
+      const std::complex<double> iw(0, numerics::kTwoPi * c.f_hz[static_cast<std::size_t>(k)]);
       const std::complex<double> m = c.model[k], mf = m * std::pow(iw, derivatives);
       u_as_is += w * std::real(std::conj(m) * c.measured[k]);
       i_as_is += w * std::norm(m);

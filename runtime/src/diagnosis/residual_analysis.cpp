@@ -8,6 +8,7 @@
 
 #include "../data/string_format.hpp"
 #include "../data/window_median.hpp"
+#include "numerics/constants.hpp"
 
 namespace mbgen {
 
@@ -188,7 +189,7 @@ Discrepancy classify(const ChannelResidual& c, const Eigen::VectorXcd& smooth, c
       // shows so (a damping mismatch changes the height).
       d.kind = "frequency_shift";
       d.model_f_hz = f[static_cast<std::size_t>(model_peak)];
-      const double phase_deg = std::abs(std::arg(c.measured[at] / c.model[at])) * 180.0 / M_PI;
+      const double phase_deg = std::abs(std::arg(c.measured[at] / c.model[at])) * 180.0 / numerics::kPi;
       d.text = format("the resonance near %.1f Hz on %s has the model's height (%+.1f dB) but is %.0f degrees out of "
                       "phase with it: its frequency differs by less than a line",
                       d.f_hz, where.c_str(), d.size_db, phase_deg);
@@ -273,7 +274,7 @@ bool phase_trend(const ChannelResidual& c, Discrepancy& d) {
   if (den <= 0) return false;
   const double slope = (sw * sfp - sf * sp) / den;          // rad per Hz
   const double slope_std = std::sqrt(sw / den / 2.0);       // each phase has variance ~ sigma^2 / (2 |H|^2)
-  const double delay = -slope / (2 * M_PI);
+  const double delay = -slope / numerics::kTwoPi;
   const double phase_at_top = std::abs(slope * c.f_hz.back());
   if (std::abs(slope) < 8.0 * slope_std || phase_at_top < 0.01) return false;  // significant and over half a degree
   d.kind = "phase_trend";
@@ -285,7 +286,7 @@ bool phase_trend(const ChannelResidual& c, Discrepancy& d) {
   d.significance = std::abs(slope) / slope_std;
   d.delay_s = delay;
   d.text = format("the phase of %s (%s) drifts from the model's by %.1f degrees at %.0f Hz, as a delay of %.3g s would",
-                       c.channel.c_str(), c.data_set.c_str(), phase_at_top * 180.0 / M_PI, c.f_hz.back(), delay);
+                       c.channel.c_str(), c.data_set.c_str(), phase_at_top * 180.0 / numerics::kPi, c.f_hz.back(), delay);
   return true;
 }
 
@@ -385,7 +386,7 @@ ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, 
     if (phase_trend(original, trend)) {
       Eigen::VectorXcd undelayed = original.measured;
       for (Eigen::Index i = 0; i < n; ++i)
-        undelayed[i] *= std::exp(std::complex<double>(0, 2 * M_PI * trend.delay_s * original.f_hz[static_cast<std::size_t>(i)]));
+        undelayed[i] *= std::exp(std::complex<double>(0, numerics::kTwoPi * trend.delay_s * original.f_hz[static_cast<std::size_t>(i)]));
       const Eigen::VectorXd z_undelayed = normalized(undelayed);
       if (z_undelayed.mean() <= 0.5 * z.mean()) {
         summary.discrepancies.push_back(trend);

@@ -1,6 +1,6 @@
 #include "mbgen/state_space.hpp"
 
-#include "balance.hpp"
+#include "numerics/balance.hpp"
 #include "matrix_checks.hpp"
 #include "mbgen/dynamics_error.hpp"
 
@@ -67,7 +67,7 @@ DiscreteStateSpace discretize(const StateSpace& ss, double dt, InputHold hold) {
   check_dt(dt, where);
   if (!ss.A.allFinite() || !ss.B.allFinite()) throw DynamicsError("discretize: A or B has non-finite entries");
   const Eigen::Index n = ss.A.rows(), m = ss.B.cols();
-  const Eigen::VectorXd scale = detail::balancing_scale(ss.A);
+  const Eigen::VectorXd scale = numerics::balancing_scale(ss.A);
   const Eigen::MatrixXd E = augmented(ss.A, ss.B, scale, dt, hold, true).exp();
   DiscreteStateSpace out;
   unpack(E, n, m, scale, hold, out);
@@ -84,7 +84,7 @@ std::vector<DiscreteStateSpace> discretize_derivatives(const StateSpace& ss, con
   check_state_space(ss, where);
   check_dt(dt, where);
   const Eigen::Index n = ss.A.rows(), m = ss.B.cols();
-  const Eigen::VectorXd scale = detail::balancing_scale(ss.A);
+  const Eigen::VectorXd scale = numerics::balancing_scale(ss.A);
   const Eigen::MatrixXd F = augmented(ss.A, ss.B, scale, dt, hold, true);
   const Eigen::Index size = F.rows();
 

@@ -4,6 +4,7 @@
 #include "band_lu.hpp"
 #include "small_lu.hpp"
 #include "mbgen/dynamics_error.hpp"
+#include "numerics/constants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,7 @@ namespace mbgen {
 namespace {
 
 using cd = std::complex<double>;
-constexpr double two_pi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 
 // Buffers for one FRF evaluation, reused at every frequency. P is factored dense, or in band storage when M, C
 // and K together are banded narrowly enough to pay (band_lu.hpp: a chain of bodies; models of 32 coordinates or
@@ -43,7 +44,7 @@ struct Workspace {
   // P(jw) = K - w^2 M + jw C, factorised (dense: in `target` when given, else in `lu`); throws if singular to
   // working precision.
   void factor(const ModelMatrices& m, double f_hz, const char* where, detail::SmallLu* target = nullptr) {
-    const double w = two_pi * f_hz, w2 = w * w;
+    const double w = kTwoPi * f_hz, w2 = w * w;
     double ratio = 0;
     detail::SmallLu& lu = target ? *target : this->lu;
     if (banded) {
@@ -171,7 +172,7 @@ FrfWork frf(const ModelMatrices& m, const std::vector<double>& freqs_hz, const F
       target->resize(ws.n);
     }
     ws.factor(m, freqs_hz[k], where, target);
-    ws.output_matrix(m, two_pi * freqs_hz[k]);
+    ws.output_matrix(m, kTwoPi * freqs_hz[k]);
     ws.response(target);
     if (cache) cache->X[k] = ws.X;
     work.lu_factorizations += 1;
@@ -215,7 +216,7 @@ FrfWork frf_jacobian(const ModelMatrices& m, const ModelDerivatives& d, int para
   const GroupedEntries dK(d.K), dC(d.C), dM(d.M);
   FrfWork work;
   for (std::size_t k = 0; k < freqs_hz.size(); ++k) {
-    const double w = two_pi * freqs_hz[k];
+    const double w = kTwoPi * freqs_hz[k];
     const cd s(0, w), s2 = s * s;
     ws.output_matrix(m, w);
     // Adjoint solve P^T Y^T = Cout^T; Yt = Y^T (n x outputs) is used directly: Y(o, r) = Yt(r, o).

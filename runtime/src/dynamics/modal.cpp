@@ -1,8 +1,9 @@
 #include "mbgen/modal.hpp"
 
-#include "balance.hpp"
 #include "matrix_checks.hpp"
 #include "mbgen/dynamics_error.hpp"
+#include "numerics/constants.hpp"
+#include "numerics/state_eigen.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -13,14 +14,13 @@
 namespace mbgen {
 namespace {
 
-constexpr double two_pi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 
 Mode make_mode(std::complex<double> lambda, const Eigen::VectorXcd& state_vector, Eigen::Index n) {
   Mode mode;
   mode.eigenvalue = lambda;
-  const double magnitude = std::abs(lambda);
-  mode.f_hz = magnitude / two_pi;
-  mode.zeta = magnitude > 0 ? -lambda.real() / magnitude : 0.0;
+  mode.f_hz = numerics::pole_frequency_hz(lambda);
+  mode.zeta = numerics::pole_damping_ratio(lambda);
   mode.shape = state_vector.head(n);
   // Scale so that the largest entry is exactly 1: removes the solver's arbitrary complex factor.
   Eigen::Index largest = 0;
@@ -50,25 +50,11 @@ std::vector<Mode> modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd
     throw DynamicsError("modal_analysis: M^-1 K or M^-1 C overflows a double at these parameter values (masses and "
                         "stiffnesses or dampings too far apart)");
 
-  // Balance first (Eigen's EigenSolver does not): stiff systems have -M^-1 K ~ 1e9 next to the identity block.
-  const Eigen::VectorXd scale = detail::balancing_scale(A);
-  const Eigen::MatrixXd A_balanced = scale.cwiseInverse().asDiagonal() * A * scale.asDiagonal();
-  Eigen::EigenSolver<Eigen::MatrixXd> solver(A_balanced, /*computeEigenvectors=*/true);
-  if (solver.info() != Eigen::Success) throw DynamicsError("modal_analysis: the eigenvalue iteration did not converge");
-  const Eigen::VectorXcd lambda = solver.eigenvalues();
-  const Eigen::MatrixXcd vectors = scale.cast<std::complex<double>>().asDiagonal() * solver.eigenvectors();
-
-  // Eigen's real Schur form returns real eigenvalues with an imaginary part of exactly zero and complex ones
-  // in conjugate pairs, so the sign of the imaginary part selects one member of each pair without tolerance.
+  const auto eig = numerics::state_eigen(A, numerics::EigenVectors::right);
+  if (!eig) throw DynamicsError("modal_analysis: the eigenvalue iteration did not converge");
   std::vector<Mode> modes;
-  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
-    if (lambda[i].imag() < 0) continue;
-    modes.push_back(make_mode(lambda[i], vectors.col(i), n));
-  }
-  std::stable_sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) {
-    if (a.f_hz != b.f_hz) return a.f_hz < b.f_hz;
-    return a.zeta < b.zeta;
-  });
+  for (const Eigen::Index e : numerics::listed_modes(eig->lambda))
+    modes.push_back(make_mode(eig->lambda[e], eig->right.col(e), n));
   return modes;
 }
 
@@ -83,7 +69,7 @@ Eigen::VectorXd undamped_natural_frequencies_hz(const Eigen::MatrixXd& M, const 
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(Ks, Ms, Eigen::EigenvaluesOnly | Eigen::Ax_lBx);
   if (solver.info() != Eigen::Success) throw DynamicsError(std::string(where) + ": eigen solver failed");
   Eigen::VectorXd f = solver.eigenvalues();  // ascending
-  for (Eigen::Index i = 0; i < f.size(); ++i) f[i] = std::sqrt(std::max(f[i], 0.0)) / two_pi;
+  for (Eigen::Index i = 0; i < f.size(); ++i) f[i] = std::sqrt(std::max(f[i], 0.0)) / kTwoPi;
   return f;
 }
 

@@ -8,6 +8,7 @@
 #include "mbgen/gnuplot.hpp"
 #include "mbgen/report_document.hpp"
 #include "mbgen/report_files.hpp"
+#include "numerics/constants.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -27,7 +28,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
+double phase_deg(std::complex<double> h) { return numerics::degrees(std::arg(h)); }
 
 // `band`: the .dat has the estimate's +-2 std band of |H| in columns 10 and 11 and of the phase in 12 and 13, drawn
 // light beneath the points and curves.

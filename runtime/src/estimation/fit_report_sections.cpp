@@ -3,6 +3,7 @@
 
 #include "mbgen/gnuplot.hpp"
 #include "mbgen/report_files.hpp"
+#include "numerics/constants.hpp"
 
 #include <cmath>
 #include <complex>
@@ -13,7 +14,7 @@ namespace mbgen::estimation {
 
 namespace {
 
-double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
+double phase_deg(std::complex<double> h) { return numerics::degrees(std::arg(h)); }
 
 // One block of a correlation plot's data: lag, value, band (gnuplot `index` selects it).
 std::string correlation_block(const CorrelationTest& t) {

@@ -2,6 +2,7 @@
 #include "mbgen/frf_confidence.hpp"
 
 #include "mbgen/frf.hpp"
+#include "numerics/constants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,7 @@ std::vector<FrfBand> frf_bands(const Model& model, const Eigen::VectorXd& values
   const FrfJacobianResult J = frf_jacobian(model, values, f_hz);
   const auto lines = static_cast<Eigen::Index>(f_hz.size());
   const auto k = static_cast<Eigen::Index>(estimated.size());
-  const double degrees = 180 / std::acos(-1.0);
+  const double degrees = 180 / numerics::kPi;
   std::vector<FrfBand> bands;
   Eigen::VectorXd a(k), b(k);
   for (const auto& [output, input] : channels) {

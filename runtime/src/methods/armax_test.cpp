@@ -4,6 +4,7 @@
 //  - output noise on a lightly damped system (C = A, roots at |z| = 0.9997: the case extended least squares did not
 //    converge on): A and B within their std, the modes' damping several times closer than the ARX path's.
 #include "armax.hpp"
+#include "numerics/polynomial_roots.hpp"
 #include "polynomial.hpp"
 
 #include <catch2/catch.hpp>
@@ -152,7 +153,7 @@ TEST_CASE("ARMAX under output noise on a lightly damped system: unbiased where A
     // error (measured 2.1-2.9 %).
     auto zetas = [](const Eigen::VectorXd& A) {
       std::vector<double> z;
-      for (const auto& root : poly_roots(A))
+      for (const auto& root : mbgen::numerics::polynomial_roots(A))
         if (root.imag() > 0) {
           const std::complex<double> l = std::log(root) / kDt;
           z.push_back(-l.real() / std::abs(l));

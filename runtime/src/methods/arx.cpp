@@ -1,6 +1,8 @@
 #include "arx.hpp"
 
+#include "numerics/polynomial_roots.hpp"
 #include "polynomial.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -235,7 +237,7 @@ void prune_and_fit_residues(const Eigen::VectorXd& A, const std::vector<Eigen::V
   for (int o = 0; o < O; ++o) {
     Eigen::VectorXd b = B[static_cast<std::size_t>(o)];
     if (first_order_hold) b -= b[n] * A;  // the strictly proper part (the direct term has no zeros of interest)
-    for (const Complex& zz : poly_roots(b))
+    for (const Complex& zz : numerics::polynomial_roots(b))
       if (std::abs(zz) > 0) zeros[static_cast<std::size_t>(o)].push_back(std::log(zz) / dt);
   }
 
@@ -243,12 +245,12 @@ void prune_and_fit_residues(const Eigen::VectorXd& A, const std::vector<Eigen::V
   const double nyquist_band = options.band_fraction / dt;  // Hz
   std::vector<ArxPole> poles;
   std::vector<Eigen::VectorXd> peak;  // per pole: per channel |r| / |Re lambda|
-  for (const Complex& z : poly_roots(A)) {
+  for (const Complex& z : numerics::polynomial_roots(A)) {
     if (z.imag() < 0) continue;
     ArxPole pole;
     const Complex lambda = std::log(z) / dt;
     pole.lambda = lambda;
-    pole.f_hz = std::abs(lambda) / (2 * M_PI);
+    pole.f_hz = std::abs(lambda) / numerics::kTwoPi;
     pole.zeta = std::abs(lambda) > 0 ? -lambda.real() / std::abs(lambda) : 1.0;
     Eigen::VectorXd h(O);
     pole.nearest_zero = std::numeric_limits<double>::infinity();

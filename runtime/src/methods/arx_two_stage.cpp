@@ -5,6 +5,8 @@
 #include "../estimation/levenberg_marquardt.hpp"
 
 #include "mbgen/identifiability.hpp"
+#include "numerics/constants.hpp"
+#include "numerics/state_eigen.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -350,10 +352,10 @@ FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data
   Fm.block(n, 0, n, n).setIdentity();
   nlohmann::json modes = nlohmann::json::array();
   {
-    const Eigen::EigenSolver<Eigen::MatrixXd> es(Fm, false);
+    const auto eig = numerics::state_eigen(Fm, numerics::EigenVectors::none);
     std::vector<std::complex<double>> poles;
-    for (Eigen::Index i = 0; i < 2 * n; ++i)
-      if (es.eigenvalues()[i].imag() > 0) poles.push_back(es.eigenvalues()[i]);
+    for (Eigen::Index i = 0; eig && i < 2 * n; ++i)
+      if (eig->lambda[i].imag() > 0) poles.push_back(eig->lambda[i]);
     std::sort(poles.begin(), poles.end(), [](auto a, auto b) { return std::abs(a) < std::abs(b); });
     // The paper's modal damping ratios (its Eqs. 21-22): the undamped modes of M and K, mass-normalised,
     // Gamma = Phi^T C Phi, zeta_i = Gamma_ii / (2 omega_i).
@@ -362,10 +364,10 @@ FitResult fit_arx_two_stage(const Model& model, const std::vector<DataSet>& data
       nlohmann::json mode;
       const double w2 = ge.eigenvalues()[i];
       const Eigen::VectorXd phi = ge.eigenvectors().col(i);
-      mode["f_undamped_hz"] = w2 > 0 ? std::sqrt(w2) / (2 * std::acos(-1.0)) : 0.0;
+      mode["f_undamped_hz"] = w2 > 0 ? std::sqrt(w2) / numerics::kTwoPi : 0.0;
       mode["zeta_modal"] = w2 > 0 ? phi.dot(C_id * phi) / (2 * std::sqrt(w2)) : std::numeric_limits<double>::quiet_NaN();
       if (static_cast<std::size_t>(i) < poles.size()) {
-        mode["f_hz"] = std::abs(poles[static_cast<std::size_t>(i)]) / (2 * std::acos(-1.0));
+        mode["f_hz"] = std::abs(poles[static_cast<std::size_t>(i)]) / numerics::kTwoPi;
         mode["zeta"] = -poles[static_cast<std::size_t>(i)].real() / std::abs(poles[static_cast<std::size_t>(i)]);
       }
       modes.push_back(mode);

@@ -3,6 +3,7 @@
 #include "../estimation/excited_block.hpp"
 
 #include "mbgen/frf_noise.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/SVD>
 
@@ -16,7 +17,7 @@ namespace mbgen::methods {
 namespace {
 
 using cd = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
+using numerics::kPi;
 // Relative singular value below which the (weighted) output map is taken as rank-deficient.
 constexpr double kRankTolerance = 1e-9;
 // Time records: lines up to this fraction of the sample rate (aliasing, see the header).

@@ -6,6 +6,7 @@
 #include "mbgen/data_error.hpp"
 #include "mbgen/fftw_mutex.hpp"
 #include "mbgen/state_space.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -152,7 +153,7 @@ EivProblem::EivProblem(const Model& model, const std::vector<DataSet>& data, std
     rec.hold = t.hold;
     rec.z.resize(lines);
     for (Eigen::Index k = 0; k < lines; ++k) {
-      const double phase = 2 * M_PI * double(k + 1) / double(n);
+      const double phase = numerics::kTwoPi * double(k + 1) / double(n);
       rec.z[k] = cd(std::cos(phase), std::sin(phase));
     }
     rec.U.resize(lines, static_cast<Eigen::Index>(info.inputs.size()));

@@ -1,6 +1,6 @@
 #include "lag_polynomials.hpp"
 
-#include "polynomial.hpp"
+#include "numerics/polynomial_roots.hpp"
 
 #include <algorithm>
 #include <complex>
@@ -55,7 +55,7 @@ Eigen::VectorXd sections_of(const Eigen::VectorXd& p) {
   Eigen::VectorXd ascending(n + 1);  // in z: p_n .. p_1, 1
   ascending[n] = 1;
   for (int l = 1; l <= n; ++l) ascending[n - l] = p[l - 1];
-  std::vector<Complex> roots = poly_roots(ascending);
+  std::vector<Complex> roots = numerics::polynomial_roots(ascending);
   roots.resize(static_cast<std::size_t>(n), 0.0);  // leading zero coefficients: roots at 0
   std::vector<Complex> pairs;
   std::vector<double> real;
@@ -124,7 +124,7 @@ double largest_root(const Eigen::VectorXd& p) {
   ascending[n] = 1;
   for (Eigen::Index l = 1; l <= n; ++l) ascending[n - l] = p[l - 1];
   double r = 0;
-  for (const Complex& z : poly_roots(ascending)) r = std::max(r, std::abs(z));
+  for (const Complex& z : numerics::polynomial_roots(ascending)) r = std::max(r, std::abs(z));
   return r;
 }
 

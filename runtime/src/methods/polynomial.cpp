@@ -1,7 +1,5 @@
 #include "polynomial.hpp"
 
-#include <Eigen/Eigenvalues>
-
 #include <cmath>
 
 namespace mbgen::methods {
@@ -16,32 +14,6 @@ std::complex<double> poly_eval(const Eigen::VectorXcd& c, std::complex<double> s
   std::complex<double> v = 0;
   for (Eigen::Index k = c.size() - 1; k >= 0; --k) v = v * s + c[k];
   return v;
-}
-
-int poly_degree(const Eigen::VectorXd& c) {
-  for (Eigen::Index k = c.size() - 1; k >= 0; --k)
-    if (c[k] != 0) return static_cast<int>(k);
-  return -1;
-}
-
-std::vector<std::complex<double>> poly_roots(const Eigen::VectorXd& c) {
-  const int n = poly_degree(c);
-  if (n <= 0) return {};
-  // Roots at zero: factor out the lowest zero coefficients exactly.
-  int low = 0;
-  while (c[low] == 0) ++low;
-  std::vector<std::complex<double>> roots(static_cast<std::size_t>(low), 0.0);
-  const int m = n - low;
-  if (m == 0) return roots;
-  const double scale = std::pow(std::abs(c[low] / c[n]), 1.0 / m);
-  // Monic in the scaled variable x = s / scale: coefficients c[low + k] scale^k / (c[n] scale^m).
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(m, m);
-  for (int k = 0; k < m; ++k)
-    companion(k, m - 1) = -c[low + k] * std::pow(scale, k - m) / c[n];
-  for (int k = 1; k < m; ++k) companion(k, k - 1) = 1;
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(companion, false);
-  for (Eigen::Index k = 0; k < m; ++k) roots.push_back(es.eigenvalues()[k] * scale);
-  return roots;
 }
 
 Eigen::VectorXcd poly_from_roots(const std::vector<std::complex<double>>& roots) {

@@ -12,11 +12,6 @@ namespace mbgen::methods {
 std::complex<double> poly_eval(const Eigen::VectorXd& c, std::complex<double> s);
 std::complex<double> poly_eval(const Eigen::VectorXcd& c, std::complex<double> s);
 
-// Roots of sum_k c[k] s^k, leading (highest) zero coefficients dropped. The variable is first scaled by
-// |c0 / cn|^(1/n), so that the companion matrix's entries are of similar size (mechanical coefficients span
-// 1e0 .. 1e35); eigenvalues of the companion matrix (Eigen's real Schur). Empty for a constant.
-std::vector<std::complex<double>> poly_roots(const Eigen::VectorXd& c);
-
 // Coefficients (ascending, complex) of prod_k (s - r_k); leading coefficient 1.
 Eigen::VectorXcd poly_from_roots(const std::vector<std::complex<double>>& roots);
 
@@ -29,8 +24,5 @@ struct ModalPolynomials {
   Eigen::MatrixXd residue_map;
 };
 ModalPolynomials modal_polynomials(const std::vector<std::complex<double>>& modes);
-
-// Highest index with a non-zero entry, or -1.
-int poly_degree(const Eigen::VectorXd& c);
 
 }  // namespace mbgen::methods

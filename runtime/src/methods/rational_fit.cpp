@@ -1,6 +1,7 @@
 #include "rational_fit.hpp"
 
 #include "../estimation/levenberg_marquardt.hpp"
+#include "numerics/polynomial_roots.hpp"
 #include "polynomial.hpp"
 
 #include <Eigen/QR>
@@ -39,7 +40,7 @@ Eigen::VectorXd denominator_of(const Eigen::VectorXd& x, int q) {
 
 // Reflects roots with a positive real part into the left half-plane; returns how many.
 int reflect_unstable(Eigen::VectorXd& x, int q) {
-  std::vector<Complex> roots = poly_roots(denominator_of(x, q));
+  std::vector<Complex> roots = numerics::polynomial_roots(denominator_of(x, q));
   int flipped = 0;
   for (auto& r : roots)
     if (r.real() > 0) {

@@ -5,7 +5,9 @@
 #include "model_coefficients.hpp"
 #include "rational_fit.hpp"
 #include "mbgen/frf_noise.hpp"
+#include "numerics/polynomial_roots.hpp"
 #include "polynomial.hpp"
+#include "numerics/constants.hpp"
 
 #include <cmath>
 #include <map>
@@ -73,7 +75,7 @@ void truncate_if_short(StepOneTf& s, const std::vector<int>& model_degree) {
     s.pattern.push_back(p);
   }
   s.truncated_to.clear();
-  for (const auto& r : poly_roots(s.tf.denominator))
+  for (const auto& r : numerics::polynomial_roots(s.tf.denominator))
     if (r.imag() > 0) s.truncated_to.push_back(r);
 }
 
@@ -141,7 +143,7 @@ StepOne run_step_one(const Model& model, const std::vector<DataSet>& data, const
       std::map<int, std::vector<std::size_t>> by_input;  // model input -> channels
       for (std::size_t c = 0; c < f.channels.size(); ++c)
         by_input[info.input_index(f.channels[c].input)].push_back(c);
-      const Eigen::VectorXd omega = 2 * M_PI * f.f_hz;
+      const Eigen::VectorXd omega = numerics::kTwoPi * f.f_hz;
       for (const auto& [input, channels] : by_input) {
         std::vector<int> outputs;
         for (std::size_t c : channels) outputs.push_back(info.output_index(f.channels[c].output));
@@ -177,9 +179,9 @@ StepOne run_step_one(const Model& model, const std::vector<DataSet>& data, const
           Eigen::VectorXd dD = Eigen::VectorXd::Zero(order);
           for (int k = 1; k <= order; ++k) dD[k - 1] = k * s.tf.denominator[k];
           int shown = 0;
-          for (const std::complex<double>& l : poly_roots(s.tf.denominator)) {
+          for (const std::complex<double>& l : numerics::polynomial_roots(s.tf.denominator)) {
             if (l.imag() <= 0) continue;
-            const double fz = std::abs(l) / (2 * M_PI), zeta = -l.real() / std::abs(l);
+            const double fz = std::abs(l) / numerics::kTwoPi, zeta = -l.real() / std::abs(l);
             double peak = 0;
             for (std::size_t c = 0; c < rc.size(); ++c) {
               const std::complex<double> r = poly_eval(s.tf.numerators[c], l) / poly_eval(dD, l);

@@ -1,6 +1,7 @@
 #include "validation.hpp"
 
-#include "polynomial.hpp"
+#include "numerics/polynomial_roots.hpp"
+#include "numerics/constants.hpp"
 
 #include <cmath>
 #include <limits>
@@ -20,7 +21,7 @@ std::vector<Complex> upper(const std::vector<Complex>& roots) {
   return out;
 }
 
-double f_hz(Complex r) { return std::abs(r) / (2 * M_PI); }
+double f_hz(Complex r) { return std::abs(r) / numerics::kTwoPi; }
 double zeta(Complex r) { return std::abs(r) > 0 ? -r.real() / std::abs(r) : 1.0; }
 
 // The nearest of `candidates` to r, relative to |r|; index -1 when there are none.
@@ -58,8 +59,8 @@ nlohmann::json compare(const std::vector<Complex>& identified, const std::vector
 
 Validation validate(const StepOneTf& s, const ModelTf& model) {
   Validation v;
-  const std::vector<Complex> id_poles = upper(poly_roots(s.tf.denominator));
-  const std::vector<Complex> model_poles = upper(poly_roots(model.denominator));
+  const std::vector<Complex> id_poles = upper(numerics::polynomial_roots(s.tf.denominator));
+  const std::vector<Complex> model_poles = upper(numerics::polynomial_roots(model.denominator));
   v.zero_pole["input"] = s.tf.input;
   v.zero_pole["data"] = s.file;
   v.zero_pole["poles"] = compare(id_poles, model_poles);
@@ -68,8 +69,8 @@ Validation validate(const StepOneTf& s, const ModelTf& model) {
   for (std::size_t c = 0; c < s.tf.outputs.size(); ++c) {
     // The model's numerator cut to the identified degree (the coefficients above it are structurally zero).
     Eigen::VectorXd mnum = model.numerators[c].head(s.tf.numerators[c].size());
-    id_zeros.push_back(poly_roots(s.tf.numerators[c]));
-    zeros[s.tf.outputs[c]] = compare(upper(id_zeros.back()), upper(poly_roots(mnum)));
+    id_zeros.push_back(numerics::polynomial_roots(s.tf.numerators[c]));
+    zeros[s.tf.outputs[c]] = compare(upper(id_zeros.back()), upper(numerics::polynomial_roots(mnum)));
     const double g_id = s.tf.denominator[0] != 0 ? s.tf.numerators[c][0] / s.tf.denominator[0] : NAN;
     const double g_m = model.denominator[0] != 0 ? mnum[0] / model.denominator[0] : NAN;
     gains[s.tf.outputs[c]] = {{"identified", number(g_id)}, {"model", number(g_m)}};

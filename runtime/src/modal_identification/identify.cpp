@@ -2,6 +2,7 @@
 // refinement, the residues, and the mode table.
 #include "mbgen/modal_identification.hpp"
 #include "shape_metrics.hpp"
+#include "numerics/constants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -70,7 +71,7 @@ ModalIdentification identify_modes(const ModalData& data, const ModalOptions& op
     const std::complex<double> lambda = lambdas[static_cast<std::size_t>(r)];
     IdentifiedMode mode;
     mode.lambda = lambda;
-    mode.f_hz = std::abs(lambda) / (2 * std::acos(-1.0));
+    mode.f_hz = std::abs(lambda) / numerics::kTwoPi;
     mode.zeta = -lambda.real() / std::abs(lambda);
     mode.f_std_hz = out.refinement.f_std_hz[static_cast<std::size_t>(r)];
     mode.zeta_std = out.refinement.zeta_std[static_cast<std::size_t>(r)];

@@ -2,6 +2,7 @@
 // peaks, and the mode table.
 #include "mbgen/output_only_modal.hpp"
 #include "shape_metrics.hpp"
+#include "numerics/constants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,7 @@ namespace mbgen {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 
 double scatter(const std::vector<double>& v) {
   if (v.size() < 2) return std::numeric_limits<double>::quiet_NaN();

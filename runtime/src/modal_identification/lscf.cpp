@@ -11,6 +11,7 @@
 // come from sums over the lines at lags -n..n, computed once for the highest order: a lower order uses the
 // leading blocks.
 #include "mbgen/modal_identification.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -23,7 +24,7 @@ namespace mbgen {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 
 // rows[r][k]: the channel of row r at reference k.
 struct Layout {

@@ -1,6 +1,7 @@
 // Residues at given poles by least-squares frequency-domain fitting (LSFD), every channel at once: the basis
 // depends on the poles and lines only, so one QR factorization serves all channels.
 #include "lsfd_system.hpp"
+#include "numerics/constants.hpp"
 
 #include <cmath>
 
@@ -8,9 +9,7 @@ namespace mbgen {
 
 namespace modal_detail {
 
-namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-}  // namespace
+using numerics::kTwoPi;
 
 Eigen::MatrixXd stack_real(const Eigen::MatrixXcd& h) {
   Eigen::MatrixXd out(2 * h.rows(), h.cols());

@@ -14,6 +14,7 @@
 #include "../data/string_format.hpp"
 #include "modal_shape_figures.hpp"
 #include "report_text.hpp"
+#include "numerics/constants.hpp"
 
 namespace mbgen {
 
@@ -25,7 +26,7 @@ using modal_text::num;
 using modal_text::stability_code;
 using modal_text::write_file;
 
-double phase_deg(std::complex<double> h) { return std::arg(h) * 180 / std::acos(-1.0); }
+double phase_deg(std::complex<double> h) { return numerics::degrees(std::arg(h)); }
 
 std::string quantity_text(const ModalReportInput& in) {
   std::string text = frf_quantity_name(in.data.quantity);

@@ -1,5 +1,6 @@
 // Indicators of a mode shape's complexity: MPC (Pappa, Elliott, Schenk 1993) and MPD.
 #include "mbgen/modal_identification.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/SVD>
 
@@ -40,7 +41,7 @@ double mean_phase_deviation_deg(const Eigen::VectorXcd& shape) {
     const double cosine = std::min(1.0, std::abs((shape[j] * std::conj(direction)).real()) / magnitude);
     sum += magnitude * std::acos(cosine);
   }
-  return sum / total * 180 / std::acos(-1.0);
+  return numerics::degrees(sum / total);
 }
 
 }  // namespace mbgen

@@ -3,6 +3,7 @@
 // Its Jacobian is taken in Kaufman's form, dr/dtheta ~ -P_perp (dPhi/dtheta) x, which drops a term that vanishes
 // with the residual; Levenberg-Marquardt with Marquardt's diagonal scaling minimizes ||r||^2.
 #include "lsfd_system.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/Cholesky>
 
@@ -18,7 +19,7 @@ namespace {
 using modal_detail::LsfdSystem;
 using modal_detail::stack_real;
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 
 // The poles being refined, as theta = (sigma, omega) of each active pole (lambda = -sigma + i omega), beside the
 // poles held fixed.

@@ -3,6 +3,7 @@
 #include "mbgen/data_error.hpp"
 #include "mbgen/output_only_modal.hpp"
 #include "shape_metrics.hpp"
+#include "numerics/constants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -182,7 +183,7 @@ MergedSetups identify_setups(std::vector<ResponseData> setups, const OutputOnlyO
     merged.zeta = mean(zeta);
     merged.f_scatter_hz = deviation(f);
     merged.zeta_scatter = deviation(zeta);
-    const double w = 2 * std::acos(-1.0) * merged.f_hz;
+    const double w = numerics::kTwoPi * merged.f_hz;
     merged.lambda = {-merged.zeta * w, w * std::sqrt(std::max(0.0, 1 - merged.zeta * merged.zeta))};
     merged.support = anchor.support;
     merged.contribution = anchor.contribution;

@@ -2,6 +2,7 @@
 // factor as R_k = C A^(k-1) G, so their block Toeplitz matrix is the observability matrix times a controllability
 // matrix; its SVD gives the observability matrix of each order, and A follows from its shift structure.
 #include "mbgen/output_only_modal.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -15,7 +16,7 @@ namespace mbgen {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 constexpr int kDefaultMaxOrder = 48;  // 24 pole pairs: room for the modes and the noise's poles beside them
 constexpr int kMinBlockRows = 32;
 

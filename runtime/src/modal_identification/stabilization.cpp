@@ -1,6 +1,7 @@
 // The stabilization diagram's labels, and the choice of the physical poles from it.
 #include "mbgen/modal_identification.hpp"
 #include "shape_metrics.hpp"
+#include "numerics/constants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +17,7 @@ namespace {
 using modal_detail::shape_mac;
 using Stability = DiagramPole::Stability;
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 constexpr double kUserWindow = 0.02;  // select_poles_near: relative distance in frequency
 constexpr int kMinFullyStable = 1;    // a physical pole's cluster holds at least this many fully stable poles
 

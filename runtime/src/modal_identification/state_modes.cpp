@@ -1,26 +1,17 @@
 #include "mbgen/state_modes.hpp"
 
 #include "mbgen/dynamics_error.hpp"
+#include "numerics/constants.hpp"
+#include "numerics/state_eigen.hpp"
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/LU>
-
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace mbgen {
 
-namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-}  // namespace
+double StateModes::f_hz(Eigen::Index e) const { return numerics::pole_frequency_hz(lambda[e]); }
 
-double StateModes::f_hz(Eigen::Index e) const { return std::abs(lambda[e]) / kTwoPi; }
-
-double StateModes::zeta(Eigen::Index e) const {
-  const double mag = std::abs(lambda[e]);
-  return mag > 0 ? -lambda[e].real() / mag : 0.0;
-}
+double StateModes::zeta(Eigen::Index e) const { return numerics::pole_damping_ratio(lambda[e]); }
 
 StateModes state_modes(const ModelMatrices& m) {
   StateModes out;
@@ -28,25 +19,13 @@ StateModes state_modes(const ModelMatrices& m) {
   if (!out.ss.A.allFinite())  // 1e300 next to 1e-300: no double holds M^-1 K, and the iteration cannot converge
     throw DynamicsError("the model's state matrix (M^-1 K, M^-1 C) overflows a double at these parameter values "
                         "(masses and stiffnesses or dampings too far apart)");
-  // x = [q; q'/s] with s the square root of the stiffness-to-mass scale: the two blocks of A become comparable
-  // (the eigenvalues do not change; the eigenvectors are scaled back below).
-  const Eigen::Index n = m.M.rows();
-  const double s = std::sqrt(std::max(1.0, out.ss.A.bottomLeftCorner(n, n).cwiseAbs().maxCoeff()));
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(2 * n);
-  scale.tail(n).setConstant(s);
-  const Eigen::MatrixXd A = scale.cwiseInverse().asDiagonal() * out.ss.A * scale.asDiagonal();
-  const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, /*computeEigenvectors=*/true);
-  if (eig.info() != Eigen::Success) throw DynamicsError("the model's eigenvalue iteration did not converge");
-  out.lambda = eig.eigenvalues();
-  const Eigen::MatrixXcd V = eig.eigenvectors();
-  out.right = scale.cast<std::complex<double>>().asDiagonal() * V;
-  out.left = V.partialPivLu().inverse() * scale.cwiseInverse().cast<std::complex<double>>().asDiagonal();
-  // Eigen's real Schur form gives real eigenvalues an imaginary part of exactly 0 and complex ones in pairs.
-  for (Eigen::Index e = 0; e < out.lambda.size(); ++e)
-    if (out.lambda[e].imag() >= 0) out.modes.push_back(e);
-  std::stable_sort(out.modes.begin(), out.modes.end(), [&](Eigen::Index a, Eigen::Index b) {
-    return out.f_hz(a) != out.f_hz(b) ? out.f_hz(a) < out.f_hz(b) : out.zeta(a) < out.zeta(b);
-  });
+  auto eig = numerics::state_eigen(out.ss.A, numerics::EigenVectors::right_and_left,
+                                  numerics::Scaling::velocity_block);
+  if (!eig) throw DynamicsError("the model's eigenvalue iteration did not converge");
+  out.lambda = std::move(eig->lambda);
+  out.right = std::move(eig->right);
+  out.left = std::move(eig->left);
+  out.modes = numerics::listed_modes(out.lambda);
   return out;
 }
 
@@ -63,6 +42,7 @@ std::vector<ModeTerm> mode_terms(const StateModes& sm, const std::vector<Eigen::
     const std::complex<double> s(0, t.w);
     t.term.resize(outputs, inputs);
     t.response.resize(outputs, inputs);
+    t.share.resize(outputs, inputs);
     for (Eigen::Index o = 0; o < outputs; ++o)
       for (Eigen::Index i = 0; i < inputs; ++i) {
         std::complex<double> h = sm.ss.D(o, i);
@@ -70,6 +50,7 @@ std::vector<ModeTerm> mode_terms(const StateModes& sm, const std::vector<Eigen::
         const std::complex<double> residue = CV(o, e) * WB(e, i);
         t.term(o, i) = std::abs(residue / (s - lambda) + (pair ? std::conj(residue) / (s - std::conj(lambda)) : 0.0));
         t.response(o, i) = std::abs(h);
+        t.share(o, i) = t.response(o, i) > 0 ? t.term(o, i) / t.response(o, i) : 0.0;
       }
     out.push_back(std::move(t));
   }

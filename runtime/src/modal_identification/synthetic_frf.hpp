@@ -6,6 +6,7 @@
 #pragma once
 
 #include "mbgen/frf_data.hpp"
+#include "numerics/constants.hpp"
 
 #include <Eigen/Core>
 
@@ -35,7 +36,7 @@ struct SyntheticFrfSpec {
 
 // The exact receptance residue of mode r at channel (o, i): phi_o phi_i / (2 i w_d m_r).
 inline std::complex<double> true_receptance_residue(const TrueMode& m, int o, int i) {
-  const double w = 2 * M_PI * m.f_hz, wd = w * std::sqrt(1 - m.zeta * m.zeta);
+  const double w = numerics::kTwoPi * m.f_hz, wd = w * std::sqrt(1 - m.zeta * m.zeta);
   return m.shape[static_cast<std::size_t>(o)] * m.shape[static_cast<std::size_t>(i)] /
          (std::complex<double>(0, 2 * wd) * m.modal_mass);
 }
@@ -53,10 +54,10 @@ inline FrfData synthetic_frf(const SyntheticFrfSpec& spec, const std::string& fi
       ch.input = "u" + std::to_string(i);
       ch.values.resize(spec.lines);
       for (int k = 0; k < spec.lines; ++k) {
-        const double w = 2 * M_PI * data.f_hz[k];
+        const double w = numerics::kTwoPi * data.f_hz[k];
         std::complex<double> h = 0;
         for (const TrueMode& m : spec.modes) {
-          const double wr = 2 * M_PI * m.f_hz;
+          const double wr = numerics::kTwoPi * m.f_hz;
           h += m.shape[static_cast<std::size_t>(o)] * m.shape[static_cast<std::size_t>(i)] /
                (m.modal_mass * std::complex<double>(wr * wr - w * w, 2 * m.zeta * wr * w));
         }

@@ -1,5 +1,6 @@
 // CUSUM design and update, baseline scatter (runtime/include/mbgen/change_detection.hpp, docs/monitor.md).
 #include "mbgen/change_detection.hpp"
+#include "numerics/constants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -169,7 +170,7 @@ double normal_quantile(double p) {
   }
   // One Halley step on Phi(x) - p.
   const double e = normal_cdf(x) - p;
-  const double u = e * std::sqrt(2 * M_PI) * std::exp(x * x / 2);
+  const double u = e * std::sqrt(numerics::kTwoPi) * std::exp(x * x / 2);
   return x - u / (1 + x * u / 2);
 }
 

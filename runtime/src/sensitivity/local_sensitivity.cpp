@@ -3,15 +3,14 @@
 #include "mbgen/sensitivity.hpp"
 #include "mbgen/state_modes.hpp"
 #include "mbgen/state_space.hpp"
+#include "numerics/constants.hpp"
 
 #include <cmath>
 #include <limits>
 
 namespace mbgen {
 
-namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-}  // namespace
+using numerics::kTwoPi;
 
 LocalSensitivity local_sensitivity(const Model& model, const Eigen::VectorXd& p) {
   const ModelInfo& info = model.info();

@@ -32,7 +32,7 @@ ModeVisibility mode_visibility(const Model& model, const Eigen::VectorXd& p) {
       for (Eigen::Index i = 0; i < inputs; ++i) {
         const Eigen::Index c = o * inputs + i;
         out.peak(r, c) = t.term(o, i);
-        out.dominance(r, c) = t.response(o, i) > 0 ? t.term(o, i) / t.response(o, i) : 0.0;
+        out.dominance(r, c) = t.share(o, i);
       }
     Eigen::Index best = 0;
     if (channels > 0) out.dominance.row(r).maxCoeff(&best);

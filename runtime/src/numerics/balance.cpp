@@ -1,8 +1,8 @@
-#include "balance.hpp"
+#include "numerics/balance.hpp"
 
 #include <cmath>
 
-namespace mbgen::detail {
+namespace mbgen::numerics {
 
 Eigen::VectorXd balancing_scale(const Eigen::MatrixXd& A) {
   const Eigen::Index n = A.rows();
@@ -39,4 +39,4 @@ Eigen::VectorXd balancing_scale(const Eigen::MatrixXd& A) {
   return d;
 }
 
-}  // namespace mbgen::detail
+}  // namespace mbgen::numerics

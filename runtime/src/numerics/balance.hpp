@@ -3,10 +3,10 @@
 
 #include <Eigen/Core>
 
-namespace mbgen::detail {
+namespace mbgen::numerics {
 
 // Returns d (powers of two, so the scaling is exact) such that diag(d)^-1 A diag(d) has rows and columns of
 // comparable norms.
 Eigen::VectorXd balancing_scale(const Eigen::MatrixXd& A);
 
-}  // namespace mbgen::detail
+}  // namespace mbgen::numerics
