@@ -163,6 +163,7 @@ std::vector<Extension> measurement_chain(const OperatorInput& in) {
       if (outputs[i].kind == outputs[j].kind && !has_filter(in.model, outputs[i].name) &&
           !has_filter(in.model, outputs[j].name))
         out.push_back(swapped(in, outputs[i], outputs[j]));
+  // One input: a gain 1/g on every output (the same FRFs as a gain g on the input).
   if (in.model.inputs.size() == 1) {
     for (const Sign& sign : {kCalibration, kPolarity}) out.push_back(input_gain(in, in.model.inputs.front(), sign));
     out.push_back(reversed_input(in, in.model.inputs.front()));
