@@ -196,6 +196,39 @@ TEST_CASE("the measurement chain: a factor per output and on the input, and swap
   }
 }
 
+TEST_CASE("the measurement chain with several inputs: each input's factor through its own gain", "[diagnosis]") {
+  // mdof2 with a second force on mass2 whose record already has a gain: the candidate multiplies it.
+  const test::Example one = test::load("mdof2");
+  const std::string text = one.text + "param gF2 = 2 \"\"\ninput F2 force on mass2 along x gain gF2\n";
+  const ir::ModelIr model = frontend::parse_string(text, "two_inputs.mdl");
+  std::vector<Extension> inputs;
+  for (Extension& x : enumerate_extensions(model, text, {}))
+    if (x.target.rfind("input:", 0) == 0) inputs.push_back(std::move(x));
+  CHECK_THAT(test::ids_of(inputs),
+             Equals(std::vector<std::string>{"measurement_chain:input:F1", "measurement_chain:input:F1",
+                                             "measurement_chain:input:F1", "measurement_chain:input:F2",
+                                             "measurement_chain:input:F2", "measurement_chain:input:F2"}));
+  for (const Extension& x : inputs) {
+    INFO(x.id << " " << x.variant << "\n" << x.mdl_text);
+    test::check_candidate(x);
+    CHECK(x.model.filters.empty());  // no output is touched: only the input's columns scale
+    const bool second = x.target == "input:F2";
+    const ir::Input& changed = x.model.inputs[second ? 1 : 0];
+    const ir::Input& other = x.model.inputs[second ? 0 : 1];
+    CHECK(frontend::write_input(other) == frontend::write_input(model.inputs[second ? 0 : 1]));
+    if (x.variant == "reversed") {
+      CHECK(x.new_parameters.empty());
+      CHECK(ir::to_string(changed.direction.vector[0]) == "-1");
+      continue;
+    }
+    REQUIRE(x.new_parameters.size() == 1);
+    const std::string g = x.new_parameters[0].name;
+    CHECK(ModelValues(x.model, {}).of_parameter(g) == (x.variant == "polarity" ? -1.0 : 1.0));
+    REQUIRE(changed.gain);
+    CHECK(ir::to_string(*changed.gain) == (second ? "gF2*" + g : g));
+  }
+}
+
 TEST_CASE("a text that is not the model's is refused", "[diagnosis]") {
   const test::Example mdof2 = test::load("mdof2");
   const test::Example spindle = test::load("spindle");

@@ -26,6 +26,7 @@ class Checker {
     for (ir::Input& in : m_.inputs) {
       check_signal_frame(in.at, "input", in.name);
       check_direction(in.direction);
+      if (in.gain) check_expr(*in.gain);
     }
     for (ir::Output& out : m_.outputs) {
       check_signal_frame(out.at, "output", out.name);

@@ -112,7 +112,7 @@ std::string write_input(const ir::Input& in) {
   // A moment acts on the whole frame: its point is not written (the parser rejects one).
   const std::string on = in.kind == ir::InputKind::Moment ? in.at.frame : write_attachment(in.at);
   return "input " + in.name + " " + ir::to_string(in.kind) + " on " + on + " along " + write_direction(in.direction) +
-         "\n";
+         (in.gain ? " gain " + ir::to_string(*in.gain) : "") + "\n";
 }
 
 std::string write_output(const ir::Output& out) {

@@ -71,6 +71,7 @@ void require_same_model(const ir::ModelIr& a, const ir::ModelIr& b) {
     CHECK(a.inputs[i].kind == b.inputs[i].kind);
     if (a.inputs[i].kind == ir::InputKind::Force) same_attachment(a.inputs[i].at, b.inputs[i].at);
     same_direction(a.inputs[i].direction, b.inputs[i].direction);
+    CHECK(text(a.inputs[i].gain) == text(b.inputs[i].gain));
   }
   REQUIRE(a.outputs.size() == b.outputs.size());
   for (std::size_t i = 0; i < a.outputs.size(); ++i) {
@@ -85,7 +86,7 @@ void require_same_model(const ir::ModelIr& a, const ir::ModelIr& b) {
     CHECK(a.filters[i].output == b.filters[i].output);
     CHECK(a.filters[i].kind == b.filters[i].kind);
     CHECK(a.filters[i].sections == b.filters[i].sections);
-    for (auto member : {&ir::Filter::cutoff, &ir::Filter::damping, &ir::Filter::time}) {
+    for (auto member : {&ir::Filter::cutoff, &ir::Filter::damping, &ir::Filter::time, &ir::Filter::factor}) {
       REQUIRE((a.filters[i].*member).has_value() == (b.filters[i].*member).has_value());
       if ((a.filters[i].*member)) CHECK(ir::to_string(*(a.filters[i].*member)) == ir::to_string(*(b.filters[i].*member)));
     }
@@ -124,12 +125,14 @@ spring s4 { from block at (1, 0, 0); to rotor; along x; stiffness k }
 spin rotor about z speed n
 input F force on rotor at (0, 0, 1) along x
 input T moment on block along z
+input F2 force on block at (1, 0, 0) along z gain -0.98*k/k
 output d displacement of rotor along x
 output v velocity of block at (1, 2, 3) along (0, 0, -1)
 output a acceleration of rotor at (0, 0.1, 0) along y
 filter lp on d lowpass2 cutoff 2*n damping 0.7
 filter dl on d delay time 1e-3 sections 2
 filter hp on a highpass1 cutoff 3; filter hp2 on v highpass2 cutoff 5 damping 1/2
+filter cal on v gain factor -1
 )";
 
 void check_round_trip(const ir::ModelIr& m) {
@@ -161,6 +164,7 @@ TEST_CASE("every construct of the language survives write and parse", "[writer]"
   CHECK(text.find("  to g2 at (-1, sqrt(2), cos(pi/4))\n") != std::string::npos);
   CHECK(text.find("  about (0, 0, 1)\n") != std::string::npos);
   CHECK(text.find("input T moment on block along z\n") != std::string::npos);
+  CHECK(text.find("input F2 force on block at (1, 0, 0) along z gain -0.98*k/k\n") != std::string::npos);
   CHECK(text.find("spin rotor about z speed n\n") != std::string::npos);
   CHECK(text.find("output d displacement of rotor along x\n") != std::string::npos);
 }

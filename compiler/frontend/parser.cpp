@@ -308,6 +308,14 @@ class Parser {
     in.at = attachment(in.kind == ir::InputKind::Force);
     expect_word("along");
     in.direction = direction();
+    if (at_word("gain")) {
+      next();
+      const SourceLoc gain_loc = peek().loc;
+      in.gain = expr();
+      if (is_zero_constant(*in.gain))
+        fail_at(gain_loc, "input `" + in.name + "`: its gain is 0: its record would read no force (a gain is what the "
+                          "record reads per unit of the applied force, e.g. 0.98, or -1 for a reversed sign)");
+    }
     end_statement();
     model_.inputs.push_back(std::move(in));
   }
@@ -428,6 +436,18 @@ class Parser {
     d.axis = axis.text;
     for (int k = 0; k < 3; ++k) d.vector[k] = Expr::number(std::string(1, "xyz"[k]) == axis.text ? "1" : "0", axis.loc);
     return d;
+  }
+
+  // Zero whatever the parameters' values: a zero literal, its negation, a product with a zero factor, a zero over
+  // anything. (A gain that is zero only at some parameter values is caught by the symbolic stage.)
+  static bool is_zero_constant(const Expr& e) {
+    switch (e.kind) {
+      case Expr::Kind::Number: return ir::is_zero_literal(e.text);
+      case Expr::Kind::Neg: return is_zero_constant(e.args[0]);
+      case Expr::Kind::Div: return is_zero_constant(e.args[0]);
+      case Expr::Kind::Mul: return std::any_of(e.args.begin(), e.args.end(), is_zero_constant);
+      default: return false;
+    }
   }
 
   static ir::Vec3 zero_vec(SourceLoc loc) { return {Expr::number("0", loc), Expr::number("0", loc), Expr::number("0", loc)}; }

@@ -148,6 +148,9 @@ struct Input {
   InputKind kind = InputKind::Force;
   Attachment at;  // a Moment ignores at.point
   Direction direction;
+  // What the recorded input reads per unit of the applied force or moment (a force transducer's calibration, or -1
+  // for its sign), if given: the input map's column is divided by it. Absent means 1.
+  std::optional<Expr> gain;
   SourceLoc loc;
 };
 

@@ -15,7 +15,19 @@ void add_inputs_outputs(const Mechanism& m, SymbolicModel& out) {
     const GiNaC::matrix n = unit_direction(in.direction, *m.params);
     // Virtual work F . dr_p = (dr_p/dq)^T F . dq for a force, M . dtheta for a moment.
     const Row b = in.kind == ir::InputKind::Force ? displacement_row(m, in.at, n) : moment_row(m, in.at.frame, n);
-    for (int i = 0; i < m.coordinate_count; ++i) out.B(i, u) = b[i];
+    // The record reads `gain` times the applied force, so per unit of the recorded input the structure is driven by
+    // 1/gain: the column is divided (and so is every product built from B, with its parameter derivatives).
+    GiNaC::ex gain = 1;
+    if (in.gain) {
+      const GiNaC::ex g = m.params->convert(*in.gain);
+      if (GiNaC::evalf(g.subs(m.params->values())).is_zero())
+        throw frontend::ModelError(model.file, in.gain->loc,
+                                   "input `{}`: its gain is 0 at the parameters' values: its record would read no "
+                                   "force",
+                                   in.name);
+      gain = g;
+    }
+    for (int i = 0; i < m.coordinate_count; ++i) out.B(i, u) = in.gain ? b[i] / gain : b[i];
   }
   for (size_t o = 0; o < model.outputs.size(); ++o) {
     const ir::Output& y = model.outputs[o];

@@ -13,6 +13,8 @@
 #   -DEXPECT_SELECTED=id (first selected extension, when extended), or A+B (two effects: both selected, either
 #                     order, nothing else)
 #   -DEXPECT_ALSO=id (optional: another extension that must be among the selected)
+#   -DEXPECT_FACTOR=PARAM:TOL (optional: the first selected extension's new parameter PARAM estimates the factor of
+#                     the first data set's measurement-chain error, from its .truth.json, within a relative TOL)
 cmake_policy(SET CMP0057 NEW)  # if(... IN_LIST ...)
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
@@ -182,4 +184,24 @@ if(n_found GREATER 0)
     endif()
     list(APPEND seen "${key}")
   endforeach()
+endif()
+# The factor a measurement-chain candidate estimates, against the truth's (the generator's own record of it).
+if(EXPECT_FACTOR)
+  string(REPLACE ":" ";" factor_args "${EXPECT_FACTOR}")
+  list(GET factor_args 0 factor_param)
+  list(GET factor_args 1 factor_tolerance)
+  execute_process(COMMAND "${PYTHON}" -c "
+import json, sys
+d = json.load(open(sys.argv[1])); t = json.load(open(sys.argv[2]))
+c = next(c for c in d['candidates'] if c['id'] == d['selected'][0] and sys.argv[3] in c.get('new_parameters', {}))
+got = c['new_parameters'][sys.argv[3]]['value']
+truth = t['measurement_chain'][0]['factor']
+print('%s = %.6g, the truth %.6g (relative error %.2g, tolerance %s)' % (sys.argv[3], got, truth, abs(got / truth - 1), sys.argv[4]))
+sys.exit(0 if abs(got / truth - 1) <= float(sys.argv[4]) else 1)
+" "${WORK_DIR}/diagnosis.json" "${WORK_DIR}/data0.truth.json" "${factor_param}" "${factor_tolerance}"
+                  RESULT_VARIABLE status OUTPUT_VARIABLE factor_out ERROR_VARIABLE factor_err)
+  message(STATUS "${factor_out}")
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "the estimated factor is off: ${factor_out}${factor_err}")
+  endif()
 endif()

@@ -16,12 +16,14 @@
 //                                where the model has a receptance, or the other way round (a factor (i w)^k, not a
 //                                constant). Variants "displacement", "velocity", "acceleration": the output
 //                                statement measures that instead. No new parameter.
-//   measurement_chain:input:F    the recorded force is g times the applied one. With one input every FRF is divided
-//                                by g: a gain 1/g on every output. Variants "calibration" (g > 0, started at 1),
-//                                "polarity" (g < 0, started at -1: a reaction mass's force computed with the wrong
-//                                sign) and "reversed" (F's direction reversed, no new parameter: with every mass,
-//                                stiffness and damping estimated, the data cannot tell g's size from the structure's
-//                                scale). With several inputs, only the reversed direction.
+//   measurement_chain:input:F    the recorded force is g times the applied one. Variants "calibration" (g > 0,
+//                                started at 1), "polarity" (g < 0, started at -1: a reaction mass's force computed
+//                                with the wrong sign) and "reversed" (F's direction reversed, no new parameter: with
+//                                every mass, stiffness and damping estimated, the data cannot tell g's size from the
+//                                structure's scale). With one input every FRF is divided by g: a gain 1/g on every
+//                                output. With several, only F's columns are: the input statement gets `gain g` (times
+//                                its gain, if it has one), and g's size is told apart from the structure's scale by
+//                                the other inputs' columns.
 //
 // None of these is a new body or element; the structure's parameters stay as they are.
 #include <algorithm>
@@ -114,6 +116,22 @@ Extension input_gain(const OperatorInput& in, const ir::Input& input, const Sign
                   (sign.start > 0 ? "calibration (or units)" : "sign (a reaction force taken with the wrong sign)"));
 }
 
+// Several inputs: F's columns alone divided by g, through the input's own gain (docs/language.md, "input ... gain").
+Extension recorded_input_gain(const OperatorInput& in, const ir::Input& input, const Sign& sign) {
+  Draft d(in, "measurement_chain", "input:" + input.name);
+  d.set_variant(sign.variant);
+  const std::string g = d.add_parameter("gi_" + input.name, sign.start, "", sign.lower, sign.upper,
+                                        "what the record of " + input.name + " reads per unit of the applied force");
+  ir::Input& changed = *std::find_if(d.model().inputs.begin(), d.model().inputs.end(),
+                                     [&](const ir::Input& i) { return i.name == input.name; });
+  changed.gain = changed.gain ? mul(*changed.gain, sym(g)) : sym(g);
+  const std::string why = sign.start > 0 ? " reads " + g + " times the force applied: its transducer's calibration"
+                                         : " reads " + g + " (negative) times the force applied: its sign";
+  d.patch().replace_statement(input.loc, input.name + why, frontend::write_input(changed));
+  return d.finish("the recorded " + input.name + " is " + g + " times the force applied: the force transducer's " +
+                  (sign.start > 0 ? "calibration (or units)" : "sign (a reaction force taken with the wrong sign)"));
+}
+
 Extension reversed_input(const OperatorInput& in, const ir::Input& input) {
   Draft d(in, "measurement_chain", "input:" + input.name);
   d.set_variant("reversed");
@@ -145,11 +163,15 @@ std::vector<Extension> measurement_chain(const OperatorInput& in) {
       if (outputs[i].kind == outputs[j].kind && !has_filter(in.model, outputs[i].name) &&
           !has_filter(in.model, outputs[j].name))
         out.push_back(swapped(in, outputs[i], outputs[j]));
+  // One input: a gain 1/g on every output (the same FRFs as a gain g on the input).
   if (in.model.inputs.size() == 1) {
     for (const Sign& sign : {kCalibration, kPolarity}) out.push_back(input_gain(in, in.model.inputs.front(), sign));
     out.push_back(reversed_input(in, in.model.inputs.front()));
   } else {
-    for (const ir::Input& input : in.model.inputs) out.push_back(reversed_input(in, input));
+    for (const ir::Input& input : in.model.inputs) {
+      for (const Sign& sign : {kCalibration, kPolarity}) out.push_back(recorded_input_gain(in, input, sign));
+      out.push_back(reversed_input(in, input));
+    }
   }
   return out;
 }
