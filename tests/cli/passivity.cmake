@@ -32,3 +32,18 @@ execute_process(COMMAND "${MBGEN}" fit ${MDOF2} --data right.csv --starts 2 WORK
 if(NOT status EQUAL 0 OR out MATCHES "warning")
   message(SEND_ERROR "data with the right sign: status ${status}, or a warning:\n${out}")
 endif()
+# A model that declares the reversal itself (an input gain of -1, or a gain filter of -1 on the sensor) expects such
+# data: no warning.
+file(READ ${MDOF2} mdof2_text)
+string(REPLACE "input F1 force on mass1 along x" "input F1 force on mass1 along x gain -1" force_declared "${mdof2_text}")
+file(WRITE "${WORK}/force_declared.mdl" "${force_declared}")
+file(WRITE "${WORK}/sensor_declared.mdl" "${mdof2_text}\nfilter d1_sign on d1 gain factor -1\n")
+foreach(pair "force_declared.mdl;force_reversed.csv" "sensor_declared.mdl;sensor_reversed.csv")
+  list(GET pair 0 model)
+  list(GET pair 1 data)
+  execute_process(COMMAND "${MBGEN}" fit ${model} --data ${data} --starts 2 WORKING_DIRECTORY "${WORK}"
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0 OR out MATCHES "warning")
+    message(SEND_ERROR "${model} on ${data}, the reversal declared: status ${status}, or a warning:\n${out}${err}")
+  endif()
+endforeach()

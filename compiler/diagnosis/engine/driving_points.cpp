@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include "diagnosis/model_values.hpp"
+
 namespace mbgen::diagnosis {
 
 namespace {
@@ -23,6 +25,18 @@ const ir::Input* driven_at(const ir::ModelIr& model, const ir::Output& out) {
   return nullptr;
 }
 
+// The sign the model itself declares between a driving point's recorded FRF and the structure's: the input's gain
+// times the output's gain filters (recorded output g_out y over recorded force g_in F is g_out / g_in times H). A
+// model that says the force or the sensor is recorded reversed expects data that seem to give out power.
+double declared_sign(const ir::ModelIr& model, const ir::Input& in, const ir::Output& out) {
+  const ModelValues values(model, {});
+  double product = 1;
+  if (in.gain) product *= values.of(*in.gain);
+  for (const ir::Filter& f : model.filters)
+    if (f.output == out.name && f.kind == ir::FilterKind::Gain && f.factor) product *= values.of(*f.factor);
+  return product < 0 ? -1.0 : 1.0;
+}
+
 // Lines a check needs before it says anything.
 constexpr long kMinLines = 10;
 
@@ -39,7 +53,8 @@ std::vector<ReversedDrivingPoint> reversed_driving_points(const ir::ModelIr& mod
       const FrfData& frf = std::get<FrfData>(d.content);
       for (const FrfChannel& c : frf.channels) {
         if (c.output != o.name || c.input != in->name) continue;
-        const PassivityCheck check = driving_point_passivity(c.values, frf_noise(frf.f_hz, c).sigma, derivatives);
+        const PassivityCheck check = driving_point_passivity(declared_sign(model, *in, o) * c.values,
+                                                             frf_noise(frf.f_hz, c).sigma, derivatives);
         if (check.lines < kMinLines || !(check.against_share > 0.5)) continue;
         out.push_back({o.name, in->name, d.file(), check});
       }
