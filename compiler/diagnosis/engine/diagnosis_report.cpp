@@ -63,6 +63,36 @@ report::Table parameter_table(const FitResult& fit) {
   return t;
 }
 
+// The channel (index into the nominal channels) that finding d is on; -1 for none (a parameter at a bound).
+int channel_of(const DiagnosisResult& r, const Discrepancy& d) {
+  for (std::size_t c = 0; c < r.nominal.channels.size(); ++c)
+    if (r.nominal.channels[c].channel == d.channel && r.nominal.channels[c].data_set == d.data_set)
+      return static_cast<int>(c);
+  return -1;
+}
+
+// What a reader needs on the first screen, under the verdict: the strongest findings (the list is strongest first)
+// and the overlay of data and models on the channel of the strongest, whose figure the plots section also shows.
+void first_screen(report::Document& doc, const DiagnosisResult& r) {
+  const std::vector<Discrepancy>& all = r.nominal.residual.discrepancies;
+  if (all.empty()) return;
+  constexpr std::size_t kShown = 3;
+  std::vector<report::Inline> strongest;
+  for (std::size_t k = 0; k < all.size() && k < kShown; ++k) strongest.push_back(report::text(all[k].text));
+  doc.paragraph(all.size() > kShown ? "The strongest findings (of " + std::to_string(all.size()) + ", all below):"
+                                    : std::string("The findings:"));
+  doc.list(std::move(strongest));
+  for (const Discrepancy& d : all) {
+    const int c = channel_of(r, d);
+    if (c < 0) continue;
+    const ChannelResidual& channel = r.nominal.channels[static_cast<std::size_t>(c)];
+    doc.figure("frf_" + std::to_string(c) + ".svg",
+               report::text(channel.channel + " (" + fs::path(channel.data_set).filename().string() +
+                            "), where the strongest finding is"));
+    break;
+  }
+}
+
 }  // namespace
 
 void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
@@ -106,6 +136,7 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
   if (!r.nominal.fit.converged)
     doc.paragraph("**The nominal model's fit did not converge** (" + r.nominal.fit.stop_reason +
                   "): some findings may be the fit's, not the model's.");
+  first_screen(doc, r);
   doc.heading(2, "What the nominal model gets wrong");
   if (r.nominal.residual.discrepancies.empty()) doc.paragraph("No finding above the noise level.");
   std::vector<report::Inline> findings, noise;
@@ -138,10 +169,11 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
            c.qualifies ? "**yes**" : "no", c.description});
   }
   doc.table(std::move(candidates));
-  doc.paragraph("Every candidate is first fitted cheaply (one local fit from the current estimate); the best by that "
-                "screening are fitted fully. A candidate qualifies when its BIC is lower by more than 10, its "
-                "validation error is lower, and its new parameters are plausible; the best one is selected if it "
-                "also explains the discrepancy.");
+  doc.paragraph("Every candidate is first fitted cheaply (local fits near the current estimate, and from the priors "
+                "where it has no point at which it is the current model); the best by that screening are fitted "
+                "fully. A candidate qualifies when its BIC is lower by more than 10, its validation error is lower, "
+                "and its new parameters are plausible; the best one is selected if it also explains the "
+                "discrepancy.");
 
   doc.heading(2, "Parameters of the nominal model");
   doc.table(parameter_table(r.nominal.fit));
