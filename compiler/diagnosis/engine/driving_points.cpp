@@ -48,13 +48,14 @@ std::vector<ReversedDrivingPoint> reversed_driving_points(const ir::ModelIr& mod
     const ir::Input* in = driven_at(model, o);
     if (!in) continue;
     const int derivatives = o.kind == ir::OutputKind::Displacement ? 0 : o.kind == ir::OutputKind::Velocity ? 1 : 2;
+    const double sign = declared_sign(model, *in, o);
     for (const DataSet& d : data) {
       if (!d.is_frf()) continue;
       const FrfData& frf = std::get<FrfData>(d.content);
       for (const FrfChannel& c : frf.channels) {
         if (c.output != o.name || c.input != in->name) continue;
-        const PassivityCheck check = driving_point_passivity(declared_sign(model, *in, o) * c.values,
-                                                             frf_noise(frf.f_hz, c).sigma, derivatives);
+        const PassivityCheck check = driving_point_passivity(sign * c.values, frf_noise(frf.f_hz, c).sigma,
+                                                             derivatives);
         if (check.lines < kMinLines || !(check.against_share > 0.5)) continue;
         out.push_back({o.name, in->name, d.file(), check});
       }

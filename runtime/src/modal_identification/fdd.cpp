@@ -6,6 +6,7 @@
 // spectra and its damping from its bell in a modal filter of the spectral matrix (below).
 #include "fft_transforms.hpp"
 #include "mbgen/output_only_modal.hpp"
+#include "numerics/constants.hpp"
 #include "shape_metrics.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -23,7 +24,7 @@ namespace mbgen {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+using numerics::kTwoPi;
 constexpr double kLagsPerWindow = 8;  // lags up to 8 window lengths: exp(-8) of the correlation left out
 constexpr double kRecordsPerWindow = 20;
 constexpr double kPeakWindow = 0.01;  // a peak is the highest line within 1 % of its frequency
