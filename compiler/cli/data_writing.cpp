@@ -80,6 +80,14 @@ std::optional<DataFormat> data_format_of(const std::string& path) {
   return std::nullopt;
 }
 
+std::vector<UffMapping> own_mappings(const std::vector<std::string>& paths) {
+  std::vector<UffMapping> out;
+  for (const std::string& path : paths)
+    if (path != "-" && read_as_uff(path) && std::filesystem::exists(path + ".map"))
+      out.push_back(read_uff_mapping(path + ".map"));
+  return out;
+}
+
 DataSet read_for_writing(const std::vector<std::string>& paths, const std::string& model_path,
                          const std::vector<std::string>& sets, std::vector<UffMapping>& mappings) {
   std::vector<DataSet> data;
@@ -92,9 +100,7 @@ DataSet read_for_writing(const std::vector<std::string>& paths, const std::strin
   } else {
     for (const std::string& path : paths) data.push_back(read_data_file(path));
   }
-  for (const std::string& path : paths)
-    if (path != "-" && read_as_uff(path) && std::filesystem::exists(path + ".map"))
-      mappings.push_back(read_uff_mapping(path + ".map"));
+  for (UffMapping& m : own_mappings(paths)) mappings.push_back(std::move(m));
   std::vector<FrfData> frfs;
   for (DataSet& d : data) {
     if (!d.is_frf()) {

@@ -34,6 +34,9 @@ struct DataTexts {
 // not write them).
 DataTexts data_texts(const DataSet& data, const DataWriteRequest& request);
 
+// The mapping files (PATH.map) beside those of `paths` that are read as UFF (by the name, or a first line "-1").
+std::vector<UffMapping> own_mappings(const std::vector<std::string>& paths);
+
 // The data files at `paths` read as `fit --data` reads them (with `model_path`: channels checked against its inputs
 // and outputs, `# set` lines against its parameters and `sets`), as one data set: FRF files with the same lines and
 // distinct channels are joined (their `set` values must agree); a time record stands alone. The UFF files' own
