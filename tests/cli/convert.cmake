@@ -115,7 +115,7 @@ expect_run(STATUS 1 STDERR "a time record is converted alone" ARGS convert time.
 expect_run(STATUS 2 STDERR "--set: needs --model" ARGS convert truth.csv --set k12=1 -o x.uff)
 expect_run(STATUS 2 STDERR "--quantity: only for a UFF output" ARGS convert truth.csv --quantity mobility -o x.csv)
 expect_run(STATUS 2 ARGS convert truth.csv -o truth.csv)
-expect_run(STATUS 2 ARGS convert truth.uff -o truth.uff.map.csv -o truth.uff.map)
+expect_run(STATUS 2 STDERR "input" ARGS convert truth.uff -o truth.uff)
 file(WRITE "${WORK}/bad name.csv" "f_hz,a b/F.re,a b/F.im\n1,1,0\n2,1,0\n")
 tree_state(before "${WORK}")
 expect_run(STATUS 1 STDERR "the channel name `a b` cannot stand in a UFF mapping file" ARGS convert "bad name.csv" -o x.uff)
