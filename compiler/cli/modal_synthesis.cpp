@@ -3,7 +3,6 @@
 #include <mbgen/csv.hpp>
 #include <mbgen/data_error.hpp>
 
-#include <filesystem>
 #include <optional>
 #include <sstream>
 
@@ -30,8 +29,7 @@ DataTexts synthesis_texts(const ModalData& data, const ModalIdentification& resu
     return {out.str(), ""};
   }
   UffPointRules rules;
-  for (const std::string& path : data_paths)
-    if (path != "-" && std::filesystem::exists(path + ".map")) rules.mappings.push_back(read_uff_mapping(path + ".map"));
+  rules.mappings = own_mappings(data_paths);
   std::optional<SensorGeometry> geometry;
   if (model) {
     std::map<std::string, double> values;

@@ -46,6 +46,20 @@ foreach(f truth.uff truth.uff.map)
   endif()
 endforeach()
 
+# Lines that record 7's minimum and increment cannot give back bit for bit (0.1 Hz apart, or uneven) are written with
+# each point, and come back so.
+file(WRITE "${WORK}/uneven.csv" "f_hz,y/F.re,y/F.im\n0.1,1.5,-2.25\n0.2,3,1e-300\n0.3,-4.125,0.5\n0.45,7,8\n1e3,9,-1\n")
+file(WRITE "${WORK}/tenth.csv" "f_hz,y/F.re,y/F.im\n0.1,1,2\n0.2,3,4\n0.3,5,6\n0.4,7,8\n")
+foreach(name uneven tenth)
+  expect_run(STATUS 0 ARGS convert ${name}.csv -o ${name}.uff)
+  expect_run(STATUS 0 ARGS convert ${name}.uff -o ${name}_back.csv)
+  check("${name} lines: CSV -> UFF -> CSV changed the numbers" same ${name}.csv ${name}_back.csv 17)
+  file(READ "${WORK}/${name}.uff" uff)
+  if(NOT uff MATCHES "\n         6         [45]         0  0.00000E[+]00  0.00000E[+]00")
+    message(SEND_ERROR "${name}.uff: the lines are not written with each point (record 7 spacing 0)")
+  endif()
+endforeach()
+
 # With the model: its sensor points (d1 and d2 on distinct bodies, along x), its input at 1001, its outputs'
 # quantity (displacement, record 9 type 8); channels checked as fit checks them.
 expect_run(STATUS 0 ARGS convert truth.csv --model ${MDOF2} -o model.uff)
