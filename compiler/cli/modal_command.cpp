@@ -243,10 +243,8 @@ int run_modal(int argc, char** argv) {
     if (!json_path.empty()) out.add(json_path, modal_result_json(in));
     if (!report_dir.empty()) write_modal_report(out.stage_directory(report_dir), in);
     if (!synthesis_path.empty()) {
-      const std::optional<ir::ModelIr> model =
-          model_path.empty() ? std::nullopt : std::optional<ir::ModelIr>(frontend::parse_file(model_path));
       const DataTexts synthesis = synthesis_texts(run.data, run.result, synthesis_format, data_paths,
-                                                  model ? &*model : nullptr, parse_set_options(sets));
+                                                  run.model ? &*run.model : nullptr, parse_set_options(sets));
       out.add(synthesis_path, synthesis.data);
       if (synthesis_uff) out.add(synthesis_path + ".map", synthesis.mapping);
     }

@@ -106,6 +106,23 @@ expect_run(STATUS 0 ARGS convert half_d1.csv half_d2.csv -o joined.csv)
 check("two FRF files joined are not the file they were cut from" same truth.csv joined.csv 17)
 expect_run(STATUS 1 STDERR "truth.csv: error: the FRF d1/F1 is in half_d1.csv already"
            ARGS convert half_d1.csv truth.csv -o x.uff)
+# The points: the default ones in order of appearance (d2 first here), the model's sensor points with --model.
+expect_run(STATUS 0 ARGS convert half_d2.csv half_d1.csv -o reversed.uff)
+file(READ "${WORK}/reversed.uff.map" map)
+if(NOT map MATCHES "\n1:[+]X = d2\n1001:[+]X = F1\n2:[+]X = d1\n$")
+  message(SEND_ERROR "reversed.uff.map: not the default points in order of appearance:\n${map}")
+endif()
+expect_run(STATUS 0 ARGS convert half_d2.csv half_d1.csv --model ${MDOF2} -o reversed_model.uff)
+file(READ "${WORK}/reversed_model.uff.map" map)
+if(NOT map MATCHES "\n2:[+]X = d2\n1001:[+]X = F1\n1:[+]X = d1\n$")
+  message(SEND_ERROR "reversed_model.uff.map: not the model's sensor points (d1 node 1, d2 node 2):\n${map}")
+endif()
+# Two outputs at one place along one axis are one UFF point: refused, naming both.
+write_model(two_at_one "output a acceleration of b along x")
+file(WRITE "${WORK}/two_at_one.csv" "f_hz,y/F.re,y/F.im,a/F.re,a/F.im\n1,1,2,3,4\n2,5,6,7,8\n")
+expect_run(STATUS 1 STDERR "two_at_one.csv: error: the channels `y` and `a` would both be the UFF point 1:[+]X"
+           ARGS convert two_at_one.csv --model two_at_one.mdl -o x.uff)
+expect_run(STATUS 0 ARGS convert two_at_one.csv -o two_at_one.uff)
 execute_process(COMMAND /usr/bin/python3 ${SOURCE}/scripts/truthgen/truthgen.py --example mdof2 --case nominal
                         --kind time --duration 0.25 -o time.csv WORKING_DIRECTORY "${WORK}")
 expect_run(STATUS 0 ARGS convert time.csv -o time_back.csv)
