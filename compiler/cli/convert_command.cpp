@@ -1,6 +1,8 @@
 // `mbgen convert DATA... -o OUT [--model MODEL.mdl] [--set ...] [--quantity ...]`: measured data written in another
 // format mbgen reads, for another tool: FRFs as ASCII UFF 58 (OUT.uff or OUT.unv, with OUT.map naming the points) or
 // CSV, time records as CSV (cli/data_writing.hpp, docs/data.md).
+#include <iostream>
+
 #include "cli/commands.hpp"
 #include "cli/data_writing.hpp"
 #include "cli/output_files.hpp"
@@ -54,6 +56,10 @@ int run_convert(int argc, char** argv) {
     request.sets = sets;
     request.quantity = quantity;
     const DataSet data = read_for_writing(data_paths, model_path, sets, request.mappings);
+    request.comments = carried_comments(data_paths);
+    if (*format == DataFormat::Uff && !request.comments.empty())
+      std::cerr << "warning: UFF 58 carries no `# time=` or `# condition` line: " << output
+                << " goes without them (CSV keeps them; monitor reads them from CSV only)\n";
     const DataTexts texts = data_texts(data, request);
     OutputFiles out;
     out.add(output, texts.data);

@@ -2,6 +2,10 @@
 
 #include <mbgen/csv.hpp>
 #include <mbgen/data_error.hpp>
+#include <mbgen/measurement_time.hpp>
+#include <mbgen/operating_conditions.hpp>
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
@@ -88,6 +92,25 @@ std::vector<UffMapping> own_mappings(const std::vector<std::string>& paths) {
   return out;
 }
 
+std::vector<std::string> carried_comments(const std::vector<std::string>& paths) {
+  std::vector<std::string> first;
+  std::string first_path;
+  for (const std::string& path : paths) {
+    std::vector<std::string> lines;
+    if (const std::optional<MeasurementTime> time = read_measurement_time(path)) lines.push_back("# time=" + time->text);
+    for (const ConditionValue& c : read_operating_conditions(path))
+      lines.push_back(fmt::format("# condition {}={}", c.name, c.value));  // the shortest text of the double
+    if (lines.empty()) continue;
+    if (first_path.empty()) {
+      first = lines, first_path = path;
+    } else if (lines != first) {
+      throw DataError(path, 0, 0, "its `# time=` or `# condition` lines differ from those of " + first_path +
+                                      ": one file holds one measurement, convert them one by one");
+    }
+  }
+  return first;
+}
+
 DataSet read_for_writing(const std::vector<std::string>& paths, const std::string& model_path,
                          const std::vector<std::string>& sets, std::vector<UffMapping>& mappings) {
   std::vector<DataSet> data;
@@ -116,6 +139,7 @@ DataSet read_for_writing(const std::vector<std::string>& paths, const std::strin
 DataTexts data_texts(const DataSet& data, const DataWriteRequest& request) {
   std::ostringstream text;
   if (request.format == DataFormat::Csv) {
+    for (const std::string& line : request.comments) text << line << "\n";
     if (data.is_frf())
       write_frf_csv(text, std::get<FrfData>(data.content));
     else

@@ -23,6 +23,7 @@ struct DataWriteRequest {
   std::string quantity = "auto";   // auto (the model's outputs, else the data's), receptance, mobility, accelerance
   std::vector<UffMapping> mappings;  // the data's own mapping files
   std::string title = "mbgen convert";  // UFF ID line 1 and the mapping file's heading
+  std::vector<std::string> comments;    // CSV: lines before the data's own (`# time=...`, carried_comments)
 };
 
 // A data file's text, and for UFF the mapping file's (empty for CSV).
@@ -36,6 +37,11 @@ DataTexts data_texts(const DataSet& data, const DataWriteRequest& request);
 
 // The mapping files (PATH.map) beside those of `paths` that are read as UFF (by the name, or a first line "-1").
 std::vector<UffMapping> own_mappings(const std::vector<std::string>& paths);
+
+// The `# time=` and `# condition NAME=VALUE` lines of the CSV files at `paths` (read_measurement_time,
+// read_operating_conditions), which the data readers skip as comments, for a CSV written from them: the same in every
+// file that has them (DataError naming the file whose differ from the first's: one file is one measurement).
+std::vector<std::string> carried_comments(const std::vector<std::string>& paths);
 
 // The data files at `paths` read as `fit --data` reads them (with `model_path`: channels checked against its inputs
 // and outputs, `# set` lines against its parameters and `sets`), as one data set: FRF files with the same lines and

@@ -135,6 +135,19 @@ if(differ)
   message(SEND_ERROR "time record CSV -> CSV changed the numbers")
 endif()
 
+# `# time=` and `# condition` lines (monitor's) go with a CSV, not into UFF, which cannot carry them: a warning.
+file(WRITE "${WORK}/stamped.csv" "# time=2026-03-07T08:00:00Z\n# condition temperature=21.5\nf_hz,y/F.re,y/F.im\n1,1,2\n2,3,4\n")
+expect_run(STATUS 0 ARGS convert stamped.csv -o stamped_back.csv STDERR "^$")
+file(READ "${WORK}/stamped_back.csv" text)
+if(NOT text STREQUAL "# time=2026-03-07T08:00:00Z\n# condition temperature=21.5\nf_hz,y/F.re,y/F.im\n1,1,2\n2,3,4\n")
+  message(SEND_ERROR "stamped.csv -> CSV lost its time or condition:\n${text}")
+endif()
+expect_run(STATUS 0 ARGS convert stamped.csv -o stamped.uff
+           STDERR "^warning: UFF 58 carries no `# time=` or `# condition` line: stamped.uff goes without them")
+file(WRITE "${WORK}/stamped2.csv" "# time=2026-03-08\nf_hz,z/F.re,z/F.im\n1,1,2\n2,3,4\n")
+expect_run(STATUS 1 STDERR "stamped2.csv: error: its `# time=` or `# condition` lines differ from those of stamped.csv"
+           ARGS convert stamped.csv stamped2.csv -o x.csv)
+
 # Refusals: a clear message, nothing written.
 tree_state(before "${WORK}")
 expect_run(STATUS 2 STDERR "-o: the name says the format: OUT.uff or OUT.unv [(]UFF 58[)] or OUT.csv, got `x.txt`"
