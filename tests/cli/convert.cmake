@@ -46,6 +46,18 @@ foreach(f truth.uff truth.uff.map)
   endif()
 endforeach()
 
+# What convert writes, converted again, is the same file: its points come back from its mapping file, its `set` value
+# and coherence with them.
+expect_run(STATUS 0 ARGS convert truth.uff -o truth_twice.uff)
+foreach(f truth.uff truth.uff.map)
+  string(REPLACE "truth" "truth_twice" twice "${f}")
+  file(SHA256 "${WORK}/${f}" first)
+  file(SHA256 "${WORK}/${twice}" second)
+  if(NOT first STREQUAL second)
+    message(SEND_ERROR "UFF -> UFF is not a fixed point: ${f} and ${twice} differ")
+  endif()
+endforeach()
+
 # Lines that record 7's minimum and increment cannot give back bit for bit (0.1 Hz apart, or uneven) are written with
 # each point, and come back so.
 file(WRITE "${WORK}/uneven.csv" "f_hz,y/F.re,y/F.im\n0.1,1.5,-2.25\n0.2,3,1e-300\n0.3,-4.125,0.5\n0.45,7,8\n1e3,9,-1\n")
