@@ -52,6 +52,7 @@ int specific_data_type(ir::OutputKind kind) {
 
 FrfData joined(std::vector<FrfData> files) {
   FrfData out = std::move(files.front());
+  std::vector<std::string> origin(out.channels.size(), out.file);  // each channel's file
   for (std::size_t k = 1; k < files.size(); ++k) {
     FrfData& more = files[k];
     if (more.f_hz.size() != out.f_hz.size() || more.f_hz != out.f_hz)
@@ -66,9 +67,11 @@ FrfData joined(std::vector<FrfData> files) {
       throw DataError(more.file, 0, 0, "its `set` values differ from those of " + out.file +
                                            ": one file holds one data set, convert them one by one");
     for (FrfChannel& c : more.channels) {
-      if (out.find(c.output, c.input))
-        throw DataError(more.file, 0, 0, "the FRF " + c.output + "/" + c.input + " is in " + out.file + " already");
+      for (std::size_t i = 0; i < out.channels.size(); ++i)
+        if (out.channels[i].output == c.output && out.channels[i].input == c.input)
+          throw DataError(more.file, 0, 0, "the FRF " + c.output + "/" + c.input + " is in " + origin[i] + " already");
       out.channels.push_back(std::move(c));
+      origin.push_back(more.file);
     }
     if (more.uff_ordinate_type != out.uff_ordinate_type) out.uff_ordinate_type = 0;
   }

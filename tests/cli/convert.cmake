@@ -118,6 +118,8 @@ expect_run(STATUS 0 ARGS convert half_d1.csv half_d2.csv -o joined.csv)
 check("two FRF files joined are not the file they were cut from" same truth.csv joined.csv 17)
 expect_run(STATUS 1 STDERR "truth.csv: error: the FRF d1/F1 is in half_d1.csv already"
            ARGS convert half_d1.csv truth.csv -o x.uff)
+expect_run(STATUS 1 STDERR "truth.csv: error: the FRF d1/F1 is in half_d1.csv already"
+           ARGS convert half_d2.csv half_d1.csv truth.csv -o x.uff)
 # The points: the default ones in order of appearance (d2 first here), the model's sensor points with --model.
 expect_run(STATUS 0 ARGS convert half_d2.csv half_d1.csv -o reversed.uff)
 file(READ "${WORK}/reversed.uff.map" map)
