@@ -133,6 +133,20 @@ void TextPatch::change_role(ir::SourceLoc name_loc, const std::string& from, con
                          std::to_string(name_loc.line));
 }
 
+void TextPatch::replace_number(ir::SourceLoc name_loc, const std::string& literal) {
+  const Range r = statement(name_loc);
+  const std::size_t first = r.first + 3;  // `param NAME = ` then the value
+  const bool sign = first < r.last && tokens_[first].kind == TokenKind::Punct && tokens_[first].text == "-";
+  const std::size_t last = sign ? first + 1 : first;
+  // A number alone: what follows (unit, role, bounds) must not continue an expression.
+  const bool continued = last < r.last && tokens_[last + 1].kind == TokenKind::Punct &&
+                         std::string("+-*/^").find(tokens_[last + 1].text) != std::string::npos;
+  if (last > r.last || tokens_[last].kind != TokenKind::Number || continued)
+    throw std::logic_error("text patch: the declaration at line " + std::to_string(name_loc.line) +
+                           " is not `param NAME = NUMBER`");
+  edit(offset(tokens_[first].loc), token_end(last), literal);
+}
+
 void TextPatch::append(const std::string& text) { appended_ += text; }
 
 void TextPatch::rewrite_statement(ir::SourceLoc name_loc, const std::string& replacement) {

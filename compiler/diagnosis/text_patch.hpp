@@ -34,6 +34,10 @@ class TextPatch {
   // the change in a comment on the same line (or in the end section if the line goes on).
   void change_role(ir::SourceLoc name_loc, const std::string& from, const std::string& to, const std::string& note);
 
+  // Replaces the number a parameter is declared with (`param NAME = NUMBER ...`, a sign included) by `literal`,
+  // in place: the rest of the declaration (unit, role, bounds, comment) stays as written.
+  void replace_number(ir::SourceLoc name_loc, const std::string& literal);
+
   // Replaces the tokens of the statement whose name token is at `name_loc` by `replacement` (one statement, no
   // newline), in place: the lines keep their numbers and a trailing comment stays.
   void rewrite_statement(ir::SourceLoc name_loc, const std::string& replacement);

@@ -95,3 +95,15 @@ TEST_CASE("a statement rewritten in place keeps the lines and what shares its li
   CHECK(edited.parameters[1].role == ir::Role::Estimate);
   CHECK(edited.outputs[0].loc.line == m.outputs[0].loc.line);
 }
+
+TEST_CASE("a parameter's number is replaced in place, its unit, role, bounds and comment kept", "[diagnosis][text]") {
+  const char* const text = "param m = 2 \"kg\" estimate in [0, inf]  # a mass\nparam k = -1e3 estimate; param g = 2*m\n";
+  const ir::ModelIr m = frontend::parse_string(text, "t.mdl");
+  TextPatch patch(text, "t.mdl");
+  patch.replace_number(m.parameters[0].loc, "2.5");
+  patch.replace_number(m.parameters[1].loc, "-1250");
+  CHECK_THAT(patch.text(), Equals("param m = 2.5 \"kg\" estimate in [0, inf]  # a mass\n"
+                                  "param k = -1250 estimate; param g = 2*m\n"));
+  // An expression is not a number: the patch refuses rather than cut it.
+  CHECK_THROWS_WITH(patch.replace_number(m.parameters[2].loc, "3"), Contains("is not `param NAME = NUMBER`"));
+}

@@ -22,8 +22,10 @@
 #include "diagnosis/engine/new_body_modes.hpp"
 #include "diagnosis/engine/text_format.hpp"
 #include "diagnosis/engine/thresholds.hpp"
+#include "diagnosis/text_patch.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
+#include "frontend/parser.hpp"
 
 namespace mbgen::diagnosis {
 
@@ -66,50 +68,29 @@ std::set<std::string> added_parameters(const DiagnosisResult& r) {
 }
 
 // The extended model's text with the added parameters' start values replaced by their estimates, so the written
-// model is the fitted one. Only `param NAME = NUMBER` declarations of those names change.
-std::string with_estimates(const std::string& text, const std::map<std::string, double>& values,
+// model is the fitted one: their numbers replaced in place through TextPatch.
+std::string with_estimates(const std::string& text, const std::string& file, const std::map<std::string, double>& values,
                            const std::set<std::string>& names) {
-  std::string out;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(pos, end - pos);
-    for (const std::string& name : names) {
-      const std::string head = "param " + name + " = ";
-      const auto it = values.find(name);
-      if (line.rfind(head, 0) != 0 || it == values.end()) continue;
-      const std::size_t value_end = line.find(' ', head.size());
-      char number[64];
-      std::snprintf(number, sizeof number, "%.6g", it->second);
-      line = head + number + (value_end == std::string::npos ? "" : line.substr(value_end));
-    }
-    out += line;
-    if (end < text.size()) out += '\n';
-    pos = end + 1;
+  const ir::ModelIr parsed = frontend::parse_string(text, file);
+  TextPatch patch(text, file);
+  for (const ir::Parameter& p : parsed.parameters) {
+    const auto it = values.find(p.name);
+    if (!names.count(p.name) || it == values.end() || p.derived) continue;
+    char number[64];
+    std::snprintf(number, sizeof number, "%.6g", it->second);
+    patch.replace_number(p.loc, number);
   }
-  return out;
+  return patch.text();
 }
 
 // `text` with parameter `name`'s declaration changed from `estimate` to `known`, saying why in its comment.
-std::string with_role_known(const std::string& text, const std::string& name) {
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    const std::string head = "param " + name;
-    if (text.compare(pos, head.size(), head) == 0 && pos + head.size() < end &&
-        (text[pos + head.size()] == ' ' || text[pos + head.size()] == '=')) {
-      std::string line = text.substr(pos, end - pos);
-      const std::size_t role = line.find("  estimate");
-      if (role != std::string::npos) line.replace(role, 10, "  known");
-      line += line.find('#') == std::string::npos ? "  # " : "; ";
-      line += "held at this value: the data do not determine it";
-      return text.substr(0, pos) + line + text.substr(end);
-    }
-    pos = end + 1;
-  }
-  return text;
+std::string with_role_known(const std::string& text, const std::string& file, const std::string& name) {
+  const ir::ModelIr parsed = frontend::parse_string(text, file);
+  TextPatch patch(text, file);
+  for (const ir::Parameter& p : parsed.parameters)
+    if (p.name == name && p.role == ir::Role::Estimate)
+      patch.change_role(p.loc, "estimate", "known", "held at this value: the data do not determine it");
+  return patch.text();
 }
 
 // The parameters a taken model's fit held (ModelState::held) become `known` in its model and text, so that later
@@ -118,7 +99,7 @@ void declare_held_known(ModelState& s) {
   for (const std::string& name : s.held) {
     for (ir::Parameter& p : s.model.parameters)
       if (p.name == name) p.role = ir::Role::Known;
-    s.text = with_role_known(s.text, name);
+    s.text = with_role_known(s.text, s.model.file, name);
   }
   s.held.clear();
 }
@@ -285,7 +266,7 @@ class Diagnoser {
       if (!extend_once(round, result, current)) break;
     }
     keep_only_full_explanations(result, current);
-    if (!result.selected.empty()) current.text = with_estimates(current.text, current.values, added_parameters(result));
+    if (!result.selected.empty()) current.text = with_estimates(current.text, current.model.file, current.values, added_parameters(result));
     result.final = current;
     result.verdict = verdict_of(result);
     say("verdict: " + result.verdict);
@@ -1042,10 +1023,20 @@ class Diagnoser {
       std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bic[t][a] < bic[t][b]; });
       orders.push_back(order);
     }
+    // Only a candidate whose screening shows evidence goes on: a BIC below the current model's by more than
+    // |min_delta_bic| in one of the rankings (a failed screening fit too, whose failure the full fit reports). For a
+    // candidate that contains the current model the screening fit is the score test carried to convergence: without
+    // evidence there, the full fit could only find a distant optimum, and a later round on a model near the noise
+    // spent most of its time fitting candidates that all ended above it.
+    const auto evidence = [&](std::size_t k) {
+      for (std::size_t t = 0; t < kinds.size(); ++t)
+        if (!(bic[t][k] - base_bic[t] >= options_.min_delta_bic)) return true;
+      return false;
+    };
     std::set<std::size_t> kept;
     for (std::size_t r = 0; kept.size() < static_cast<std::size_t>(options_.full_fits) && r < fitted.size(); ++r)
       for (std::size_t t = 0; t < kinds.size() && kept.size() < static_cast<std::size_t>(options_.full_fits); ++t)
-        kept.insert(orders[t][r]);
+        if (evidence(orders[t][r])) kept.insert(orders[t][r]);
     // A candidate's variants are forms of one explanation, which the full fits choose among. A variant whose
     // screening fits all ended above the current model's cost, a point every candidate contains (in a limit: a
     // rigid support, a vanishing resonator), has not been judged but failed to fit: it goes on to the full fit when
@@ -1071,8 +1062,10 @@ class Diagnoser {
       o.screen_delta_bic = outcomes[k].screen_delta_bic;
       o.screen_records_delta_bic = outcomes[k].screen_records_delta_bic;
       o.fully_fitted = false;
-      o.doubts.push_back(format("screened out: its screening fits ranked below the %.0f best",
-                                static_cast<double>(options_.full_fits)));
+      o.doubts.push_back(evidence(k) ? format("screened out: its screening fits ranked below the %.0f best",
+                                              static_cast<double>(options_.full_fits))
+                                     : format("screened out: its screening fits lower no BIC by more than %.0f",
+                                              -options_.min_delta_bic));
       outcomes[k] = std::move(o);
     }
   }
