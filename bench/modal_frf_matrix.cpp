@@ -5,7 +5,7 @@
 // instead, for timing the command itself. See README.md.
 #include "mbgen/csv.hpp"
 #include "mbgen/modal_identification.hpp"
-#include "../runtime/src/modal_identification/synthetic_frf.hpp"
+#include "mbgen_test/synthetic_frf.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

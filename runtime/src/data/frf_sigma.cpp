@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "window_median.hpp"
+#include "numerics/window_median.hpp"
 
 namespace mbgen {
 

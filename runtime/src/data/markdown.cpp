@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

@@ -1,6 +1,6 @@
 #include "excited_block.hpp"
 
-#include "../dynamics/model_checks.hpp"
+#include "dynamics/model_checks.hpp"
 #include "mbgen/fit.hpp"
 
 #include <numeric>

@@ -8,11 +8,11 @@
 
 #include "estimator.hpp"
 #include "fit_setup.hpp"
-#include "levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 #include "local_fit_memo.hpp"
 #include "multistart.hpp"
 #include "output_error.hpp"
-#include "row_block_qr.hpp"
+#include "numerics/row_block_qr.hpp"
 #include "mbgen/spectral_companion.hpp"
 
 #include "mbgen/identifiability.hpp"

@@ -1,7 +1,7 @@
 // Deterministic multi-start of local fits on worker threads. Internal header.
 #pragma once
 
-#include "levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 #include "mbgen/parallel.hpp"
 
 #include <Eigen/Core>

@@ -2,7 +2,7 @@
 
 #include "method_setup.hpp"
 
-#include "../estimation/levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 
 #include "mbgen/identifiability.hpp"
 #include "numerics/constants.hpp"

@@ -1,6 +1,6 @@
 #include "direct_equations.hpp"
 
-#include "../estimation/excited_block.hpp"
+#include "estimation/excited_block.hpp"
 
 #include "mbgen/frf_noise.hpp"
 #include "numerics/constants.hpp"

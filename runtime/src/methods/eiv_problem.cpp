@@ -1,6 +1,6 @@
 #include "eiv_problem.hpp"
 
-#include "../estimation/excited_block.hpp"
+#include "estimation/excited_block.hpp"
 #include "method_setup.hpp"
 
 #include "mbgen/data_error.hpp"

@@ -1,6 +1,6 @@
 #include "method_result.hpp"
 
-#include "../estimation/output_error.hpp"
+#include "estimation/output_error.hpp"
 
 #include "mbgen/identifiability.hpp"
 #include "mbgen/modal.hpp"

@@ -2,7 +2,7 @@
 // prior values, and the output-error numbers of its estimate, so that methods compare on one scale. Internal header.
 #pragma once
 
-#include "../estimation/fit_inputs.hpp"
+#include "estimation/fit_inputs.hpp"
 #include "mbgen/fit.hpp"
 
 #include <Eigen/Core>

@@ -4,7 +4,7 @@
 // result can be compared with the output-error fit on the same terms. Internal header.
 #pragma once
 
-#include "../estimation/fit_setup.hpp"
+#include "estimation/fit_setup.hpp"
 #include "mbgen/fit.hpp"
 
 #include <Eigen/Core>

@@ -6,7 +6,7 @@
 
 #include <stdexcept>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen::methods {
 

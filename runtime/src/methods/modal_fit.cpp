@@ -19,7 +19,7 @@
 #include <limits>
 #include <random>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

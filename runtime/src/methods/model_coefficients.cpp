@@ -1,6 +1,6 @@
 #include "model_coefficients.hpp"
 
-#include "../estimation/excited_block.hpp"
+#include "estimation/excited_block.hpp"
 #include "mbgen/dynamics_error.hpp"
 #include "mbgen/state_space.hpp"
 #include "mbgen/transfer_function.hpp"

@@ -4,7 +4,7 @@
 // output-only records of drawn truths (numpy, its own simulation), with the refusal of the common factor.
 #include "mbgen_test/mdof2.hpp"
 
-#include "../modal_identification/oma_truth.hpp"
+#include "modal_identification/oma_truth.hpp"
 #include "modal_solve.hpp"
 
 #include "mbgen/methods/operational_update.hpp"

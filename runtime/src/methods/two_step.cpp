@@ -1,9 +1,9 @@
 #include "mbgen/methods/two_step.hpp"
 
-#include "../estimation/fit_setup.hpp"
-#include "../estimation/levenberg_marquardt.hpp"
-#include "../estimation/multistart.hpp"
-#include "../estimation/value_checks.hpp"
+#include "estimation/fit_setup.hpp"
+#include "numerics/levenberg_marquardt.hpp"
+#include "estimation/multistart.hpp"
+#include "estimation/value_checks.hpp"
 #include "analytical_route.hpp"
 #include "coefficient_problem.hpp"
 #include "method_result.hpp"

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 #include "modal_shape_figures.hpp"
 #include "report_text.hpp"
 #include "numerics/constants.hpp"

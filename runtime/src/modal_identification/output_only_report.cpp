@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 #include "report_text.hpp"
 
 namespace mbgen {

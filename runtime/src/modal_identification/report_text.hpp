@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen::modal_text {
 

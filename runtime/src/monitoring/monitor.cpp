@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

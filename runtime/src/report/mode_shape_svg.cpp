@@ -9,7 +9,7 @@
 #include <limits>
 #include <sstream>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

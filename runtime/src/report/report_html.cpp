@@ -9,7 +9,7 @@
 #include <optional>
 #include <sstream>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen::report {
 

@@ -1,5 +1,5 @@
 // Levenberg-Marquardt on problems with known minima, under both damping updates.
-#include "levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 
 #include <catch2/catch.hpp>
 

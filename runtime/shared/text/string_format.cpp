@@ -1,4 +1,4 @@
-#include "string_format.hpp"
+#include "text/string_format.hpp"
 
 #include <cstdarg>
 #include <cstdio>

@@ -2,7 +2,7 @@
 // a proportionally damped structure,
 //   H_oi(w) = sum_r phi_o(r) phi_i(r) / (m_r (w_r^2 - w^2 + 2 i zeta_r w_r w)),
 // times (i w)^power for mobility or accelerance, plus seeded complex Gaussian noise. Independent of the code
-// under test (no pole-residue form, no LSCF/LSFD code). Header-only; include from *_test.cpp files.
+// under test (no pole-residue form, no LSCF/LSFD code). Header-only; for tests and benchmarks.
 #pragma once
 
 #include "mbgen/frf_data.hpp"

@@ -1,6 +1,6 @@
 // detail::format: what std::printf prints, at any length (the private helper it replaced cut texts at 511 bytes, as
 // a diagnosis finding naming long channel and file names would be).
-#include "string_format.hpp"
+#include "text/string_format.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
-#include "levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 
-#include "row_block_qr.hpp"
+#include "numerics/row_block_qr.hpp"
 
 #include <Eigen/QR>
 

@@ -1,6 +1,6 @@
 // The row-block QR against Eigen's HouseholderQR (an independent implementation): the same R up to the signs of
 // its rows, the same Q^T r with those signs, on tall, short and rank-deficient matrices.
-#include "row_block_qr.hpp"
+#include "numerics/row_block_qr.hpp"
 
 #include <Eigen/QR>
 

@@ -1,4 +1,4 @@
-#include "row_block_qr.hpp"
+#include "numerics/row_block_qr.hpp"
 
 #include <algorithm>
 #include <cmath>
