@@ -1,6 +1,6 @@
-#include "mbgen/frf_noise.hpp"
+#include "mbgen/data/frf_noise.hpp"
 
-#include "mbgen/frf_sigma.hpp"
+#include "mbgen/data/frf_sigma.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "mbgen/frf_sigma.hpp"
+#include "mbgen/data/frf_sigma.hpp"
 
 #include <algorithm>
 #include <cmath>

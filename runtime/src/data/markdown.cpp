@@ -1,4 +1,4 @@
-#include "mbgen/markdown.hpp"
+#include "mbgen/data/markdown.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -6,7 +6,7 @@
 #include "numerics/levenberg_marquardt.hpp"
 #include "output_error.hpp"
 
-#include "mbgen/parameterization.hpp"
+#include "mbgen/estimation/parameterization.hpp"
 
 #include <Eigen/Core>
 

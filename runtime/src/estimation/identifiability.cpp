@@ -1,4 +1,4 @@
-#include "mbgen/identifiability.hpp"
+#include "mbgen/estimation/identifiability.hpp"
 
 #include "numerics/row_block_qr.hpp"
 

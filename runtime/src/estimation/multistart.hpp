@@ -2,7 +2,7 @@
 #pragma once
 
 #include "numerics/levenberg_marquardt.hpp"
-#include "mbgen/parallel.hpp"
+#include "mbgen/dynamics/parallel.hpp"
 
 #include <Eigen/Core>
 

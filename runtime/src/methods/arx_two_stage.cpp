@@ -4,7 +4,7 @@
 
 #include "numerics/levenberg_marquardt.hpp"
 
-#include "mbgen/identifiability.hpp"
+#include "mbgen/estimation/identifiability.hpp"
 #include "numerics/constants.hpp"
 #include "numerics/state_eigen.hpp"
 

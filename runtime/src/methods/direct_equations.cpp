@@ -2,7 +2,7 @@
 
 #include "estimation/excited_block.hpp"
 
-#include "mbgen/frf_noise.hpp"
+#include "mbgen/data/frf_noise.hpp"
 #include "numerics/constants.hpp"
 
 #include <Eigen/SVD>

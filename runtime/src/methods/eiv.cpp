@@ -2,7 +2,7 @@
 #include "mbgen/methods/eiv.hpp"
 
 #include "estimation/fit_setup.hpp"
-#include "mbgen/parameterization.hpp"
+#include "mbgen/estimation/parameterization.hpp"
 #include "numerics/levenberg_marquardt.hpp"
 #include "eiv_problem.hpp"
 #include "method_result.hpp"

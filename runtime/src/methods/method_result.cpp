@@ -2,8 +2,8 @@
 
 #include "estimation/output_error.hpp"
 
-#include "mbgen/identifiability.hpp"
-#include "mbgen/modal.hpp"
+#include "mbgen/estimation/identifiability.hpp"
+#include "mbgen/dynamics/modal.hpp"
 
 #include <algorithm>
 #include <cmath>

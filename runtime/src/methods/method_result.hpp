@@ -3,7 +3,7 @@
 #pragma once
 
 #include "estimation/fit_inputs.hpp"
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <Eigen/Core>
 

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "estimation/fit_setup.hpp"
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <Eigen/Core>
 

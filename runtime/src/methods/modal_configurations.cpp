@@ -1,8 +1,8 @@
 #include "modal_configurations.hpp"
 
-#include "mbgen/fit.hpp"
-#include "mbgen/modal.hpp"
-#include "mbgen/modal_pairing.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/modal_identification/modal_pairing.hpp"
 
 #include <stdexcept>
 

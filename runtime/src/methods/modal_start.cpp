@@ -6,7 +6,7 @@
 #include "modal_configurations.hpp"
 #include "modal_solve.hpp"
 
-#include "mbgen/spectral_companion.hpp"
+#include "mbgen/estimation/spectral_companion.hpp"
 
 #include <algorithm>
 #include <numeric>

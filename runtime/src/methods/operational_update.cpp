@@ -5,7 +5,7 @@
 #include "estimation/fit_inputs.hpp"
 #include "modal_solve.hpp"
 
-#include "mbgen/identifiability.hpp"
+#include "mbgen/estimation/identifiability.hpp"
 
 #include <Eigen/QR>
 

@@ -1,4 +1,4 @@
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 #include "mbgen_test/synthetic_frf.hpp"
 
 #include <catch2/catch.hpp>

@@ -2,7 +2,7 @@
 // and the stabilization diagram's pole codes. Internal header.
 #pragma once
 
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 
 #include <cmath>
 #include <fstream>

@@ -5,7 +5,7 @@
 // under test (no pole-residue form, no LSCF/LSFD code). Header-only; for tests and benchmarks.
 #pragma once
 
-#include "mbgen/frf_data.hpp"
+#include "mbgen/data/frf_data.hpp"
 #include "numerics/constants.hpp"
 
 #include <Eigen/Core>
