@@ -16,6 +16,7 @@ int run_modal(int argc, char** argv);
 int run_sensitivity(int argc, char** argv);
 int run_monitor(int argc, char** argv);
 int run_export(int argc, char** argv);
+int run_convert(int argc, char** argv);
 
 // `--set NAME=VALUE` options, checked for form (the symbolic stage checks the names and values).
 std::map<std::string, std::string> parse_set_options(const std::vector<std::string>& sets);

@@ -50,7 +50,8 @@ void print_usage() {
                "  mbgen monitor MODEL.mdl --data FILE... [--baseline N] [--json OUT] [--report DIR]\n"
                "                                                                  track parameters over time, detect changes\n"
                "  mbgen export MODEL.mdl [--what matrices|state-space|modes|frf] [--format json|csv] [-o OUT]\n"
-               "                                                                  the model's numbers for another tool\n\n"
+               "                                                                  the model's numbers for another tool\n"
+               "  mbgen convert DATA... -o OUT.uff|OUT.csv [--model MODEL.mdl]    measured data for another tool\n\n"
                "Run `mbgen COMMAND --help` for a command's options.\n";
 }
 
@@ -84,6 +85,7 @@ int dispatch(int argc, char** argv) {
   if (first == "sensitivity") return mbgen::cli::run_sensitivity(argc - 1, argv + 1);
   if (first == "monitor") return mbgen::cli::run_monitor(argc - 1, argv + 1);
   if (first == "export") return mbgen::cli::run_export(argc - 1, argv + 1);
+  if (first == "convert") return mbgen::cli::run_convert(argc - 1, argv + 1);
   return mbgen::cli::run_compile(argc, argv);
 }
 

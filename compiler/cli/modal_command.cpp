@@ -1,5 +1,5 @@
 // `mbgen modal --data FILE [--data FILE ...] [--band LO:HI] [--model MODEL.mdl] [--json OUT] [--report DIR]
-// [--uff OUT.uff]`:
+// [--uff OUT.uff] [--synthesis OUT.uff|OUT.csv]`:
 // experimental modal analysis of measured FRFs (runtime/include/mbgen/modal_identification/modal_identification.hpp,
 // docs/modal.md); with --output-only, of response records (cli/modal_output_only.cpp).
 #include <mbgen/data/data_error.hpp>
@@ -15,6 +15,7 @@
 #include "cli/commands.hpp"
 #include "cli/load_data.hpp"
 #include "cli/modal_output_only.hpp"
+#include "cli/modal_synthesis.hpp"
 #include "cli/output_files.hpp"
 #include "cli/number_checks.hpp"
 #include "cli/parameter_roles.hpp"
@@ -97,7 +98,7 @@ int run_modal(int argc, char** argv) {
       "selection of the physical poles and their refinement, residues by LSFD with residual terms, and a mode table.",
       "mbgen modal"};
   std::vector<std::string> data_paths, sets;
-  std::string band_text, model_path, json_path, report_dir, uff_path, quantity_text = "auto";
+  std::string band_text, model_path, json_path, report_dir, uff_path, synthesis_path, quantity_text = "auto";
   ModalOptions options;
   app.add_option("--data", data_paths,
                  "measured FRFs: CSV or UFF 58/58b; repeatable (same frequency lines); with --output-only time "
@@ -114,6 +115,10 @@ int run_modal(int argc, char** argv) {
   app.add_option("--uff", uff_path,
                  "write the modes as UFF 55 (complex shapes at the measured nodes and directions, UFF 15 nodes where "
                  "known) and OUT.map beside it naming the points");
+  app.add_option("--synthesis", synthesis_path,
+                 "write the FRFs synthesized from the modes with their residual terms (what channel_error and the "
+                 "report's overlays compare) on the analysed lines, named as the measured channels: OUT.uff or "
+                 "OUT.unv (UFF 58, with OUT.map beside it) or OUT.csv");
   app.add_option("--max-order", options.lscf.max_order,
                  "highest model order (default: from the data, about 64 / references; with --output-only the "
                  "states of SSI-cov, default 48)")
@@ -163,7 +168,7 @@ int run_modal(int argc, char** argv) {
       for (const auto& [given, option] : {std::pair{!band_text.empty(), "--band"},
                                           {!options.select_hz.empty(), "--select"},
                                           {no_refine, "--no-refine"}, {quantity_text != "auto", "--quantity"},
-                                          {!uff_path.empty(), "--uff"}})
+                                          {!uff_path.empty(), "--uff"}, {!synthesis_path.empty(), "--synthesis"}})
         if (given) throw CLI::ValidationError(option, "not with --output-only (FRF analysis only)");
       oma.data_paths = data_paths;
       oma.options.method = method_text == "fdd" ? OutputOnlyMethod::Fdd : OutputOnlyMethod::SsiCov;
@@ -203,9 +208,17 @@ int run_modal(int argc, char** argv) {
     OutputPlan plan;
     if (uff_path == "-")
       throw CLI::ValidationError("--uff", "a UFF file comes with its mapping file (OUT.map): name a file");
+    const std::optional<DataFormat> synthesis_named = data_format_of(synthesis_path);
+    if (!synthesis_path.empty() && !synthesis_named)
+      throw CLI::ValidationError("--synthesis", "the name says the format: OUT.uff or OUT.unv (UFF 58) or OUT.csv, "
+                                                "got `" + synthesis_path + "`");
+    const DataFormat synthesis_format = synthesis_named.value_or(DataFormat::Csv);
+    const bool synthesis_uff = !synthesis_path.empty() && synthesis_format == DataFormat::Uff;
     plan.files = {{"--json", json_path},
                   {"--uff", uff_path},
-                  {"--uff (its mapping file)", uff_path.empty() ? "" : uff_path + ".map"}};
+                  {"--uff (its mapping file)", uff_path.empty() ? "" : uff_path + ".map"},
+                  {"--synthesis", synthesis_path},
+                  {"--synthesis (its mapping file)", synthesis_uff ? synthesis_path + ".map" : ""}};
     plan.report_dir = report_dir;
     plan.inputs = data_paths;
     if (!model_path.empty()) plan.inputs.push_back(model_path);
@@ -229,6 +242,12 @@ int run_modal(int argc, char** argv) {
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, modal_result_json(in));
     if (!report_dir.empty()) write_modal_report(out.stage_directory(report_dir), in);
+    if (!synthesis_path.empty()) {
+      const DataTexts synthesis = synthesis_texts(run.data, run.result, synthesis_format, data_paths,
+                                                  run.model ? &*run.model : nullptr, parse_set_options(sets));
+      out.add(synthesis_path, synthesis.data);
+      if (synthesis_uff) out.add(synthesis_path + ".map", synthesis.mapping);
+    }
     if (!uff_path.empty()) {
       const std::optional<ir::ModelIr> model =
           model_path.empty() ? std::nullopt : std::optional<ir::ModelIr>(frontend::parse_file(model_path));

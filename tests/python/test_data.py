@@ -51,3 +51,51 @@ def test_uff58_frf():
     assert data["kind"] == "frf"
     assert data["values"].shape == (len(data["f_hz"]), len(data["channels"]))
     assert np.all(np.diff(data["f_hz"]) > 0)
+
+
+# mbgen.write_data: the inverse of read_data, by `mbgen convert`'s writers.
+def test_write_data_round_trip(tmp_path):
+    data = mbgen.read_data(MDOF2 / "data" / "frf_F1.csv")  # 8 significant digits, coherence
+    data["set"] = {"k12": 130000.0}
+    mbgen.write_data(tmp_path / "frf.uff", data)
+    mbgen.write_data(tmp_path / "frf.csv", data)
+    for written in ("frf.uff", "frf.csv"):
+        back = mbgen.read_data(tmp_path / written)
+        assert back["kind"] == "frf" and back["channels"] == data["channels"]
+        # UFF 58 holds 13 significant digits, CSV the shortest text of each double: both give the values back.
+        assert np.array_equal(back["f_hz"], data["f_hz"])
+        assert np.array_equal(back["values"], data["values"])
+        assert np.array_equal(back["coherence"], data["coherence"])
+        assert back["set"] == {"k12": 130000.0}
+    assert (tmp_path / "frf.uff.map").read_text().splitlines()[1:] == ["set k12=130000.0", "1:+X = d1", "1001:+X = F1",
+                                                                       "2:+X = d2"]
+    # Full-precision values: CSV keeps every bit, UFF 13 significant digits.
+    data["values"] = data["values"] * (1 + np.pi * 1e-9)
+    mbgen.write_data(tmp_path / "exact.csv", data)
+    mbgen.write_data(tmp_path / "exact.uff", data)
+    assert np.array_equal(mbgen.read_data(tmp_path / "exact.csv")["values"], data["values"])
+    uff = mbgen.read_data(tmp_path / "exact.uff")["values"]
+    assert not np.array_equal(uff, data["values"])
+    np.testing.assert_allclose(uff.real, data["values"].real, rtol=5e-13, atol=0)
+    np.testing.assert_allclose(uff.imag, data["values"].imag, rtol=5e-13, atol=0)
+
+
+def test_write_data_time_and_refusals(tmp_path):
+    data = mbgen.read_data(MDOF2 / "data" / "time_F1.csv")
+    mbgen.write_data(tmp_path / "time.csv", data)
+    back = mbgen.read_data(tmp_path / "time.csv")
+    assert np.array_equal(back["t"], data["t"]) and np.array_equal(back["values"], data["values"])
+    assert back["channels"] == data["channels"]
+    with pytest.raises(mbgen.DataError, match="a time record is written as CSV only"):
+        mbgen.write_data(tmp_path / "time.uff", data)
+    with pytest.raises(mbgen.UsageError, match="the name says the format"):
+        mbgen.write_data(tmp_path / "time.txt", data)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["time.csv"]
+
+
+def test_write_data_with_model(tmp_path):
+    data = mbgen.read_data(MDOF2 / "data" / "frf_F1.csv")
+    mbgen.write_data(tmp_path / "frf.uff", data, model=mbgen.load_model(MDOF2 / "mdof2.mdl"))
+    text = (tmp_path / "frf.uff").read_text()
+    assert "\n         8    0    0    0 displacement " in text  # the model's outputs: displacements
+    assert np.array_equal(mbgen.read_data(tmp_path / "frf.uff")["values"], data["values"])

@@ -51,6 +51,15 @@ std::vector<std::size_t> findings_cleared(const DiagnosisResult& result, const M
   return cleared;
 }
 
+std::vector<std::size_t> pending_findings(const DiagnosisResult& result, const ModelState& current) {
+  std::vector<std::size_t> pending;
+  const ModelState& nominal = result.nominal;
+  for (std::size_t k = 0; k < nominal.residual.discrepancies.size(); ++k)
+    if (still_shows(nominal.channels, current, nominal.residual.discrepancies[k], nominal.residual.threshold))
+      pending.push_back(k);
+  return pending;
+}
+
 // Ties go to the first in enumeration order (a torsion spring between the same two bodies at different points is
 // one and the same extension), so the choice does not hang on rounding.
 int best_qualifying(const std::vector<CandidateOutcome>& outcomes) {

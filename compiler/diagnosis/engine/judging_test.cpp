@@ -147,6 +147,17 @@ TEST_CASE("extensions are kept only if together they explain the nominal finding
   CHECK(mimics.why.find("moves a mode the nominal model had right") != std::string::npos);
 }
 
+TEST_CASE("a further round pursues only the nominal findings still showing", "[judging]") {
+  DiagnosisResult result;
+  result.nominal = state({1, 9, 9, 1, 16, 16, 1, 1, 1}, {finding(45, 65, 16), finding(15, 35, 9)}, 6.0);
+  // The first extension clears the 45-65 Hz finding; the 15-35 Hz one is left for another round.
+  CHECK(pending_findings(result, state({1, 9, 9, 1, 1, 1, 1, 1, 1}, {finding(15, 35, 9)}, 3.0)) ==
+        std::vector<std::size_t>{1});
+  // Both cleared: what the extended model shows near 85 Hz, where the nominal model had no finding, is the
+  // extension's own form and leaves nothing pending.
+  CHECK(pending_findings(result, state({1, 1, 1, 1, 1, 1, 1, 9, 9}, {finding(75, 95, 9)}, 2.5)).empty());
+}
+
 TEST_CASE("the verdict", "[judging]") {
   DiagnosisResult r;
   CHECK(verdict_of(r) == "no_extension_justified");
