@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The diagnosis on hidden effects drawn at random: for each case, DRAWS truths drawn by the independent generator
 # (scripts/truthgen --draw N: parameter offsets and the effect's size within the case's ranges) at 40 dB SNR, each
-# diagnosed, and the outcomes counted: right (the expected extension first, or no extension for a control), unexplained,
+# diagnosed, and the outcomes counted: right (the expected extension alone, or no extension for a control), unexplained,
 # wrong (another extension: the worst outcome), failed. A pair of effects ("A+B") is right when both are selected and
-# nothing else; partial when only some of them are (nothing else). The statistical sweep behind the single-draw tests in
+# nothing else; partial when only some of them are (nothing else); extra when the expected one is selected first and
+# another after it (a spurious second effect). The statistical sweep behind the single-draw tests in
 # tests/diagnosis (which keep CI short).
 #   bench/diagnose_draws.sh [build-dir] [draws] [case-filter-regex]
 #   e.g. bench/diagnose_draws.sh build 5 'mdof2.*frf'
@@ -57,12 +58,12 @@ cases=(
   "mdof2 wall_and_lowpass frf compliant_ground:wall+sensor_dynamics:d2"
 )
 
-printf '%-48s %6s %6s %12s %6s %6s %9s %7s\n' case draws right unexplained wrong failed "s/draw" partial
+printf '%-48s %6s %6s %12s %6s %6s %9s %7s %6s\n' case draws right unexplained wrong failed "s/draw" partial extra
 for entry in "${cases[@]}"; do
   read -r example case kind expected options <<< "$entry"
   label="$example $case $kind ${options:-}"
   [[ "$label" =~ $filter ]] || continue
-  right=0 unexplained=0 wrong=0 failed=0 partial=0
+  right=0 unexplained=0 wrong=0 failed=0 partial=0 more=0
   t0=$(date +%s)
   for draw in $(seq 1 "$draws"); do
     data="$work/data.csv"
@@ -91,11 +92,12 @@ import json; j = json.load(open('$work/d.json')); print(j['verdict'], '+'.join(j
 e = set('$expected'.split('+')); s = set('$selected'.split('+'))
 print('right' if s == e else 'partial' if s < e else 'wrong')")
       case "$outcome" in right) right=$((right + 1)) ;; partial) partial=$((partial + 1)) ;; *) wrong=$((wrong + 1)) ;; esac
-    elif [ "$verdict" = extended ] && [ "${selected%%+*}" = "$expected" ]; then right=$((right + 1))
+    elif [ "$verdict" = extended ] && [ "$selected" = "$expected" ]; then right=$((right + 1))
+    elif [ "$verdict" = extended ] && [ "${selected%%+*}" = "$expected" ]; then more=$((more + 1))
     elif [ "$verdict" = extended ]; then wrong=$((wrong + 1))
     else unexplained=$((unexplained + 1)); fi
   done
   per=$(( ($(date +%s) - t0) / draws ))
-  printf '%-48s %6d %6d %12d %6d %6d %9d %7d\n' "$label" "$draws" "$right" "$unexplained" "$wrong" "$failed" "$per" \
-    "$partial"
+  printf '%-48s %6d %6d %12d %6d %6d %9d %7d %6d\n' "$label" "$draws" "$right" "$unexplained" "$wrong" "$failed" \
+    "$per" "$partial" "$more"
 done
