@@ -20,9 +20,9 @@
 
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
-#include "mbgen/data_set.hpp"
-#include "mbgen/fit.hpp"
-#include "mbgen/frf.hpp"
+#include "mbgen/data/data_set.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/dynamics/frf.hpp"
 #include "symbolic/test_chain_model.hpp"
 
 namespace {

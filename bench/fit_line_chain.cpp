@@ -26,7 +26,7 @@
 #include "evaluator/symbolic_evaluator.hpp"
 #include "evaluator/test_line_chain.hpp"
 #include "frontend/parser.hpp"
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 namespace {
 

@@ -5,8 +5,8 @@
 //   fit_mdof2_frf [REPEATS]     (run from anywhere; finds fit_scipy.py through MBGEN_SOURCE_DIR)
 #include "mbgen_test/estimation.hpp"
 
-#include "mbgen/csv.hpp"
-#include "mbgen/fit.hpp"
+#include "mbgen/data/csv.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -15,8 +15,8 @@
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
 
-#include "mbgen/data_set.hpp"
-#include "mbgen/fit.hpp"
+#include "mbgen/data/data_set.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <nlohmann/json.hpp>
 

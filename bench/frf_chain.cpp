@@ -19,7 +19,7 @@
 
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
-#include "mbgen/frf.hpp"
+#include "mbgen/dynamics/frf.hpp"
 #include "seconds_since.hpp"
 #include "symbolic/test_chain_model.hpp"
 

@@ -6,7 +6,7 @@
 // right-hand-side columns that frf_jacobian reports.
 //
 // Usage: frf_jacobian [repetitions=5]
-#include "mbgen/frf.hpp"
+#include "mbgen/dynamics/frf.hpp"
 
 #include <Eigen/LU>
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Which |H| belongs in the FRF weights? An independent check with numpy/scipy on mdof2 (docs/estimation.md).
 
-The fit weights an FRF line by var(h) = (1 - g2)/(n g2) |h|^2 (mbgen/frf_sigma.hpp). This script fits mdof2's
+The fit weights an FRF line by var(h) = (1 - g2)/(n g2) |h|^2 (mbgen/data/frf_sigma.hpp). This script fits mdof2's
 receptances d1/F1, d2/F1 (10-400 Hz, 0.25 Hz lines, 40 dB) with scipy.optimize.least_squares on that weighted
 residual, its own model assembly and noise (no mbgen, no truthgen), over many noise realisations, and prints per
 parameter the mean and RMS of z = (estimate - truth) / reported std (s^2 (J^T J)^-1, s^2 = RSS/(n - k)). Honest

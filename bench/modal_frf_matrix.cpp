@@ -3,9 +3,9 @@
 // LSCF), twelve modes in the band with a close pair and a weak mode, 1 % noise. Prints the median wall time of
 // each stage over N runs (default 5) and the modes found. `modal_frf_matrix --write FILE.csv` writes the FRFs
 // instead, for timing the command itself. See README.md.
-#include "mbgen/csv.hpp"
-#include "mbgen/modal_identification.hpp"
-#include "../runtime/src/modal_identification/synthetic_frf.hpp"
+#include "mbgen/data/csv.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
+#include "mbgen_test/synthetic_frf.hpp"
 
 #include <algorithm>
 #include <chrono>

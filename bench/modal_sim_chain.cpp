@@ -16,9 +16,9 @@
 
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
-#include "mbgen/modal.hpp"
-#include "mbgen/simulate.hpp"
-#include "mbgen/state_space.hpp"
+#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/simulate.hpp"
+#include "mbgen/dynamics/state_space.hpp"
 #include "seconds_since.hpp"
 #include "symbolic/test_chain_model.hpp"
 

@@ -3,7 +3,7 @@
 // modes are independent), seen at the eight channels through sine shapes; 1 % white noise on each channel. Prints
 // the wall time of the correlations (FFT), of SSI-cov in all and of FDD in all, and the modes found against the
 // resonators' poles. Issue 34's target: SSI-cov under 30 s on 2 cores. See README.md.
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 #include "seconds_since.hpp"
 
 #include <cmath>

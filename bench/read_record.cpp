@@ -1,6 +1,6 @@
 // read_record FILE: reads a measured data file as `mbgen fit` does and prints the peak memory of the process per
 // value read (docs/limits.md states it). A record of N samples and C columns holds N*C doubles once read.
-#include <mbgen/data_set.hpp>
+#include <mbgen/data/data_set.hpp>
 
 #include <sys/resource.h>
 

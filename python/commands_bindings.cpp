@@ -5,9 +5,9 @@
 // json module.
 #include <pybind11/stl.h>
 
-#include <mbgen/dynamics_error.hpp>
-#include <mbgen/fit_report.hpp>
-#include <mbgen/monitor_report.hpp>
+#include <mbgen/dynamics/dynamics_error.hpp>
+#include <mbgen/estimation/fit_report.hpp>
+#include <mbgen/monitoring/monitor_report.hpp>
 
 #include <cmath>
 

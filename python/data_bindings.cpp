@@ -4,7 +4,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
-#include <mbgen/data_set.hpp>
+#include <mbgen/data/data_set.hpp>
 
 #include <cmath>
 #include <limits>

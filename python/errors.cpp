@@ -2,9 +2,9 @@
 // each carrying the message the command prints for it (run_guarded.hpp), e.g. "FILE:LINE:COLUMN: error: ...".
 // Any other C++ exception is a bug in mbgen and reaches Python as RuntimeError, as pybind11 translates it.
 #include <CLI/CLI.hpp>
-#include <mbgen/data_error.hpp>
-#include <mbgen/dynamics_error.hpp>
-#include <mbgen/fit.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/dynamics/dynamics_error.hpp>
+#include <mbgen/estimation/fit.hpp>
 
 #include <new>
 

@@ -6,12 +6,12 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <mbgen/dynamics_error.hpp>
-#include <mbgen/frf.hpp>
-#include <mbgen/modal.hpp>
-#include <mbgen/simulate.hpp>
-#include <mbgen/state_space.hpp>
-#include <mbgen/time_record.hpp>
+#include <mbgen/dynamics/dynamics_error.hpp>
+#include <mbgen/dynamics/frf.hpp>
+#include <mbgen/dynamics/modal.hpp>
+#include <mbgen/dynamics/simulate.hpp>
+#include <mbgen/dynamics/state_space.hpp>
+#include <mbgen/data/time_record.hpp>
 
 #include <cmath>
 #include <memory>

@@ -6,16 +6,16 @@
 // body throws them (run_guarded.hpp turns them into messages and exit statuses).
 #pragma once
 
-#include <mbgen/data_set.hpp>
-#include <mbgen/fit.hpp>
+#include <mbgen/data/data_set.hpp>
+#include <mbgen/estimation/fit.hpp>
 #include <mbgen/methods/method_table.hpp>
-#include <mbgen/modal_identification.hpp>
-#include <mbgen/modal_report.hpp>
+#include <mbgen/modal_identification/modal_identification.hpp>
+#include <mbgen/modal_identification/modal_report.hpp>
 #include <mbgen/model.hpp>
-#include <mbgen/mode_shape_svg.hpp>
-#include <mbgen/monitor.hpp>
-#include <mbgen/operational_report.hpp>
-#include <mbgen/sensitivity_report.hpp>
+#include <mbgen/report/mode_shape_svg.hpp>
+#include <mbgen/monitoring/monitor.hpp>
+#include <mbgen/monitoring/operational_report.hpp>
+#include <mbgen/sensitivity/sensitivity_report.hpp>
 
 #include <map>
 #include <memory>

@@ -2,7 +2,7 @@
 // what the summary, the JSON (`warnings`) and the report say first.
 #pragma once
 
-#include <mbgen/data_set.hpp>
+#include <mbgen/data/data_set.hpp>
 
 #include <string>
 #include <vector>

@@ -1,9 +1,9 @@
 #include "cli/data_writing.hpp"
 
-#include <mbgen/csv.hpp>
-#include <mbgen/data_error.hpp>
-#include <mbgen/measurement_time.hpp>
-#include <mbgen/operating_conditions.hpp>
+#include <mbgen/data/csv.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/monitoring/measurement_time.hpp>
+#include <mbgen/monitoring/operating_conditions.hpp>
 
 #include <fmt/format.h>
 

@@ -2,7 +2,7 @@
 // record) or ASCII UFF 58 (FRFs, with the mapping file OUT.map beside them). docs/data.md, "Writing data".
 #pragma once
 
-#include <mbgen/data_set.hpp>
+#include <mbgen/data/data_set.hpp>
 
 #include <optional>
 #include <string>

@@ -1,12 +1,12 @@
 // `mbgen export MODEL.mdl [--what matrices|state-space|modes|frf] [--frf LO:HI:N] [--format json|csv|uff|mat]
 // [--fit-result FIT.json] [--set ...] [-o OUT]`: the model's numbers at its values or at an estimate, for another
 // tool (docs/interfaces.md, "mbgen-export/1"). Deterministic: the same input gives the same bytes.
-#include <mbgen/csv.hpp>
-#include <mbgen/data_error.hpp>
-#include <mbgen/frf.hpp>
-#include <mbgen/modal.hpp>
-#include <mbgen/state_space.hpp>
-#include <mbgen/uff.hpp>
+#include <mbgen/data/csv.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/dynamics/frf.hpp>
+#include <mbgen/dynamics/modal.hpp>
+#include <mbgen/dynamics/state_space.hpp>
+#include <mbgen/data/uff.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,7 @@
 #include "cli/export_mat.hpp"
 
-#include <mbgen/modal.hpp>
-#include <mbgen/state_space.hpp>
+#include <mbgen/dynamics/modal.hpp>
+#include <mbgen/dynamics/state_space.hpp>
 
 #include "cli/mat_file.hpp"
 #include "cli/version.hpp"

@@ -1,7 +1,7 @@
 // `mbgen export --format mat`: the JSON export's content (docs/interfaces.md, "mbgen-export/1") as MATLAB variables.
 #pragma once
 
-#include <mbgen/frf.hpp>
+#include <mbgen/dynamics/frf.hpp>
 #include <mbgen/model.hpp>
 
 #include <string>

@@ -1,6 +1,7 @@
 // `mbgen fit MODEL.mdl --data FILE [--data FILE ...] [--method NAME] [--json OUT.json] [--report DIR]`:
-// estimates the model's `estimate` parameters from measured FRFs or time records (runtime/include/mbgen/fit.hpp).
-#include <mbgen/fit_report.hpp>
+// estimates the model's `estimate` parameters from measured FRFs or time records
+// (runtime/include/mbgen/estimation/fit.hpp).
+#include <mbgen/estimation/fit_report.hpp>
 #include <mbgen/methods/method_table.hpp>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Reading a fleet manifest (fleet_manifest.hpp, docs/fleets.md).
 #include "cli/fleet_manifest.hpp"
 
-#include <mbgen/fit.hpp>
+#include <mbgen/estimation/fit.hpp>
 
 #include <CLI/CLI.hpp>
 #include <glob.h>

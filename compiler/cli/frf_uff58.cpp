@@ -1,6 +1,6 @@
 #include "cli/frf_uff58.hpp"
 
-#include <mbgen/data_error.hpp>
+#include <mbgen/data/data_error.hpp>
 
 #include <algorithm>
 #include <cstdio>

@@ -2,8 +2,8 @@
 // `mbgen modal --synthesis`, mbgen.write_data): what docs/data.md ("Writing measured FRFs") describes.
 #pragma once
 
-#include <mbgen/frf_data.hpp>
-#include <mbgen/uff.hpp>
+#include <mbgen/data/frf_data.hpp>
+#include <mbgen/data/uff.hpp>
 
 #include <map>
 #include <string>

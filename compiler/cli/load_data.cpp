@@ -1,7 +1,7 @@
 #include "cli/load_data.hpp"
 
-#include <mbgen/data_error.hpp>
-#include <mbgen/data_set.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/data_set.hpp>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

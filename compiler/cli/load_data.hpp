@@ -1,7 +1,7 @@
 // Reading the `--data` files of `fit` and `diagnose`: each checked against the model's inputs and outputs.
 #pragma once
 
-#include <mbgen/fit.hpp>
+#include <mbgen/estimation/fit.hpp>
 
 #include <map>
 #include <string>

@@ -1,10 +1,10 @@
 // `mbgen modal --data FILE [--data FILE ...] [--band LO:HI] [--model MODEL.mdl] [--json OUT] [--report DIR]
 // [--uff OUT.uff] [--synthesis OUT.uff|OUT.csv]`:
-// experimental modal analysis of measured FRFs (runtime/include/mbgen/modal_identification.hpp, docs/modal.md);
-// with --output-only, of response records (cli/modal_output_only.cpp).
-#include <mbgen/data_error.hpp>
-#include <mbgen/data_set.hpp>
-#include <mbgen/modal_report.hpp>
+// experimental modal analysis of measured FRFs (runtime/include/mbgen/modal_identification/modal_identification.hpp,
+// docs/modal.md); with --output-only, of response records (cli/modal_output_only.cpp).
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/data_set.hpp>
+#include <mbgen/modal_identification/modal_report.hpp>
 
 #include <cmath>
 #include <iostream>

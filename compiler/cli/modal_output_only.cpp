@@ -1,11 +1,11 @@
 // `mbgen modal --output-only --data REC.csv [--data ...] [--method ssi-cov|fdd]`: the responses of time records,
-// no force (runtime/include/mbgen/output_only_modal.hpp, docs/modal.md).
+// no force (runtime/include/mbgen/modal_identification/output_only_modal.hpp, docs/modal.md).
 #include "cli/modal_output_only.hpp"
 
-#include <mbgen/data_error.hpp>
-#include <mbgen/data_set.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/data_set.hpp>
 #include <mbgen/methods/operational_update.hpp>
-#include <mbgen/output_only_report.hpp>
+#include <mbgen/modal_identification/output_only_report.hpp>
 
 #include <cmath>
 #include <cstdio>

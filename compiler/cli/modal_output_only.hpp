@@ -6,7 +6,7 @@
 
 #include "cli/parameter_roles.hpp"
 
-#include <mbgen/output_only_modal.hpp>
+#include <mbgen/modal_identification/output_only_modal.hpp>
 
 namespace mbgen::cli {
 

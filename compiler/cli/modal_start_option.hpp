@@ -2,7 +2,7 @@
 // data's own modes (mbgen/methods/modal_start.hpp).
 #pragma once
 
-#include <mbgen/fit.hpp>
+#include <mbgen/estimation/fit.hpp>
 #include <mbgen/methods/modal_start.hpp>
 
 #include <string>

@@ -1,7 +1,7 @@
 #include "cli/modal_synthesis.hpp"
 
-#include <mbgen/csv.hpp>
-#include <mbgen/data_error.hpp>
+#include <mbgen/data/csv.hpp>
+#include <mbgen/data/data_error.hpp>
 
 #include <optional>
 #include <sstream>

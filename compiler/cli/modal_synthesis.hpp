@@ -1,7 +1,7 @@
 // `mbgen modal --synthesis OUT`: the FRFs synthesized from the identified modes, for another tool or another run.
 #pragma once
 
-#include <mbgen/modal_identification.hpp>
+#include <mbgen/modal_identification/modal_identification.hpp>
 
 #include <map>
 #include <string>

@@ -1,6 +1,6 @@
 // `mbgen modal --uff OUT.uff`: the identified modes at the measured points (compiler/cli/uff_modes.hpp).
-#include <mbgen/data_error.hpp>
-#include <mbgen/uff.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/uff.hpp>
 
 #include <algorithm>
 #include <filesystem>

@@ -1,13 +1,13 @@
 // `mbgen monitor MODEL.mdl --data FILE [--data FILE ...] [--baseline N] [--json OUT] [--report DIR]`: one machine
 // measured again and again; each data set fitted, changes of its parameters detected against a baseline, and a
-// structural change (one no parameter explains) diagnosed (runtime/include/mbgen/monitor.hpp, docs/monitor.md).
-// `mbgen monitor --manifest FLEET.csv --out DIR [--item I | --count]`: many machines, each an idempotent item
-// (fleet_manifest.hpp, docs/fleets.md).
+// structural change (one no parameter explains) diagnosed (runtime/include/mbgen/monitoring/monitor.hpp,
+// docs/monitor.md). `mbgen monitor --manifest FLEET.csv --out DIR [--item I | --count]`: many machines, each an
+// idempotent item (fleet_manifest.hpp, docs/fleets.md).
 // `mbgen monitor --output-only --data REC.csv ...`: response records alone, in operation (monitor_output_only.cpp).
-#include <mbgen/measurement_time.hpp>
-#include <mbgen/monitor_report.hpp>
+#include <mbgen/monitoring/measurement_time.hpp>
+#include <mbgen/monitoring/monitor_report.hpp>
 
-#include <mbgen/report_files.hpp>
+#include <mbgen/report/report_files.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -27,7 +27,7 @@
 #include "cli/seed_option.hpp"
 #include "cli/starts_option.hpp"
 #include "cli/version.hpp"
-#include <mbgen/channel_residuals.hpp>
+#include <mbgen/diagnosis/channel_residuals.hpp>
 #include "diagnosis/engine/diagnose.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/message.hpp"

@@ -1,13 +1,14 @@
 // `mbgen monitor --output-only --data S1.csv --data S2.csv ... [--baseline K] [--model M.mdl]`: each record's modes
-// by SSI-cov, tracked, the conditions' effect removed, a T^2 chart (runtime/include/mbgen/operational_monitor.hpp).
+// by SSI-cov, tracked, the conditions' effect removed, a T^2 chart
+// (runtime/include/mbgen/monitoring/operational_monitor.hpp).
 #include "cli/monitor_output_only.hpp"
 
-#include <mbgen/data_error.hpp>
-#include <mbgen/data_set.hpp>
-#include <mbgen/measurement_time.hpp>
-#include <mbgen/operating_conditions.hpp>
-#include <mbgen/operational_explanation.hpp>
-#include <mbgen/operational_report.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/data_set.hpp>
+#include <mbgen/monitoring/measurement_time.hpp>
+#include <mbgen/monitoring/operating_conditions.hpp>
+#include <mbgen/monitoring/operational_explanation.hpp>
+#include <mbgen/monitoring/operational_report.hpp>
 
 #include <iostream>
 #include <optional>

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include <mbgen/operational_monitor.hpp>
-#include <mbgen/output_only_modal.hpp>
+#include <mbgen/monitoring/operational_monitor.hpp>
+#include <mbgen/modal_identification/output_only_modal.hpp>
 
 #include "cli/parameter_roles.hpp"
 

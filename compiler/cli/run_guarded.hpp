@@ -6,9 +6,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <mbgen/data_error.hpp>
-#include <mbgen/dynamics_error.hpp>
-#include <mbgen/fit.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/dynamics/dynamics_error.hpp>
+#include <mbgen/estimation/fit.hpp>
 
 #include <exception>
 #include <iostream>

@@ -1,6 +1,6 @@
 // `mbgen sensitivity MODEL.mdl [--global] [--sweep NAME=LO:HI:N] [--json OUT] [--report DIR]`: how the model's modes
-// depend on its parameters (runtime/include/mbgen/sensitivity.hpp, docs/sensitivity.md).
-#include <mbgen/sensitivity_report.hpp>
+// depend on its parameters (runtime/include/mbgen/sensitivity/sensitivity.hpp, docs/sensitivity.md).
+#include <mbgen/sensitivity/sensitivity_report.hpp>
 
 #include <Eigen/Cholesky>
 

@@ -1,7 +1,7 @@
 #include "cli/uff_modes.hpp"
 
-#include <mbgen/data_error.hpp>
-#include <mbgen/uff.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/uff.hpp>
 
 #include <algorithm>
 #include <cmath>

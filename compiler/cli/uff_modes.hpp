@@ -1,11 +1,11 @@
 // Modes as UFF datasets 55 (a shape per mode at nodes and directions) with the nodes' coordinates as dataset 15 and
 // trace lines between them as datasets 82:
 // the model's sensor points (`mbgen export --what modes --format uff`) and the points of measured FRFs
-// (`mbgen modal --uff`). Layout: runtime/include/mbgen/uff55.hpp; what is written: docs/data.md.
+// (`mbgen modal --uff`). Layout: runtime/include/mbgen/data/uff55.hpp; what is written: docs/data.md.
 #pragma once
 
-#include <mbgen/modal_identification.hpp>
-#include <mbgen/uff55.hpp>
+#include <mbgen/modal_identification/modal_identification.hpp>
+#include <mbgen/data/uff55.hpp>
 
 #include <Eigen/Core>
 

@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include <Eigen/Core>
-#include <mbgen/dynamics_error.hpp>
+#include <mbgen/dynamics/dynamics_error.hpp>
 
 #include "emit/inspect.hpp"
 #include "frontend/diagnostics.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "mbgen/modal.hpp"
+#include "mbgen/dynamics/modal.hpp"
 #include "symbolic/symbolic_model.hpp"
 
 namespace mbgen::emit::detail {

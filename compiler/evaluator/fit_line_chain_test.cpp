@@ -9,7 +9,7 @@
 #include "evaluator/test_line_chain.hpp"
 #include "frontend/parser.hpp"
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <catch2/catch.hpp>
 

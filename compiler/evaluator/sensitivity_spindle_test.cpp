@@ -5,7 +5,7 @@
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
 
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -11,7 +11,7 @@
 //     nothing with the compiler or the runtime (draw() puts its values with noise into an FrfData).
 #pragma once
 
-#include "mbgen/frf_data.hpp"
+#include "mbgen/data/frf_data.hpp"
 #include "mbgen/model.hpp"
 #include "numerics/constants.hpp"
 

@@ -2,8 +2,8 @@
 // resonances.
 #include <cstdio>
 
-#include <mbgen/frf.hpp>
-#include <mbgen/modal.hpp>
+#include <mbgen/dynamics/frf.hpp>
+#include <mbgen/dynamics/modal.hpp>
 
 #include "spindle_model.hpp"
 

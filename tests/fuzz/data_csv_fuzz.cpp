@@ -1,7 +1,7 @@
 // Fuzz target: a CSV data file (time record or FRFs, by its header) through the reader `mbgen fit --data` uses.
 // Bad input must end in DataError; anything else is a bug.
-#include <mbgen/data_error.hpp>
-#include <mbgen/data_set.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/data_set.hpp>
 
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
 // Fuzz target: a UFF file through the readers of modes (dataset 55) and nodes (dataset 15), which skip every other
 // dataset (58b by its byte count). Bad input must end in DataError; anything else is a bug.
-#include <mbgen/data_error.hpp>
-#include <mbgen/uff55.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/uff55.hpp>
 
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
 // Fuzz target: a UFF 58/58b file (ASCII or binary) through the reader `mbgen fit --data` uses, without a channel
 // mapping (default names). Bad input must end in DataError; anything else is a bug.
-#include <mbgen/data_error.hpp>
-#include <mbgen/data_set.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/data_set.hpp>
 
 #include <cstddef>
 #include <cstdint>

@@ -3,10 +3,10 @@
 // diagnosis must end in a verdict or in the errors the command reports as bad input (the model's, the data's, a
 // fit's, the dynamics'); anything else is a bug. One start, one thread, two candidates fitted, one round: a run
 // takes a fraction of a second, so inputs are limited to a few hundred lines.
-#include <mbgen/data_error.hpp>
-#include <mbgen/data_set.hpp>
-#include <mbgen/dynamics_error.hpp>
-#include <mbgen/fit.hpp>
+#include <mbgen/data/data_error.hpp>
+#include <mbgen/data/data_set.hpp>
+#include <mbgen/dynamics/dynamics_error.hpp>
+#include <mbgen/estimation/fit.hpp>
 
 #include <cstddef>
 #include <cstdint>

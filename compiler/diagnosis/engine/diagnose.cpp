@@ -8,14 +8,14 @@
 #include <mutex>
 #include <set>
 
-#include <mbgen/chain_scores.hpp>
-#include <mbgen/channel_residuals.hpp>
-#include <mbgen/data_split.hpp>
-#include <mbgen/frf.hpp>
+#include <mbgen/diagnosis/chain_scores.hpp>
+#include <mbgen/diagnosis/channel_residuals.hpp>
+#include <mbgen/diagnosis/data_split.hpp>
+#include <mbgen/dynamics/frf.hpp>
 #include <mbgen/methods/modal_start.hpp>
-#include <mbgen/parallel.hpp>
-#include <mbgen/same_response.hpp>
-#include <mbgen/spectral_companion.hpp>
+#include <mbgen/dynamics/parallel.hpp>
+#include <mbgen/diagnosis/same_response.hpp>
+#include <mbgen/estimation/spectral_companion.hpp>
 
 #include "diagnosis/engine/driving_points.hpp"
 #include "diagnosis/engine/judging.hpp"

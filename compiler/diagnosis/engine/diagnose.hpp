@@ -18,8 +18,8 @@
 //      rule above errs towards `unexplained`.
 #pragma once
 
-#include <mbgen/fit.hpp>
-#include <mbgen/residual_analysis.hpp>
+#include <mbgen/estimation/fit.hpp>
+#include <mbgen/diagnosis/residual_analysis.hpp>
 
 #include <functional>
 #include <map>

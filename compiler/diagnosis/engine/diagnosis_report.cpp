@@ -1,7 +1,7 @@
 #include "diagnosis/engine/diagnosis_report.hpp"
 
-#include <mbgen/gnuplot.hpp>
-#include <mbgen/report_document.hpp>
+#include <mbgen/data/gnuplot.hpp>
+#include <mbgen/report/report_document.hpp>
 
 #include <cmath>
 #include <filesystem>

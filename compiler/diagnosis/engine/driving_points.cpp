@@ -1,6 +1,6 @@
 #include "diagnosis/engine/driving_points.hpp"
 
-#include <mbgen/frf_noise.hpp>
+#include <mbgen/data/frf_noise.hpp>
 
 #include <cstdio>
 

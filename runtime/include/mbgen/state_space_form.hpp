@@ -1,5 +1,5 @@
 // The state-space form of M q'' + C q' + K q = B u, y = Cd q + Cv q' + Ca q'' for generated code, over any Scalar
-// (x = [q; q'], the same formulas as mbgen/state_space.hpp's double version):
+// (x = [q; q'], the same formulas as mbgen/dynamics/state_space.hpp's double version):
 //
 //   A = [[0, I], [-M^-1 K, -M^-1 C]],  B = [0; M^-1 B],  C = [Cd - Ca M^-1 K, Cv - Ca M^-1 C],  D = Ca M^-1 B.
 //

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <map>
 
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 
 namespace mbgen::data_detail {
 

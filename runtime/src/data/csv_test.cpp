@@ -7,10 +7,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "mbgen/csv.hpp"
+#include "mbgen/data/csv.hpp"
 #include "mbgen_test/files.hpp"
 
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 
 using namespace mbgen;
 namespace fs = std::filesystem;

@@ -1,8 +1,8 @@
 // Writing CSV time records and FRFs in the formats the readers accept.
 #include <ostream>
 
-#include "mbgen/csv.hpp"
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/csv.hpp"
+#include "mbgen/data/data_error.hpp"
 #include "text_parsing.hpp"
 
 namespace mbgen {

@@ -1,4 +1,4 @@
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 
 namespace mbgen {
 

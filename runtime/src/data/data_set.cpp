@@ -1,5 +1,5 @@
 // Reading any data file: dispatch on UFF name or content, else on the CSV header's first column.
-#include "mbgen/data_set.hpp"
+#include "mbgen/data/data_set.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -9,8 +9,8 @@
 #include <streambuf>
 #include <string>
 
-#include "mbgen/csv.hpp"
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/csv.hpp"
+#include "mbgen/data/data_error.hpp"
 #include "text_parsing.hpp"
 
 namespace mbgen {

@@ -8,8 +8,8 @@
 
 #include "mbgen_test/files.hpp"
 
-#include "mbgen/data_error.hpp"
-#include "mbgen/data_set.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/data_set.hpp"
 #include "mbgen_test/paths.hpp"
 
 using namespace mbgen;

@@ -1,4 +1,4 @@
-#include "mbgen/data_settings.hpp"
+#include "mbgen/data/data_settings.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "mbgen/frf_data.hpp"
+#include "mbgen/data/frf_data.hpp"
 
 #include <stdexcept>
 

@@ -1,6 +1,6 @@
-#include "mbgen/frf_noise.hpp"
+#include "mbgen/data/frf_noise.hpp"
 
-#include "mbgen/frf_sigma.hpp"
+#include "mbgen/data/frf_sigma.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

@@ -1,6 +1,6 @@
 // The noise level of measured FRFs from their own scatter: synthetic FRFs of a hand-written two-mode receptance
 // with noise of known level added here, over several random draws.
-#include "mbgen/frf_noise.hpp"
+#include "mbgen/data/frf_noise.hpp"
 
 #include <catch2/catch.hpp>
 

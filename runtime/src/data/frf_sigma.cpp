@@ -1,10 +1,10 @@
-#include "mbgen/frf_sigma.hpp"
+#include "mbgen/data/frf_sigma.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "window_median.hpp"
+#include "numerics/window_median.hpp"
 
 namespace mbgen {
 

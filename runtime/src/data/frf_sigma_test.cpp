@@ -1,6 +1,6 @@
 // The standard deviation of measured FRF values (frf_sigma.hpp): the H1 formula from the coherence, the floor, and
 // a coherence printed with too few digits at a resonance far above the noise.
-#include "mbgen/frf_sigma.hpp"
+#include "mbgen/data/frf_sigma.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
-#include "mbgen/gnuplot.hpp"
-#include "mbgen/utf8.hpp"
+#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/data/utf8.hpp"
 
 #include <cerrno>
 #include <string>

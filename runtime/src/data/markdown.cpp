@@ -1,9 +1,9 @@
-#include "mbgen/markdown.hpp"
+#include "mbgen/data/markdown.hpp"
 
 #include <algorithm>
 #include <cstring>
 
-#include "string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

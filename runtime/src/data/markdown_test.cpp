@@ -1,4 +1,4 @@
-#include "mbgen/markdown.hpp"
+#include "mbgen/data/markdown.hpp"
 
 #include <catch2/catch.hpp>
 

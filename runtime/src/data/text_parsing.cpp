@@ -4,7 +4,7 @@
 #include <limits>
 #include <cmath>
 
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 
 namespace mbgen::data_detail {
 

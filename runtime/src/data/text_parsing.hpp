@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "mbgen/data_settings.hpp"
+#include "mbgen/data/data_settings.hpp"
 
 namespace mbgen::data_detail {
 

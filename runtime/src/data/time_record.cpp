@@ -1,6 +1,6 @@
-#include "mbgen/time_record.hpp"
+#include "mbgen/data/time_record.hpp"
 
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 
 namespace mbgen {
 

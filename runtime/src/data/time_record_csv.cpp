@@ -4,8 +4,8 @@
 #include <iostream>
 
 #include "csv_table.hpp"
-#include "mbgen/csv.hpp"
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/csv.hpp"
+#include "mbgen/data/data_error.hpp"
 
 namespace mbgen {
 

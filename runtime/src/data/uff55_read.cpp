@@ -1,13 +1,13 @@
 // Reading datasets 55 (mode shapes at nodes), 15 (nodes) and 82 (trace lines) from a UFF file; every other dataset
 // is skipped, binary
-// 58b by its declared byte count (runtime/include/mbgen/uff55.hpp names the layout and where it comes from).
+// 58b by its declared byte count (runtime/include/mbgen/data/uff55.hpp names the layout and where it comes from).
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iostream>
 
-#include "mbgen/data_error.hpp"
-#include "mbgen/uff55.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/uff55.hpp"
 #include "text_parsing.hpp"
 
 namespace mbgen {

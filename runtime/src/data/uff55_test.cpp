@@ -7,9 +7,9 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "mbgen/data_error.hpp"
-#include "mbgen/uff.hpp"
-#include "mbgen/uff55.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/uff.hpp"
+#include "mbgen/data/uff55.hpp"
 
 using namespace mbgen;
 

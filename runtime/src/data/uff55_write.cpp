@@ -1,11 +1,11 @@
 // Writing datasets 55 (mode shapes at nodes), 15 (nodes) and 82 (trace lines) in ASCII, in the fixed columns of the specification
-// (runtime/include/mbgen/uff55.hpp names the layout and where it comes from).
+// (runtime/include/mbgen/data/uff55.hpp names the layout and where it comes from).
 #include <cmath>
 #include <ostream>
 #include <stdexcept>
 #include <string>
 
-#include "mbgen/uff55.hpp"
+#include "mbgen/data/uff55.hpp"
 #include "uff_fields.hpp"
 #include "numerics/constants.hpp"
 

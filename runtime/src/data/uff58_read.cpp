@@ -5,8 +5,8 @@
 #include <fstream>
 #include <iostream>
 
-#include "mbgen/data_error.hpp"
-#include "mbgen/uff.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/uff.hpp"
 #include "text_parsing.hpp"
 
 namespace mbgen {

@@ -1,4 +1,4 @@
-// Writing dataset 58 in ASCII (runtime/include/mbgen/uff.hpp, docs/data.md): the fixed columns of the UFF
+// Writing dataset 58 in ASCII (runtime/include/mbgen/data/uff.hpp, docs/data.md): the fixed columns of the UFF
 // specification, which other readers (pyuff, commercial analysers) parse by column.
 #include <cmath>
 #include <cstdlib>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "mbgen/uff.hpp"
+#include "mbgen/data/uff.hpp"
 #include "uff_fields.hpp"
 
 namespace mbgen {

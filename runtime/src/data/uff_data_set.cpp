@@ -4,9 +4,9 @@
 #include <fstream>
 #include <iostream>
 
-#include "mbgen/data_error.hpp"
-#include "mbgen/data_set.hpp"
-#include "mbgen/uff.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/data_set.hpp"
+#include "mbgen/data/uff.hpp"
 #include "text_parsing.hpp"
 
 namespace mbgen {

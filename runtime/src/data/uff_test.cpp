@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "mbgen/data_error.hpp"
-#include "mbgen/data_set.hpp"
-#include "mbgen/uff.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/data_set.hpp"
+#include "mbgen/data/uff.hpp"
 #include "mbgen_test/paths.hpp"
 
 using namespace mbgen;

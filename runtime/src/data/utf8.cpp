@@ -1,4 +1,4 @@
-#include "mbgen/utf8.hpp"
+#include "mbgen/data/utf8.hpp"
 
 namespace mbgen {
 

@@ -2,8 +2,8 @@
 // well-formed XML (the report's image broken) and report.md/report.html invalid UTF-8.
 #include <catch2/catch.hpp>
 
-#include "mbgen/gnuplot.hpp"
-#include "mbgen/utf8.hpp"
+#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/data/utf8.hpp"
 
 namespace mbgen {
 

@@ -1,5 +1,5 @@
 // Welch H1 estimate: windowed overlapping segments, FFTW r2c transforms, averaged cross-spectral matrices.
-#include "mbgen/welch.hpp"
+#include "mbgen/data/welch.hpp"
 
 #include <fftw3.h>
 
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <mutex>
 
-#include "mbgen/data_error.hpp"
-#include "mbgen/fftw_mutex.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/fftw_mutex.hpp"
 #include "numerics/constants.hpp"
 
 namespace mbgen {

@@ -8,8 +8,8 @@
 #include <random>
 #include <thread>
 
-#include "mbgen/data_error.hpp"
-#include "mbgen/welch.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/welch.hpp"
 
 using namespace mbgen;
 using cd = std::complex<double>;

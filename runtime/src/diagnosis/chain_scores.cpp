@@ -1,4 +1,4 @@
-#include "mbgen/chain_scores.hpp"
+#include "mbgen/diagnosis/chain_scores.hpp"
 #include "numerics/constants.hpp"
 
 #include <cmath>

@@ -1,8 +1,8 @@
-#include "mbgen/channel_residuals.hpp"
+#include "mbgen/diagnosis/channel_residuals.hpp"
 
-#include <mbgen/frf.hpp>
-#include <mbgen/frf_noise.hpp>
-#include <mbgen/welch.hpp>
+#include <mbgen/dynamics/frf.hpp>
+#include <mbgen/data/frf_noise.hpp>
+#include <mbgen/data/welch.hpp>
 
 #include <Eigen/Eigenvalues>
 
@@ -12,7 +12,7 @@
 #include <optional>
 #include <tuple>
 
-#include <mbgen/data_split.hpp>
+#include <mbgen/diagnosis/data_split.hpp>
 
 namespace mbgen::diagnosis {
 

@@ -1,6 +1,6 @@
-#include "mbgen/data_split.hpp"
+#include "mbgen/diagnosis/data_split.hpp"
 
-#include <mbgen/frf_sigma.hpp>
+#include <mbgen/data/frf_sigma.hpp>
 
 #include <cmath>
 

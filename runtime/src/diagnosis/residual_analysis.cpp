@@ -1,4 +1,4 @@
-#include "mbgen/residual_analysis.hpp"
+#include "mbgen/diagnosis/residual_analysis.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <set>
 #include <utility>
 
-#include "../data/string_format.hpp"
-#include "../data/window_median.hpp"
+#include "text/string_format.hpp"
+#include "numerics/window_median.hpp"
 #include "numerics/constants.hpp"
 
 namespace mbgen {

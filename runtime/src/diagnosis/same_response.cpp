@@ -1,6 +1,6 @@
-#include "mbgen/same_response.hpp"
+#include "mbgen/diagnosis/same_response.hpp"
 
-#include <mbgen/frf.hpp>
+#include <mbgen/dynamics/frf.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
-#include "mbgen/state_space.hpp"
+#include "mbgen/dynamics/state_space.hpp"
 
 #include "numerics/balance.hpp"
 #include "matrix_checks.hpp"
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 
 #include <unsupported/Eigen/MatrixFunctions>
 

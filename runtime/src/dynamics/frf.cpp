@@ -1,9 +1,9 @@
-#include "mbgen/frf.hpp"
+#include "mbgen/dynamics/frf.hpp"
 
 #include "model_checks.hpp"
 #include "band_lu.hpp"
 #include "small_lu.hpp"
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 #include "numerics/constants.hpp"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
-#include "mbgen/frf.hpp"
+#include "mbgen/dynamics/frf.hpp"
 
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 #include "mbgen_test/mdof2.hpp"
 #include "mbgen_test/random_affine_model.hpp"
 #include "mbgen_test/finite_difference.hpp"

@@ -1,6 +1,6 @@
 #include "matrix_checks.hpp"
 
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
-#include "mbgen/modal.hpp"
+#include "mbgen/dynamics/modal.hpp"
 
 #include "matrix_checks.hpp"
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 #include "numerics/constants.hpp"
 #include "numerics/state_eigen.hpp"
 

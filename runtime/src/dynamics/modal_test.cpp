@@ -1,6 +1,6 @@
-#include "mbgen/modal.hpp"
+#include "mbgen/dynamics/modal.hpp"
 
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 #include "mbgen_test/mdof2.hpp"
 
 #include <catch2/catch.hpp>

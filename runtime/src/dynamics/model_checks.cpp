@@ -1,7 +1,7 @@
 #include "model_checks.hpp"
 
 #include "matrix_checks.hpp"
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 
 #include <sstream>
 #include <vector>

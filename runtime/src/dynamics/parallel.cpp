@@ -1,4 +1,4 @@
-#include "mbgen/parallel.hpp"
+#include "mbgen/dynamics/parallel.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -1,6 +1,6 @@
-#include "mbgen/sampling.hpp"
+#include "mbgen/dynamics/sampling.hpp"
 
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 
 #include <cmath>
 #include <sstream>

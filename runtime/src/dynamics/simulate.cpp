@@ -1,7 +1,7 @@
-#include "mbgen/simulate.hpp"
+#include "mbgen/dynamics/simulate.hpp"
 
 #include "model_checks.hpp"
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>

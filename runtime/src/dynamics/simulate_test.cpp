@@ -1,6 +1,6 @@
-#include "mbgen/simulate.hpp"
+#include "mbgen/dynamics/simulate.hpp"
 
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 #include "mbgen_test/mdof2.hpp"
 #include "mbgen_test/random_affine_model.hpp"
 #include "test_rk4.hpp"

@@ -1,4 +1,4 @@
-#include "mbgen/state_space.hpp"
+#include "mbgen/dynamics/state_space.hpp"
 
 #include "dense_derivatives.hpp"
 #include "matrix_checks.hpp"

@@ -1,6 +1,6 @@
-#include "mbgen/state_space.hpp"
+#include "mbgen/dynamics/state_space.hpp"
 
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 #include "mbgen_test/mdof2.hpp"
 #include "mbgen_test/random_affine_model.hpp"
 #include "mbgen_test/finite_difference.hpp"

@@ -3,10 +3,10 @@
 // that identifiability and uncertainty are judged by. Internal header (fit.cpp).
 #pragma once
 
-#include "levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 #include "output_error.hpp"
 
-#include "mbgen/parameterization.hpp"
+#include "mbgen/estimation/parameterization.hpp"
 
 #include <Eigen/Core>
 

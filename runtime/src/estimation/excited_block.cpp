@@ -1,7 +1,7 @@
 #include "excited_block.hpp"
 
-#include "../dynamics/model_checks.hpp"
-#include "mbgen/fit.hpp"
+#include "dynamics/model_checks.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <numeric>
 #include <string>

@@ -4,19 +4,19 @@
 //
 //   screen_at_prior -> search_globally -> refit_where_rank_is_lost -> linearise_at_estimate -> hold_at_bounds
 //   -> parameter_covariance -> parameter_estimates -> modes_at
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include "estimator.hpp"
 #include "fit_setup.hpp"
-#include "levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 #include "local_fit_memo.hpp"
 #include "multistart.hpp"
 #include "output_error.hpp"
-#include "row_block_qr.hpp"
-#include "mbgen/spectral_companion.hpp"
+#include "numerics/row_block_qr.hpp"
+#include "mbgen/estimation/spectral_companion.hpp"
 
-#include "mbgen/identifiability.hpp"
-#include "mbgen/parameterization.hpp"
+#include "mbgen/estimation/identifiability.hpp"
+#include "mbgen/estimation/parameterization.hpp"
 
 #include <Eigen/SVD>
 

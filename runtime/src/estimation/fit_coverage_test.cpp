@@ -9,8 +9,8 @@
 // test can see what it guards against).
 #include "mbgen_test/estimation.hpp"
 
-#include "mbgen/fit.hpp"
-#include "mbgen/parallel.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/dynamics/parallel.hpp"
 
 #include <catch2/catch.hpp>
 

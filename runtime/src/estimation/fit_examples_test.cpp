@@ -5,8 +5,8 @@
 #include "mbgen_test/estimation.hpp"
 #include "mbgen_test/example_data.hpp"
 
-#include "mbgen/data_set.hpp"
-#include "mbgen/fit.hpp"
+#include "mbgen/data/data_set.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <catch2/catch.hpp>
 

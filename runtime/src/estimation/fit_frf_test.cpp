@@ -2,8 +2,8 @@
 // docs/reference-models.md (test_support.hpp), with noise at 40 dB SNR.
 #include "mbgen_test/estimation.hpp"
 
-#include "mbgen/fit.hpp"
-#include "mbgen/parameterization.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/estimation/parameterization.hpp"
 
 #include <catch2/catch.hpp>
 

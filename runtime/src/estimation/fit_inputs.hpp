@@ -2,7 +2,7 @@
 // prior values, checked, and the parameters to estimate. Internal header.
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <Eigen/Core>
 

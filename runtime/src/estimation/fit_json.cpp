@@ -1,5 +1,5 @@
 // The `mbgen-fit/1` document (docs/interfaces.md) plus documented extra members (docs/estimation.md).
-#include "mbgen/fit_report.hpp"
+#include "mbgen/estimation/fit_report.hpp"
 
 #include <nlohmann/json.hpp>
 

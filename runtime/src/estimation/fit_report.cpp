@@ -1,13 +1,13 @@
 // The report directory: report.md and report.html with tables and SVG plots drawn by gnuplot from .dat files and
 // .gp scripts.
-#include "mbgen/fit_report.hpp"
+#include "mbgen/estimation/fit_report.hpp"
 
 #include "fit_report_sections.hpp"
-#include "mbgen/dynamics_error.hpp"
-#include "mbgen/frf_confidence.hpp"
-#include "mbgen/gnuplot.hpp"
-#include "mbgen/report_document.hpp"
-#include "mbgen/report_files.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
+#include "mbgen/estimation/frf_confidence.hpp"
+#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/report_document.hpp"
+#include "mbgen/report/report_files.hpp"
 #include "numerics/constants.hpp"
 
 #include <nlohmann/json.hpp>

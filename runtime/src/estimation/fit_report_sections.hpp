@@ -2,8 +2,8 @@
 // and the scores on other data (`fit --validate`), each a table and gnuplot plots.
 #pragma once
 
-#include "mbgen/fit.hpp"
-#include "mbgen/report_document.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/report/report_document.hpp"
 
 #include <filesystem>
 #include <string>

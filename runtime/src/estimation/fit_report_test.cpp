@@ -1,7 +1,7 @@
 // The mbgen-fit/1 JSON and the report directory.
 #include "mbgen_test/estimation.hpp"
 
-#include "mbgen/fit_report.hpp"
+#include "mbgen/estimation/fit_report.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

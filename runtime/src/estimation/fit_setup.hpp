@@ -9,8 +9,8 @@
 // for an unbounded parameter), so that a seed gives the same starts in every estimator.
 #pragma once
 
-#include "mbgen/fit.hpp"
-#include "mbgen/parameterization.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/estimation/parameterization.hpp"
 
 #include <Eigen/Core>
 

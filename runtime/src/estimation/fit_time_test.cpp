@@ -2,7 +2,7 @@
 // superposition in the test (test_support.hpp), independent of the estimator's own discretisation.
 #include "mbgen_test/estimation.hpp"
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <catch2/catch.hpp>
 

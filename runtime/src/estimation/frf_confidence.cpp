@@ -1,7 +1,8 @@
-// Delta-method standard deviations of |H| and of the phase of a fitted model's FRF (mbgen/frf_confidence.hpp).
-#include "mbgen/frf_confidence.hpp"
+// Delta-method standard deviations of |H| and of the phase of a fitted model's FRF
+// (mbgen/estimation/frf_confidence.hpp).
+#include "mbgen/estimation/frf_confidence.hpp"
 
-#include "mbgen/frf.hpp"
+#include "mbgen/dynamics/frf.hpp"
 #include "numerics/constants.hpp"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
-// The delta-method band of an FRF (mbgen/frf_confidence.hpp) on a one-mass model assembled by hand: its standard
-// deviations of |H| and of the phase against finite differences of the exact FRF and against a Monte Carlo sample of
-// the parameters drawn with a fixed seed.
-#include "mbgen/frf_confidence.hpp"
+// The delta-method band of an FRF (mbgen/estimation/frf_confidence.hpp) on a one-mass model assembled by hand: its
+// standard deviations of |H| and of the phase against finite differences of the exact FRF and against a Monte Carlo
+// sample of the parameters drawn with a fixed seed.
+#include "mbgen/estimation/frf_confidence.hpp"
 
 #include "mbgen_test/linear_model.hpp"
 

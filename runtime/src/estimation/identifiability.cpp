@@ -1,6 +1,6 @@
-#include "mbgen/identifiability.hpp"
+#include "mbgen/estimation/identifiability.hpp"
 
-#include "row_block_qr.hpp"
+#include "numerics/row_block_qr.hpp"
 
 #include <Eigen/SVD>
 

@@ -2,8 +2,8 @@
 // Also the identifiability analysis on hand-made Jacobians with known rank.
 #include "mbgen_test/estimation.hpp"
 
-#include "mbgen/fit.hpp"
-#include "mbgen/identifiability.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/estimation/identifiability.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
 #include "local_fit_memo.hpp"
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 namespace mbgen {
 

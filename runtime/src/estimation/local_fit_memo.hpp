@@ -13,7 +13,7 @@
 // tell two models apart whose residuals agree at one point but not elsewhere.
 #pragma once
 
-#include "levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 
 #include <Eigen/Core>
 

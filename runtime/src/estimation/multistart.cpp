@@ -1,6 +1,6 @@
 #include "multistart.hpp"
 
-#include "mbgen/parallel.hpp"
+#include "mbgen/dynamics/parallel.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -1,8 +1,8 @@
 // Deterministic multi-start of local fits on worker threads. Internal header.
 #pragma once
 
-#include "levenberg_marquardt.hpp"
-#include "mbgen/parallel.hpp"
+#include "numerics/levenberg_marquardt.hpp"
+#include "mbgen/dynamics/parallel.hpp"
 
 #include <Eigen/Core>
 

@@ -2,9 +2,9 @@
 
 #include "excited_block.hpp"
 
-#include "mbgen/frf.hpp"
-#include "mbgen/frf_sigma.hpp"
-#include "mbgen/simulate.hpp"
+#include "mbgen/dynamics/frf.hpp"
+#include "mbgen/data/frf_sigma.hpp"
+#include "mbgen/dynamics/simulate.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,8 +7,8 @@
 // divided by that output's measured RMS.
 #pragma once
 
-#include "mbgen/data_settings.hpp"
-#include "mbgen/fit.hpp"
+#include "mbgen/data/data_settings.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <Eigen/Core>
 

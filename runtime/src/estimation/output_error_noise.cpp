@@ -1,7 +1,7 @@
 // OutputErrorProblem::expected_noise_cost (output_error.hpp): the cost a fit can at best come down to.
 #include "output_error.hpp"
 
-#include "mbgen/frf_noise.hpp"
+#include "mbgen/data/frf_noise.hpp"
 
 #include <stdexcept>
 #include <limits>

@@ -5,7 +5,7 @@
 #include "mbgen_test/estimation.hpp"
 #include "mbgen_test/finite_difference.hpp"
 
-#include "mbgen/frf.hpp"
+#include "mbgen/dynamics/frf.hpp"
 
 #include <catch2/catch.hpp>
 

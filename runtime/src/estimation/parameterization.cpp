@@ -1,4 +1,4 @@
-#include "mbgen/parameterization.hpp"
+#include "mbgen/estimation/parameterization.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,7 +1,7 @@
-// Whiteness of a record fit's residuals and their independence of the inputs (mbgen/residual_tests.hpp).
-#include "mbgen/residual_tests.hpp"
+// Whiteness of a record fit's residuals and their independence of the inputs (mbgen/estimation/residual_tests.hpp).
+#include "mbgen/estimation/residual_tests.hpp"
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <algorithm>
 #include <cmath>

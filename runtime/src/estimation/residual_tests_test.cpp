@@ -1,6 +1,7 @@
-// The residual tests (mbgen/residual_tests.hpp) on sequences made by hand: exact correlations of short sequences, an
-// AR(1) sequence flagged, a white sequence of a fixed seed passed, a delayed copy of the input found at its lag.
-#include "mbgen/residual_tests.hpp"
+// The residual tests (mbgen/estimation/residual_tests.hpp) on sequences made by hand: exact correlations of short
+// sequences, an AR(1) sequence flagged, a white sequence of a fixed seed passed, a delayed copy of the input found at
+// its lag.
+#include "mbgen/estimation/residual_tests.hpp"
 
 #include <catch2/catch.hpp>
 

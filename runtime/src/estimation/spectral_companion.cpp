@@ -1,6 +1,6 @@
-#include "mbgen/spectral_companion.hpp"
+#include "mbgen/estimation/spectral_companion.hpp"
 
-#include "mbgen/welch.hpp"
+#include "mbgen/data/welch.hpp"
 
 #include <algorithm>
 

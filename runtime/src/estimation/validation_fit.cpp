@@ -1,7 +1,7 @@
-// MATLAB's `compare` fit percentage of an estimate on other data (mbgen/validation_fit.hpp).
-#include "mbgen/validation_fit.hpp"
+// MATLAB's `compare` fit percentage of an estimate on other data (mbgen/estimation/validation_fit.hpp).
+#include "mbgen/estimation/validation_fit.hpp"
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include "output_error.hpp"
 

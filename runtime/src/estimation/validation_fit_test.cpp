@@ -1,5 +1,5 @@
-// MATLAB's compare fit percentage (mbgen/validation_fit.hpp) on values computed by hand.
-#include "mbgen/validation_fit.hpp"
+// MATLAB's compare fit percentage (mbgen/estimation/validation_fit.hpp) on values computed by hand.
+#include "mbgen/estimation/validation_fit.hpp"
 
 #include <catch2/catch.hpp>
 

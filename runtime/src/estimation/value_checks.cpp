@@ -6,7 +6,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 
 namespace mbgen::estimation {
 

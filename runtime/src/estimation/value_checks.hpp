@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 namespace mbgen::estimation {
 
@@ -20,7 +20,7 @@ void check_parameter_values(const Model& model, const Eigen::VectorXd& values, c
 void check_data_set_values(const Model& model, const Eigen::VectorXd& prior, const std::vector<DataSet>& data);
 
 // Throws DataError for a measured FRF channel or a time record's output zero throughout or below
-// kMinSignalMagnitude (mbgen/data_set.hpp) throughout, or a record whose inputs all are.
+// kMinSignalMagnitude (mbgen/data/data_set.hpp) throughout, or a record whose inputs all are.
 void check_measured_signals(const Model& model, const std::vector<DataSet>& data);
 
 }  // namespace mbgen::estimation

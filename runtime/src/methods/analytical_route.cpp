@@ -1,6 +1,6 @@
 #include "analytical_route.hpp"
 
-#include "../estimation/value_checks.hpp"
+#include "estimation/value_checks.hpp"
 
 #include <Eigen/LU>
 #include <Eigen/SVD>

@@ -2,7 +2,7 @@
 
 #include "lag_polynomials.hpp"
 #include "polynomial.hpp"
-#include "mbgen/parallel.hpp"
+#include "mbgen/dynamics/parallel.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>

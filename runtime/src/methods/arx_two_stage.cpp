@@ -2,9 +2,9 @@
 
 #include "method_setup.hpp"
 
-#include "../estimation/levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 
-#include "mbgen/identifiability.hpp"
+#include "mbgen/estimation/identifiability.hpp"
 #include "numerics/constants.hpp"
 #include "numerics/state_eigen.hpp"
 

@@ -1,8 +1,8 @@
 #include "direct_equations.hpp"
 
-#include "../estimation/excited_block.hpp"
+#include "estimation/excited_block.hpp"
 
-#include "mbgen/frf_noise.hpp"
+#include "mbgen/data/frf_noise.hpp"
 #include "numerics/constants.hpp"
 
 #include <Eigen/SVD>

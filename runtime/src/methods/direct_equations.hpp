@@ -19,7 +19,7 @@
 // The noise of X per block, cov X = S S^H, is carried in shape (its overall scale is estimated by the solver).
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <Eigen/Core>
 

@@ -24,7 +24,7 @@
 
 #include "direct_equations.hpp"
 
-#include "mbgen/identifiability.hpp"
+#include "mbgen/estimation/identifiability.hpp"
 
 #include <Eigen/Core>
 

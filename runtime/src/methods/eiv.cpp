@@ -1,9 +1,9 @@
 // fit_eiv: errors in variables from time records (docs/methods.md#eiv; the cost in eiv_problem.hpp).
 #include "mbgen/methods/eiv.hpp"
 
-#include "../estimation/fit_setup.hpp"
-#include "mbgen/parameterization.hpp"
-#include "../estimation/levenberg_marquardt.hpp"
+#include "estimation/fit_setup.hpp"
+#include "mbgen/estimation/parameterization.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 #include "eiv_problem.hpp"
 #include "method_result.hpp"
 #include "method_setup.hpp"

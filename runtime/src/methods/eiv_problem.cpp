@@ -1,11 +1,11 @@
 #include "eiv_problem.hpp"
 
-#include "../estimation/excited_block.hpp"
+#include "estimation/excited_block.hpp"
 #include "method_setup.hpp"
 
-#include "mbgen/data_error.hpp"
-#include "mbgen/fftw_mutex.hpp"
-#include "mbgen/state_space.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/fftw_mutex.hpp"
+#include "mbgen/dynamics/state_space.hpp"
 #include "numerics/constants.hpp"
 
 #include <Eigen/LU>

@@ -20,7 +20,7 @@
 // gradient and the Gauss-Newton Hessian of the projected cost).
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <Eigen/Core>
 

@@ -4,7 +4,7 @@
 // levels come back from a record with known white force and output noise.
 #include "eiv_problem.hpp"
 
-#include "mbgen/simulate.hpp"
+#include "mbgen/dynamics/simulate.hpp"
 #include "mbgen_test/finite_difference.hpp"
 #include "mbgen_test/mdof2.hpp"
 

@@ -2,8 +2,8 @@
 
 #include "method_setup.hpp"
 
-#include "mbgen/dynamics_error.hpp"
-#include "mbgen/state_space.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
+#include "mbgen/dynamics/state_space.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>

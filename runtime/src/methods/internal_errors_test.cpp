@@ -6,7 +6,7 @@
 #include "arx.hpp"
 #include "model_coefficients.hpp"
 
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 #include "mbgen/methods/modal.hpp"
 #include "mbgen/methods/two_step.hpp"
 

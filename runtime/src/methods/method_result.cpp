@@ -1,9 +1,9 @@
 #include "method_result.hpp"
 
-#include "../estimation/output_error.hpp"
+#include "estimation/output_error.hpp"
 
-#include "mbgen/identifiability.hpp"
-#include "mbgen/modal.hpp"
+#include "mbgen/estimation/identifiability.hpp"
+#include "mbgen/dynamics/modal.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,8 +2,8 @@
 // prior values, and the output-error numbers of its estimate, so that methods compare on one scale. Internal header.
 #pragma once
 
-#include "../estimation/fit_inputs.hpp"
-#include "mbgen/fit.hpp"
+#include "estimation/fit_inputs.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <Eigen/Core>
 

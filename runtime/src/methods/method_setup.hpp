@@ -4,8 +4,8 @@
 // result can be compared with the output-error fit on the same terms. Internal header.
 #pragma once
 
-#include "../estimation/fit_setup.hpp"
-#include "mbgen/fit.hpp"
+#include "estimation/fit_setup.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <Eigen/Core>
 

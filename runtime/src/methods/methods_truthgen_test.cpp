@@ -4,7 +4,7 @@
 #include "mbgen_test/estimation.hpp"
 #include "mbgen_test/truthgen.hpp"
 
-#include "mbgen/data_set.hpp"
+#include "mbgen/data/data_set.hpp"
 #include "mbgen/methods/direct.hpp"
 #include "mbgen/methods/hybrid.hpp"
 

@@ -1,12 +1,12 @@
 #include "modal_configurations.hpp"
 
-#include "mbgen/fit.hpp"
-#include "mbgen/modal.hpp"
-#include "mbgen/modal_pairing.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/modal_identification/modal_pairing.hpp"
 
 #include <stdexcept>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen::methods {
 

@@ -6,7 +6,7 @@
 
 #include "modal_objectives.hpp"
 
-#include "mbgen/data_set.hpp"
+#include "mbgen/data/data_set.hpp"
 #include "mbgen/model.hpp"
 
 #include <Eigen/Core>

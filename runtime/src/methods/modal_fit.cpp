@@ -9,8 +9,8 @@
 #include "modal_objectives.hpp"
 #include "modal_solve.hpp"
 
-#include "mbgen/modal_pairing.hpp"
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/modal_identification/modal_pairing.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -19,7 +19,7 @@
 #include <limits>
 #include <random>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

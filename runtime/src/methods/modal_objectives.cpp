@@ -1,7 +1,7 @@
 #include "modal_objectives.hpp"
 
-#include "mbgen/modal.hpp"
-#include "mbgen/modal_pairing.hpp"
+#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/modal_identification/modal_pairing.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 #include "mbgen/model.hpp"
 
 namespace mbgen::methods {

@@ -2,7 +2,7 @@
 // mass/stiffness parameters and the damping least squares.
 #include "modal_solve.hpp"
 
-#include "../estimation/levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 
 #include <Eigen/QR>
 

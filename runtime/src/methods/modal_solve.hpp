@@ -7,7 +7,7 @@
 
 #include "modal_configurations.hpp"
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>

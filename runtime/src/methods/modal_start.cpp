@@ -6,13 +6,13 @@
 #include "modal_configurations.hpp"
 #include "modal_solve.hpp"
 
-#include "mbgen/spectral_companion.hpp"
+#include "mbgen/estimation/spectral_companion.hpp"
 
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

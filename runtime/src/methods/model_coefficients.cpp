@@ -1,8 +1,8 @@
 #include "model_coefficients.hpp"
 
-#include "../estimation/excited_block.hpp"
-#include "mbgen/dynamics_error.hpp"
-#include "mbgen/state_space.hpp"
+#include "estimation/excited_block.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
+#include "mbgen/dynamics/state_space.hpp"
 #include "mbgen/transfer_function.hpp"
 #include "polynomial.hpp"
 

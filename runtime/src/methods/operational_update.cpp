@@ -2,10 +2,10 @@
 // weighted residuals of output-only modes, with the common-factor ambiguity of unscaled shapes refused.
 #include "mbgen/methods/operational_update.hpp"
 
-#include "../estimation/fit_inputs.hpp"
+#include "estimation/fit_inputs.hpp"
 #include "modal_solve.hpp"
 
-#include "mbgen/identifiability.hpp"
+#include "mbgen/estimation/identifiability.hpp"
 
 #include <Eigen/QR>
 
@@ -15,7 +15,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

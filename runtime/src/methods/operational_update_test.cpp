@@ -4,11 +4,11 @@
 // output-only records of drawn truths (numpy, its own simulation), with the refusal of the common factor.
 #include "mbgen_test/mdof2.hpp"
 
-#include "../modal_identification/oma_truth.hpp"
+#include "modal_identification/oma_truth.hpp"
 #include "modal_solve.hpp"
 
 #include "mbgen/methods/operational_update.hpp"
-#include "mbgen/operational_update.hpp"
+#include "mbgen/modal_identification/operational_update.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>

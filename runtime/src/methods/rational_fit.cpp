@@ -1,6 +1,6 @@
 #include "rational_fit.hpp"
 
-#include "../estimation/levenberg_marquardt.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 #include "numerics/polynomial_roots.hpp"
 #include "polynomial.hpp"
 

@@ -4,7 +4,7 @@
 #include "arx.hpp"
 #include "model_coefficients.hpp"
 #include "rational_fit.hpp"
-#include "mbgen/frf_noise.hpp"
+#include "mbgen/data/frf_noise.hpp"
 #include "numerics/polynomial_roots.hpp"
 #include "polynomial.hpp"
 #include "numerics/constants.hpp"

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "coefficient_problem.hpp"
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 #include "mbgen/methods/two_step.hpp"
 
 #include <nlohmann/json.hpp>

@@ -1,17 +1,17 @@
 #include "mbgen/methods/two_step.hpp"
 
-#include "../estimation/fit_setup.hpp"
-#include "../estimation/levenberg_marquardt.hpp"
-#include "../estimation/multistart.hpp"
-#include "../estimation/value_checks.hpp"
+#include "estimation/fit_setup.hpp"
+#include "estimation/multistart.hpp"
+#include "estimation/value_checks.hpp"
+#include "numerics/levenberg_marquardt.hpp"
 #include "analytical_route.hpp"
 #include "coefficient_problem.hpp"
 #include "method_result.hpp"
 #include "model_coefficients.hpp"
 #include "step_one.hpp"
 #include "validation.hpp"
-#include "mbgen/identifiability.hpp"
-#include "mbgen/parameterization.hpp"
+#include "mbgen/estimation/identifiability.hpp"
+#include "mbgen/estimation/parameterization.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>

@@ -5,7 +5,7 @@
 // deflection shape, the neighbours included. So, on records, a mode's shape comes from its pole term in the half
 // spectra and its damping from its bell in a modal filter of the spectral matrix (below).
 #include "fft_transforms.hpp"
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 #include "numerics/constants.hpp"
 #include "shape_metrics.hpp"
 

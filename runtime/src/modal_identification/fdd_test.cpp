@@ -5,7 +5,7 @@
 // Every draw meets issue 34's targets (docs/modal.md, "Output-only modal analysis", has the table): frequencies
 // within 1 % and no spurious peak, MAC > 0.95, EFDD damping within 25 %, on mdof2 and on the spindle, whose one
 // force drives its modes coherently (shapes from the half spectra's residues, damping from the modal filter).
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 #include "oma_truth.hpp"
 
 #include <catch2/catch.hpp>

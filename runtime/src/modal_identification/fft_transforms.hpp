@@ -7,7 +7,7 @@
 #include <complex>
 #include <mutex>
 
-#include "mbgen/fftw_mutex.hpp"
+#include "mbgen/data/fftw_mutex.hpp"
 
 namespace mbgen::modal_detail {
 

@@ -1,6 +1,6 @@
 // The whole experimental modal analysis: poles over the orders, their stabilization, the physical poles, their
 // refinement, the residues, and the mode table.
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 #include "shape_metrics.hpp"
 #include "numerics/constants.hpp"
 

@@ -1,6 +1,6 @@
 // The whole output-only analysis: SSI-cov's diagram through the FRF path's stabilization and selection, or FDD's
 // peaks, and the mode table.
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 #include "shape_metrics.hpp"
 #include "numerics/constants.hpp"
 

@@ -10,7 +10,7 @@
 // and alpha_n = I fixes the scale: alpha_0..n-1 = -M11^-1 M12. Every block depends on j' - j only, so all of them
 // come from sums over the lines at lags -n..n, computed once for the highest order: a lower order uses the
 // leading blocks.
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 #include "numerics/constants.hpp"
 
 #include <Eigen/Cholesky>

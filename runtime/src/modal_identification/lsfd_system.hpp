@@ -2,7 +2,7 @@
 // (refine.cpp), which needs its basis, its factorization and its projection.
 #pragma once
 
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 
 #include <Eigen/QR>
 

@@ -1,8 +1,8 @@
 // The real beam FRFs of examples/beam (accelerance, three roving-hammer points, 1 Hz lines, no coherence):
 // the six bending modes near 52, 142, 279, 460, 687 and 959 Hz, from the CSV and from the UFF file alike.
-#include "mbgen/csv.hpp"
-#include "mbgen/data_set.hpp"
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/data/csv.hpp"
+#include "mbgen/data/data_set.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 #include "shape_metrics.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,7 +1,7 @@
 // The FRFs of one or more files on one frequency axis, cut to the band.
-#include "mbgen/data_error.hpp"
-#include "mbgen/data_set.hpp"
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/data/data_set.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 
 #include <algorithm>
 #include <cmath>

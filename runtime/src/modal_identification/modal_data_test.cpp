@@ -1,5 +1,5 @@
-#include "mbgen/data_error.hpp"
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,7 +1,7 @@
 // End to end on FRFs of a hand-assembled modal model (synthetic_frf.hpp): closely spaced modes, a weak mode,
 // noise, no coherence; single and poly-reference.
-#include "mbgen/modal_identification.hpp"
-#include "synthetic_frf.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
+#include "mbgen_test/synthetic_frf.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
 // The `mbgen-modal/1` document (docs/interfaces.md) and its documented extra members (docs/modal.md).
-#include "mbgen/modal_report.hpp"
+#include "mbgen/modal_identification/modal_report.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,5 +1,5 @@
-#include "mbgen/modal_identification.hpp"
-#include "synthetic_frf.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
+#include "mbgen_test/synthetic_frf.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
-#include "mbgen/frf.hpp"
-#include "mbgen/modal.hpp"
-#include "mbgen/modal_pairing.hpp"
+#include "mbgen/dynamics/frf.hpp"
+#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/modal_identification/modal_pairing.hpp"
 #include "mbgen_test/mdof2.hpp"
 
 #include <Eigen/LU>

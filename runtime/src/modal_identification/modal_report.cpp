@@ -1,8 +1,8 @@
 // The report directory of `mbgen modal`: report.md and report.html with the mode table and SVG plots drawn by
 // gnuplot from .dat files and .gp scripts (the scripts stay, so plots can be redrawn where gnuplot was missing).
-#include "mbgen/gnuplot.hpp"
-#include "mbgen/modal_report.hpp"
-#include "mbgen/report_document.hpp"
+#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/modal_identification/modal_report.hpp"
+#include "mbgen/report/report_document.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 #include "modal_shape_figures.hpp"
 #include "report_text.hpp"
 #include "numerics/constants.hpp"

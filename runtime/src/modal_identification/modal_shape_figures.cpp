@@ -4,9 +4,9 @@
 // model mode on the whole geometry.
 #include "modal_shape_figures.hpp"
 
-#include "mbgen/mode_shape_figures.hpp"
-#include "mbgen/mode_shape_svg.hpp"
-#include "mbgen/report_files.hpp"
+#include "mbgen/report/mode_shape_figures.hpp"
+#include "mbgen/report/mode_shape_svg.hpp"
+#include "mbgen/report/report_files.hpp"
 
 #include <algorithm>
 #include <filesystem>

@@ -3,8 +3,8 @@
 // Internal header.
 #pragma once
 
-#include "mbgen/modal_report.hpp"
-#include "mbgen/report_document.hpp"
+#include "mbgen/modal_identification/modal_report.hpp"
+#include "mbgen/report/report_document.hpp"
 
 #include <string>
 

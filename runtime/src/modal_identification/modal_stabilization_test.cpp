@@ -1,4 +1,4 @@
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 
 #include <catch2/catch.hpp>
 

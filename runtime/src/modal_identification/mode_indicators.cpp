@@ -1,5 +1,5 @@
 // Indicators of a mode shape's complexity: MPC (Pappa, Elliott, Schenk 1993) and MPD.
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 #include "numerics/constants.hpp"
 
 #include <Eigen/SVD>

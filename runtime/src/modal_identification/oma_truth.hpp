@@ -3,8 +3,8 @@
 // comparison of identified modes with them. Test-only header (Catch2).
 #pragma once
 
-#include "mbgen/data_set.hpp"
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/data/data_set.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 #include "mbgen_test/files.hpp"
 #include "mbgen_test/paths.hpp"
 #include "shape_metrics.hpp"

@@ -1,7 +1,7 @@
 // Output correlations by FFT: a record's sums over N samples at many lags cost O(N log N) per channel pair
 // instead of O(N lags).
 #include "fft_transforms.hpp"
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 
 #include <stdexcept>
 

@@ -1,6 +1,6 @@
 // The output correlations by FFT against the direct sums they stand for, and response_data's bookkeeping.
-#include "mbgen/data_error.hpp"
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
 // The `mbgen-modal/1` document of an output-only analysis: the FRF path's mode table (f_hz, zeta, mpc, mpd_deg,
 // shape, pole) with the method, what the shapes are scaled to, and each method's own members (docs/modal.md).
-#include "mbgen/output_only_report.hpp"
+#include "mbgen/modal_identification/output_only_report.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 // The report and the terminal table of `mbgen modal --output-only`, laid out as the FRF path's (modal_report.cpp).
-#include "mbgen/gnuplot.hpp"
-#include "mbgen/output_only_report.hpp"
-#include "mbgen/report_document.hpp"
+#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/modal_identification/output_only_report.hpp"
+#include "mbgen/report/report_document.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 #include "report_text.hpp"
 
 namespace mbgen {

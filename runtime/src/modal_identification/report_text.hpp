@@ -2,7 +2,7 @@
 // and the stabilization diagram's pole codes. Internal header.
 #pragma once
 
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen::modal_text {
 

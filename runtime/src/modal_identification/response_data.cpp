@@ -1,6 +1,6 @@
 // Response records for output-only identification: the channels chosen, the records checked against each other.
-#include "mbgen/data_error.hpp"
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Several setups (roving sensors with shared references): each identified on its own, the modes paired by
 // frequency and their shapes glued on the reference responses (post-separate estimation re-scaling).
-#include "mbgen/data_error.hpp"
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/data/data_error.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 #include "shape_metrics.hpp"
 #include "numerics/constants.hpp"
 

@@ -1,7 +1,7 @@
 // Two setups of roving sensors with one shared reference, merged: the spindle's three sensors measured as (xs_front,
 // xs_rear) in one record and (xs_rear, xh_front) in another (each cut from its own truthgen --kind oma record,
 // another noise seed), SSI-cov per setup, shapes glued on xs_rear. Seeds fixed before the results were seen.
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 #include "oma_truth.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,7 +1,7 @@
 // Covariance-driven stochastic subspace identification (Peeters & De Roeck 1999): the responses' correlations
 // factor as R_k = C A^(k-1) G, so their block Toeplitz matrix is the observability matrix times a controllability
 // matrix; its SVD gives the observability matrix of each order, and A follows from its shift structure.
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 #include "numerics/constants.hpp"
 
 #include <Eigen/Eigenvalues>

@@ -1,6 +1,6 @@
 // SSI-cov on output-only records of drawn truths made by the independent truth generator (scripts/truthgen --kind
 // oma): unmeasured white forces, responses only, 40 dB output noise. Seeds fixed before the results were seen.
-#include "mbgen/output_only_modal.hpp"
+#include "mbgen/modal_identification/output_only_modal.hpp"
 #include "oma_truth.hpp"
 
 #include <catch2/catch.hpp>

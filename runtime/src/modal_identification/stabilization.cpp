@@ -1,5 +1,5 @@
 // The stabilization diagram's labels, and the choice of the physical poles from it.
-#include "mbgen/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
 #include "shape_metrics.hpp"
 #include "numerics/constants.hpp"
 

@@ -1,6 +1,6 @@
-#include "mbgen/state_modes.hpp"
+#include "mbgen/modal_identification/state_modes.hpp"
 
-#include "mbgen/dynamics_error.hpp"
+#include "mbgen/dynamics/dynamics_error.hpp"
 #include "numerics/constants.hpp"
 #include "numerics/state_eigen.hpp"
 

@@ -1,5 +1,5 @@
-// CUSUM design and update, baseline scatter (runtime/include/mbgen/change_detection.hpp, docs/monitor.md).
-#include "mbgen/change_detection.hpp"
+// CUSUM design and update, baseline scatter (runtime/include/mbgen/monitoring/change_detection.hpp, docs/monitor.md).
+#include "mbgen/monitoring/change_detection.hpp"
 #include "numerics/constants.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // The CUSUM's design (run length, threshold), its detection and change-point estimate, and the baseline scatter.
-#include "mbgen/change_detection.hpp"
+#include "mbgen/monitoring/change_detection.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,7 +1,7 @@
-// Reading and ordering by `# time=` lines (runtime/include/mbgen/measurement_time.hpp).
-#include "mbgen/measurement_time.hpp"
+// Reading and ordering by `# time=` lines (runtime/include/mbgen/monitoring/measurement_time.hpp).
+#include "mbgen/monitoring/measurement_time.hpp"
 
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,7 +1,7 @@
 // `# time=` lines: their form, their value, and the order they give.
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 #include "mbgen_test/files.hpp"
-#include "mbgen/measurement_time.hpp"
+#include "mbgen/monitoring/measurement_time.hpp"
 
 #include <catch2/catch.hpp>
 

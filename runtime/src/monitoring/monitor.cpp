@@ -1,14 +1,14 @@
 // The monitoring loop: fit each data set, learn the baseline, run the CUSUMs, report changes once
-// (runtime/include/mbgen/monitor.hpp, docs/monitor.md).
-#include "mbgen/monitor.hpp"
+// (runtime/include/mbgen/monitoring/monitor.hpp, docs/monitor.md).
+#include "mbgen/monitoring/monitor.hpp"
 
-#include "mbgen/change_detection.hpp"
+#include "mbgen/monitoring/change_detection.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

@@ -1,5 +1,5 @@
 // The `mbgen-monitor/1` document (docs/interfaces.md) plus documented extra members (docs/monitor.md).
-#include "mbgen/monitor_report.hpp"
+#include "mbgen/monitoring/monitor_report.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,10 +1,10 @@
 // The report directory of `monitor`: report.md and report.html with the changes, the series, and trend plots
 // drawn by gnuplot.
-#include "mbgen/monitor_report.hpp"
+#include "mbgen/monitoring/monitor_report.hpp"
 
-#include "mbgen/gnuplot.hpp"
-#include "mbgen/report_document.hpp"
-#include "mbgen/report_files.hpp"
+#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/report_document.hpp"
+#include "mbgen/report/report_files.hpp"
 
 #include <algorithm>
 #include <cmath>

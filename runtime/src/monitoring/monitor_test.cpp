@@ -2,9 +2,9 @@
 // no alarm on scatter, one change naming the stepped parameter, a structural change when the truth leaves the model.
 #include "mbgen_test/estimation.hpp"
 
-#include "mbgen/change_detection.hpp"
-#include "mbgen/monitor.hpp"
-#include "mbgen/monitor_report.hpp"
+#include "mbgen/monitoring/change_detection.hpp"
+#include "mbgen/monitoring/monitor.hpp"
+#include "mbgen/monitoring/monitor_report.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
-// Reading `# condition NAME=VALUE` lines (runtime/include/mbgen/operating_conditions.hpp).
-#include "mbgen/operating_conditions.hpp"
+// Reading `# condition NAME=VALUE` lines (runtime/include/mbgen/monitoring/operating_conditions.hpp).
+#include "mbgen/monitoring/operating_conditions.hpp"
 
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,9 +1,10 @@
-// A change in operation explained by a model's parameters (runtime/include/mbgen/operational_explanation.hpp).
-#include "mbgen/operational_explanation.hpp"
+// A change in operation explained by a model's parameters
+// (runtime/include/mbgen/monitoring/operational_explanation.hpp).
+#include "mbgen/monitoring/operational_explanation.hpp"
 
-#include "mbgen/modal_identification.hpp"
-#include "mbgen/modal_pairing.hpp"
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/modal_identification/modal_identification.hpp"
+#include "mbgen/modal_identification/modal_pairing.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 
 #include <algorithm>
 #include <cmath>

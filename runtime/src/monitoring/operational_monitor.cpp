@@ -1,8 +1,8 @@
 // Monitoring in operation: tracked output-only modes, the conditions' effect removed, a Hotelling T^2 chart
-// (runtime/include/mbgen/operational_monitor.hpp, docs/monitor.md).
-#include "mbgen/operational_monitor.hpp"
+// (runtime/include/mbgen/monitoring/operational_monitor.hpp, docs/monitor.md).
+#include "mbgen/monitoring/operational_monitor.hpp"
 
-#include "mbgen/change_detection.hpp"
+#include "mbgen/monitoring/change_detection.hpp"
 
 #include <Eigen/Dense>
 

@@ -1,10 +1,10 @@
 // Monitoring in operation on features made by hand: the F quantile and the T^2 limit against tables, the stated
 // false-alarm rate on simulated series (regression and principal components), a step found with the mode that
 // moved, tracking by MAC, and the `# condition` reader's errors.
-#include "mbgen/operational_monitor.hpp"
-#include "mbgen/operating_conditions.hpp"
+#include "mbgen/monitoring/operational_monitor.hpp"
+#include "mbgen/monitoring/operating_conditions.hpp"
 
-#include "mbgen/data_error.hpp"
+#include "mbgen/data/data_error.hpp"
 
 #include <catch2/catch.hpp>
 

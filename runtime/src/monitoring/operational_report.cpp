@@ -1,10 +1,10 @@
-// JSON, summary and report of `monitor --output-only` (runtime/include/mbgen/operational_report.hpp).
-#include "mbgen/operational_report.hpp"
+// JSON, summary and report of `monitor --output-only` (runtime/include/mbgen/monitoring/operational_report.hpp).
+#include "mbgen/monitoring/operational_report.hpp"
 
-#include "mbgen/fit.hpp"
-#include "mbgen/gnuplot.hpp"
-#include "mbgen/report_document.hpp"
-#include "mbgen/report_files.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/report_document.hpp"
+#include "mbgen/report/report_files.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,6 +1,6 @@
-#include "mbgen/mode_shape_figures.hpp"
+#include "mbgen/report/mode_shape_figures.hpp"
 
-#include "mbgen/report_files.hpp"
+#include "mbgen/report/report_files.hpp"
 
 #include <algorithm>
 #include <filesystem>

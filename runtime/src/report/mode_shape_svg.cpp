@@ -1,7 +1,7 @@
 // Mode shapes as SVG text: three orthographic views of a model's points and elements, undeformed and deformed.
 // Written directly rather than through gnuplot: the pictures are small and many, need equal scales across views,
 // and come out the same bytes on every machine (numbers with two decimals).
-#include "mbgen/mode_shape_svg.hpp"
+#include "mbgen/report/mode_shape_svg.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <limits>
 #include <sstream>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

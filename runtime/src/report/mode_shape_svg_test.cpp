@@ -1,7 +1,7 @@
 // Mode shapes as SVG, on a hand-made geometry: a ground, body A at the origin (x and a rotation rz), body B at
 // (1, 0, 0) (x), a spring from the ground to A and one from A's point (0.5, 0, 0) to B, a sensor on B along x.
 // The points' motion is written here from u + theta x r, not taken from the code under test.
-#include "mbgen/mode_shape_svg.hpp"
+#include "mbgen/report/mode_shape_svg.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
 // The report document: its Markdown and HTML renderings, and what each does with a user's string.
-#include "mbgen/report_document.hpp"
+#include "mbgen/report/report_document.hpp"
 
 #include <catch2/catch.hpp>
 

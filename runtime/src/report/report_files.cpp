@@ -1,6 +1,6 @@
-#include "mbgen/report_files.hpp"
+#include "mbgen/report/report_files.hpp"
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <cctype>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The report document as one self-contained HTML file (report.html): styles inline, plots embedded as data: URIs.
-#include "mbgen/report_document.hpp"
+#include "mbgen/report/report_document.hpp"
 
 #include <cstdint>
 #include <cstdlib>
@@ -9,7 +9,7 @@
 #include <optional>
 #include <sstream>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen::report {
 

@@ -1,5 +1,5 @@
 // Feature maps (thesis Fig. 5.34): each mode's (f, zeta) as one parameter sweeps, the modes followed step to step.
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 
 #include <limits>
 #include <stdexcept>

@@ -1,5 +1,5 @@
 // Sobol indices of the modes' frequencies and damping ratios over ranges of the model's parameters.
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,8 +1,8 @@
 // Local sensitivities of the modes by first-order eigenvalue perturbation of the state matrix:
 // dlambda = w^T dA v with w^T v = 1 (state_modes normalizes left * right = I), dA from state_space_derivatives.
-#include "mbgen/sensitivity.hpp"
-#include "mbgen/state_modes.hpp"
-#include "mbgen/state_space.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
+#include "mbgen/modal_identification/state_modes.hpp"
+#include "mbgen/dynamics/state_space.hpp"
 #include "numerics/constants.hpp"
 
 #include <cmath>

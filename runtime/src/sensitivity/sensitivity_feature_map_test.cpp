@@ -1,4 +1,4 @@
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 #include "mbgen_test/mdof2.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,5 +1,5 @@
 // The `mbgen-sensitivity/1` document (docs/sensitivity.md).
-#include "mbgen/sensitivity_report.hpp"
+#include "mbgen/sensitivity/sensitivity_report.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,6 +1,6 @@
-#include "mbgen/frf.hpp"
-#include "mbgen/modal.hpp"
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/dynamics/frf.hpp"
+#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 #include "mbgen_test/mdof2.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,5 +1,5 @@
 // Sobol indices of mdof2's modes against brute force: the variance of the conditional mean, by a double loop.
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 #include "mbgen_test/mdof2.hpp"
 
 #include <catch2/catch.hpp>

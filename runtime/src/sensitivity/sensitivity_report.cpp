@@ -1,9 +1,9 @@
 // The report directory of `mbgen sensitivity`: report.md and report.html with tables and SVG plots drawn by
 // gnuplot from .dat files and .gp scripts; and the terminal summary.
-#include "mbgen/gnuplot.hpp"
-#include "mbgen/mode_shape_figures.hpp"
-#include "mbgen/report_document.hpp"
-#include "mbgen/sensitivity_report.hpp"
+#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/mode_shape_figures.hpp"
+#include "mbgen/report/report_document.hpp"
+#include "mbgen/sensitivity/sensitivity_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "../data/string_format.hpp"
+#include "text/string_format.hpp"
 
 namespace mbgen {
 

@@ -1,6 +1,6 @@
 // Sobol indices of the Ishigami function, whose indices are known in closed form (Ishigami & Homma 1990;
 // Saltelli et al. 2008, Sec. 4.6): f = sin x1 + a sin^2 x2 + b x3^4 sin x1 on [-pi, pi]^3.
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 
 #include <catch2/catch.hpp>
 

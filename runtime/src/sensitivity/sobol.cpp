@@ -1,9 +1,9 @@
 // Sobol indices by the Saltelli scheme: matrices A and B of N points, and A_B^(i) (A with column i from B).
 // First order, Saltelli et al. 2010 (their Table 2, b): S_i = mean(f(B) (f(A_B^i) - f(A))) / V, with f(B) centered.
 // Total, Jansen 1999: S_Ti = mean((f(A) - f(A_B^i))^2) / (2 V). V from the 2N points of A and B.
-#include "mbgen/sensitivity.hpp"
+#include "mbgen/sensitivity/sensitivity.hpp"
 
-#include "mbgen/parallel.hpp"
+#include "mbgen/dynamics/parallel.hpp"
 
 #include <cmath>
 #include <limits>

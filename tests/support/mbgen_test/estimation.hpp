@@ -5,4 +5,4 @@
 #include "mbgen_test/mdof2.hpp"
 #include "mbgen_test/mdof2_data.hpp"
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"

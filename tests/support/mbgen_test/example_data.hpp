@@ -3,7 +3,7 @@
 
 #include "mbgen_test/files.hpp"
 
-#include "mbgen/data_set.hpp"
+#include "mbgen/data/data_set.hpp"
 
 #include <string>
 

@@ -5,8 +5,8 @@
 
 #include "mbgen_test/mdof2.hpp"
 
-#include "mbgen/frf_data.hpp"
-#include "mbgen/time_record.hpp"
+#include "mbgen/data/frf_data.hpp"
+#include "mbgen/data/time_record.hpp"
 
 #include <Eigen/Core>
 

@@ -5,8 +5,8 @@
 
 #include "mbgen_test/files.hpp"
 
-#include "mbgen/data_set.hpp"
-#include "mbgen/fit.hpp"
+#include "mbgen/data/data_set.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

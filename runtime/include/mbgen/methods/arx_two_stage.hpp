@@ -17,7 +17,7 @@
 // naming what is missing.
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 namespace mbgen {
 

@@ -12,7 +12,7 @@
 // equation-error numbers, the ordinary least-squares estimate, the coordinates used and the conditioning.
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 namespace mbgen {
 

@@ -11,7 +11,7 @@
 // estimate it started from, and the cost.
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 namespace mbgen {
 

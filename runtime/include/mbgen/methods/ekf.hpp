@@ -14,7 +14,7 @@
 // size of the state's motion.
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 namespace mbgen {
 

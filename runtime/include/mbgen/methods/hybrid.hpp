@@ -9,7 +9,7 @@
 // was combined and holds both estimates; method_details["direct"] is the direct method's own.
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 namespace mbgen {
 

@@ -9,7 +9,7 @@
 // "time-output-error"; the others are the methods of runtime/include/mbgen/methods.
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 #include "mbgen/methods/ekf.hpp"
 #include "mbgen/methods/two_step.hpp"
 

@@ -27,7 +27,7 @@
 // not statistically weighted). nrmse, bic and cost are the output-error residual's at the estimate.
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 namespace mbgen {
 

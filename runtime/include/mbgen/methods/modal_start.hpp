@@ -22,7 +22,7 @@
 // same whether or not the measurement chain is right. The start is only a start: the fit's own cost decides.
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 
 #include <map>
 #include <string>

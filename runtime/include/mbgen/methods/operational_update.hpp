@@ -16,8 +16,8 @@
 // weighted ratios, at fixed masses and stiffnesses.
 #pragma once
 
-#include "mbgen/fit.hpp"
-#include "mbgen/operational_update.hpp"
+#include "mbgen/estimation/fit.hpp"
+#include "mbgen/modal_identification/operational_update.hpp"
 
 #include <string>
 #include <vector>

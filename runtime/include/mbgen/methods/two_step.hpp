@@ -16,7 +16,7 @@
 // comparison of identified and model transfer functions at the estimate and the validation checks (Sec. 4.7).
 #pragma once
 
-#include "mbgen/fit.hpp"
+#include "mbgen/estimation/fit.hpp"
 #include "mbgen/methods/two_step_analytical.hpp"
 
 #include <string>
