@@ -7,6 +7,7 @@
 #include <fstream>
 #include <optional>
 
+#include "cli/frf_uff58.hpp"
 #include "cli/uff_modes.hpp"
 
 namespace mbgen::cli {
@@ -20,16 +21,6 @@ bool point_from_data(const std::string& name, const std::vector<UffMapping>& map
     for (const auto& [key, mapped] : mapping.names)
       if (mapped == name && parse_uff_point_key(key, point)) return true;
   return false;
-}
-
-int specific_data_type(FrfQuantity q) {
-  switch (q) {
-    case FrfQuantity::Receptance: return 8;
-    case FrfQuantity::Mobility: return 11;
-    case FrfQuantity::Accelerance: return 12;
-    case FrfQuantity::Unknown: break;
-  }
-  return 0;
 }
 
 }  // namespace
@@ -103,7 +94,7 @@ UffText identified_modes_uff(const ModalData& data, const ModalIdentification& r
   }
   const std::string& input = data.inputs[static_cast<std::size_t>(reference)];
   UffText out;
-  out.data = uff55_modes_text(points, eigenvalues, shapes, specific_data_type(data.quantity), "mbgen modal",
+  out.data = uff55_modes_text(points, eigenvalues, shapes, uff_specific_data_type(data.quantity), "mbgen modal",
                               "residues of reference " + input, nodes, traces);
   out.mapping = uff_points_mapping("mbgen modal", names, points);
   return out;
