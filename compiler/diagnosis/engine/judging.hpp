@@ -35,8 +35,8 @@ std::vector<std::size_t> findings_cleared(const DiagnosisResult& result, const M
                                           const ModelState& after);
 
 // The nominal model's findings that `current` still shows, by index into result.nominal.residual.discrepancies:
-// what a further round may still explain. Findings the extended model shows and the nominal model did not are the
-// form of the extensions taken (an approximate base's own misfit), not a further effect of the data.
+// what a further round may still explain. Where none is left and the extended model would be kept, findings only
+// it shows are the form of the extensions taken (an approximate base's own misfit), not a further effect.
 std::vector<std::size_t> pending_findings(const DiagnosisResult& result, const ModelState& current);
 
 // The qualifying candidate with the lowest BIC (ties within thresholds::kBicTie to the first), or -1.
