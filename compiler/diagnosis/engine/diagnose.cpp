@@ -93,6 +93,17 @@ std::string with_role_known(const std::string& text, const std::string& file, co
   return patch.text();
 }
 
+// The values of `values` that model `info` estimates: start values for its fit. Its known and fixed parameters keep
+// their own (another model's estimate of a parameter this one holds fixed must not leak into it).
+std::map<std::string, double> estimated_values(const ModelInfo& info, const std::map<std::string, double>& values) {
+  std::map<std::string, double> out;
+  for (const auto& [name, v] : values) {
+    const int i = info.parameter_index(name);
+    if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) out[name] = v;
+  }
+  return out;
+}
+
 // The parameters a taken model's fit held (ModelState::held) become `known` in its model and text, so that later
 // fits keep them and the written model says so.
 void declare_held_known(ModelState& s) {
@@ -196,13 +207,8 @@ class Diagnoser {
       for (const ParameterInfo& p : evaluator.info().parameters)
         if (p.role == ParameterRole::Estimate && std::find(held.begin(), held.end(), p.name) == held.end())
           fo.estimate.push_back(p.name);
-    // Start values apply to what this model estimates; its known and fixed parameters keep their values (a
-    // candidate's estimate of a parameter the current model holds fixed must not leak into it).
     const ModelInfo& info = evaluator.info();
-    for (const auto& [name, v] : start) {
-      const int i = info.parameter_index(name);
-      if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
-    }
+    for (const auto& [name, v] : estimated_values(info, start)) fo.values[name] = v;
     fo.starts = starts + static_cast<int>(further_starts_at.size()) + static_cast<int>(!optimum_start_at.empty());
     fo.threads = workers.threads;
     fo.cores = workers.cores;
@@ -269,7 +275,8 @@ class Diagnoser {
       if (!extend_once(round, result, current)) break;
     }
     keep_only_full_explanations(result, current);
-    if (!result.selected.empty()) current.text = with_estimates(current.text, current.model.file, current.values, added_parameters(result));
+    if (!result.selected.empty())
+      current.text = with_estimates(current.text, current.model.file, current.values, added_parameters(result));
     result.final = current;
     result.verdict = verdict_of(result);
     say("verdict: " + result.verdict);
@@ -366,11 +373,7 @@ class Diagnoser {
     const ModelInfo& info = evaluator.info();
     const auto local_fit = [&](const std::map<std::string, double>& from) {
       FitOptions fo = options_.fit;
-      fo.values.clear();
-      for (const auto& [name, v] : from) {
-        const int i = info.parameter_index(name);
-        if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
-      }
+      fo.values = estimated_values(info, from);
       if (!held.empty())
         for (const ParameterInfo& p : info.parameters)
           if (p.role == ParameterRole::Estimate && std::find(held.begin(), held.end(), p.name) == held.end())
@@ -527,8 +530,9 @@ class Diagnoser {
       return lowest >= 0 && outcomes[static_cast<std::size_t>(lowest)].delta_bic < options_.min_delta_bic ? lowest : -1;
     };
     for (int guard = 0, from = source(); from >= 0 && guard < 3; ++guard, from = source()) {
-      if (!leads_lower_on_companion(*derive_model(current.model), {},
-                                    states[static_cast<std::size_t>(from)].values, current.values))
+      if (screen_on_companion_ && !leads_lower_on_companion(*derive_model(current.model), {},
+                                                            states[static_cast<std::size_t>(from)].values,
+                                                            current.values))
         break;
       ModelState refit = assess(current.model, current.text, states[static_cast<std::size_t>(from)].values,
                                 options_.candidate_starts);
@@ -937,12 +941,8 @@ class Diagnoser {
                                    const std::shared_ptr<estimation::LocalFitMemo>& memo) {
       const bool is_base = ext == nullptr;
       FitOptions fo = options_.fit;
-      fo.values.clear();
       const ModelInfo& info = evaluator.info();
-      for (const auto& [name, v] : base.values) {
-        const int i = info.parameter_index(name);
-        if (i >= 0 && info.parameters[static_cast<std::size_t>(i)].role == ParameterRole::Estimate) fo.values[name] = v;
-      }
+      fo.values = estimated_values(info, base.values);
       fo.also_start_at.clear();
       fo.optimum_start_at.clear();
       fo.further_starts_at.clear();
