@@ -1,5 +1,6 @@
 #include "mbgen/methods/arx_two_stage.hpp"
 
+#include "method_result.hpp"
 #include "method_setup.hpp"
 
 #include "numerics/levenberg_marquardt.hpp"
@@ -367,24 +368,31 @@ MatrixMatch match_parameters(const ArxContext& ctx, const IdentifiedMatrices& id
   return mm;
 }
 
-// Finish: the common members at the estimate, each candidate's verdicts from the matrix fit, and no covariance
-// (the method's error is a bias that grows with the output noise; no variance of it is honest).
+// Finish: each candidate's verdicts from the matrix fit, and no covariance (the method's error is a bias that grows
+// with the output noise; no variance of it is honest); scored with the default weighting (records: it does not
+// apply) and tolerances.
 FitResult finish(const ArxContext& ctx, const MatrixMatch& mm) {
-  FitResult result;
-  methods::fill_common(ctx.model, ctx.data, ctx.setup, mm.values, kMethod, result);
-  result.estimated.clear();
+  methods::MethodOutcome outcome;
+  outcome.method = kMethod;
+  outcome.prior = ctx.setup.prior;
+  outcome.values = mm.values;
   for (std::size_t j = 0; j < ctx.setup.candidates.size(); ++j) {
-    ParameterEstimate& e = result.parameters[j];
-    const auto bound = mm.at_bound.find(ctx.setup.candidates[j]);
+    methods::ReportedParameter p = methods::estimated_parameter(ctx.setup.candidates[j]);
+    ParameterEstimate& e = p.verdicts;
+    const auto bound = mm.at_bound.find(p.index);
     e.identifiable = mm.identifiable[j] && bound == mm.at_bound.end();
     if (bound != mm.at_bound.end()) e.at_bound = bound->second;
     e.confounded_with = mm.confounded[j];
     e.std = std::numeric_limits<double>::quiet_NaN();
-    if (e.identifiable) result.estimated.push_back(e.name);
+    if (e.identifiable) outcome.estimated.push_back(ctx.info.parameters[static_cast<std::size_t>(p.index)].name);
+    outcome.parameters.push_back(p);
   }
-  const auto k = static_cast<Eigen::Index>(result.estimated.size());
-  result.covariance = Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::quiet_NaN());
-  result.correlation = result.covariance;
+  const auto k = static_cast<Eigen::Index>(outcome.estimated.size());
+  outcome.covariance = Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::quiet_NaN());
+  outcome.scored = ctx.setup.candidates;
+  outcome.fitted = static_cast<int>(ctx.setup.candidates.size());
+  FitResult result;
+  methods::finish_result(ctx.model, ctx.data, FitOptions{}, outcome, result);
   result.iterations = mm.lm.iterations;
   result.converged = mm.fitted.empty() || mm.lm.converged;
   result.stop_reason = mm.fitted.empty() ? "nothing to fit" : mm.lm.stop_reason;

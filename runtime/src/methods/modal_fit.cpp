@@ -523,24 +523,27 @@ FitResult finish(const Model& model, const std::vector<DataSet>& data, const Mod
   const ModelInfo& info = ctx.info;
   const ModalSetup& s = ctx.setup;
   const Eigen::VectorXd& p = state.p;
-  FitResult result;
-  methods::describe_run(info, data, "modal", s.prior, result);
-  result.values = p;
+  methods::MethodOutcome outcome;
+  outcome.method = "modal";
+  outcome.prior = s.prior;
+  outcome.values = p;
   for (int i : s.candidates) {
     const ParameterInfo& q = info.parameters[static_cast<std::size_t>(i)];
-    ParameterEstimate e = methods::parameter_estimate(info, i, s.prior, p);
+    methods::ReportedParameter r;
+    r.index = i;
+    ParameterEstimate& e = r.verdicts;
     e.estimated = std::find(state.uninfluential.begin(), state.uninfluential.end(), i) == state.uninfluential.end() &&
                   std::find(s.set_everywhere.begin(), s.set_everywhere.end(), i) == s.set_everywhere.end();
     const double tol = 1e-9 * std::max(std::abs(p[i]), 1.0);
     if (std::abs(p[i] - q.lower) <= tol) e.at_bound = "lower";
     if (std::abs(p[i] - q.upper) <= tol) e.at_bound = "upper";
     e.identifiable = e.estimated && e.at_bound.empty();
-    result.parameters.push_back(e);
+    outcome.parameters.push_back(r);
   }
-  methods::score_by_output_error(
-      model, data, ctx.options, s.candidates,
-      static_cast<int>(s.candidates.size() - state.uninfluential.size() - s.set_everywhere.size()), result);
-  result.estimated.clear();
+  outcome.scored = s.candidates;
+  outcome.fitted = static_cast<int>(s.candidates.size() - state.uninfluential.size() - s.set_everywhere.size());
+  FitResult result;
+  methods::finish_result(model, data, ctx.options, outcome, result);
   result.iterations = state.total_iterations;
   return result;
 }

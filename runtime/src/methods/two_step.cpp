@@ -399,18 +399,17 @@ StepTwoUncertainty propagate_uncertainty(const TwoStepContext& ctx, const std::v
 
 // Finish: parameters the estimate pressed against a bound held there; the interior ones estimated, with their part
 // of the covariance (NaN-filled where there is none: the matrices keep the size of `estimated`, as fit.hpp has them);
-// each candidate's verdicts; and the output-error numbers every method reports (method_result.hpp), with step two's
-// singular values (no candidates given to the scoring).
+// each candidate's verdicts, its std from the whole covariance of the free parameters (those held at a bound
+// included); and step two's singular values, not the output-error Jacobian's.
 FitResult finish(const TwoStepContext& ctx, const StepTwoUnknowns& u, Eigen::VectorXd values, const Eigen::MatrixXd& cov,
                  const Minimisation& minimisation) {
   const ModelInfo& info = ctx.info;
   const std::vector<int>& free = u.free;
   const std::vector<int>& candidates = ctx.setup.candidates;
   const std::vector<ParameterTransform>& transforms = ctx.setup.transforms;
-  FitResult result;
-  methods::describe_run(info, ctx.data, "two-step", ctx.setup.prior, result);
-  for (const auto& run : minimisation.runs) result.start_costs.push_back(run.cost);
-  result.best_start = minimisation.best_start;
+  methods::MethodOutcome outcome;
+  outcome.method = "two-step";
+  outcome.prior = ctx.setup.prior;
 
   std::map<int, std::string> at_bound;
   for (std::size_t j = 0; j < free.size(); ++j) {
@@ -425,27 +424,26 @@ FitResult finish(const TwoStepContext& ctx, const StepTwoUnknowns& u, Eigen::Vec
   std::vector<std::size_t> interior;
   for (std::size_t j = 0; j < free.size(); ++j)
     if (!at_bound.count(free[j])) interior.push_back(j);
-  for (std::size_t j : interior) result.estimated.push_back(info.parameters[static_cast<std::size_t>(free[j])].name);
+  for (std::size_t j : interior) outcome.estimated.push_back(info.parameters[static_cast<std::size_t>(free[j])].name);
   if (cov.size() && !interior.empty()) {
-    result.covariance.resize(static_cast<Eigen::Index>(interior.size()), static_cast<Eigen::Index>(interior.size()));
+    outcome.covariance.resize(static_cast<Eigen::Index>(interior.size()), static_cast<Eigen::Index>(interior.size()));
     for (std::size_t a = 0; a < interior.size(); ++a)
       for (std::size_t b = 0; b < interior.size(); ++b)
-        result.covariance(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) =
+        outcome.covariance(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) =
             cov(static_cast<Eigen::Index>(interior[a]), static_cast<Eigen::Index>(interior[b]));
-    const Eigen::VectorXd sd = result.covariance.diagonal().cwiseMax(0).cwiseSqrt();
-    result.correlation = result.covariance.cwiseQuotient(sd * sd.transpose());
   } else if (!interior.empty()) {
     const Eigen::Index k = static_cast<Eigen::Index>(interior.size());
-    result.covariance = Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::quiet_NaN());
-    result.correlation = result.covariance;
+    outcome.covariance = Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::quiet_NaN());
   }
-  result.values = values;
-  result.singular_values =
+  outcome.values = values;
+  outcome.singular_values =
       analyse_identifiability(scaled_jacobian(ctx, candidates, values), identifiability_options(ctx.options))
           .singular_values;
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int i = candidates[c];
-    ParameterEstimate e = methods::parameter_estimate(info, i, ctx.setup.prior, values);
+    methods::ReportedParameter p;
+    p.index = i;
+    ParameterEstimate& e = p.verdicts;
     e.estimated = u.identifiable[c];
     e.identifiable = u.identifiable[c] && !at_bound.count(i);
     if (at_bound.count(i)) e.at_bound = at_bound[i];
@@ -459,9 +457,13 @@ FitResult finish(const TwoStepContext& ctx, const StepTwoUnknowns& u, Eigen::Vec
     std::sort(conf.begin(), conf.end());
     conf.erase(std::unique(conf.begin(), conf.end()), conf.end());
     for (int o : conf) e.confounded_with.push_back(info.parameters[static_cast<std::size_t>(o)].name);
-    result.parameters.push_back(e);
+    outcome.parameters.push_back(p);
   }
-  methods::score_by_output_error(ctx.model, ctx.data, ctx.options, {}, static_cast<int>(free.size()), result);
+  outcome.fitted = static_cast<int>(free.size());
+  FitResult result;
+  methods::finish_result(ctx.model, ctx.data, ctx.options, outcome, result);
+  for (const auto& run : minimisation.runs) result.start_costs.push_back(run.cost);
+  result.best_start = minimisation.best_start;
   const estimation::LmResult& best = minimisation.runs[static_cast<std::size_t>(minimisation.best_start)];
   result.iterations = best.iterations;
   result.converged = best.converged;
