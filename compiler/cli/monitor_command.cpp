@@ -176,7 +176,9 @@ std::string item_digest(const FleetItem& item, const MonitorSettings& s) {
     << "baseline " << s.options.baseline << ", run-length " << s.options.run_length << ", structural-ratio "
     << s.options.structural_ratio << ", starts " << s.options.fit.starts << ", warm-starts " << s.options.warm_starts
     << ", seed " << s.options.fit.seed << (s.no_diagnosis ? ", no diagnosis" : "") << "\n";
-  if (s.method != "auto") d << "method " << s.method << method_options_digest(s.method_options) << "\n";
+  // A method adds to the digest only where it changes the result (not output error: the fits are those without it).
+  if (!method_named(s.method, "monitor").output_error)
+    d << "method " << s.method << method_options_digest(s.method_options) << "\n";
   std::vector<std::string> sets = s.sets;
   std::sort(sets.begin(), sets.end());
   for (const std::string& set : sets) d << "set " << set << "\n";
