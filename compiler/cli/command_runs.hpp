@@ -76,6 +76,10 @@ struct DiagnoseRun {
 
 DiagnoseRun diagnose_model(DiagnoseRequest request);
 
+// The run's mbgen-diagnosis/1 JSON (`extended_model_path`: where the extended model is written, "" for nowhere),
+// with `start_method` where a method's estimate started the nominal fit.
+std::string diagnose_run_json(const DiagnoseRun& run, const std::string& extended_model_path);
+
 // ---- modal -------------------------------------------------------------------------------------------------------
 
 struct ModalRequest {

@@ -130,6 +130,11 @@ DiagnoseRun diagnose_model(DiagnoseRequest request) {
   return run;
 }
 
+std::string diagnose_run_json(const DiagnoseRun& run, const std::string& extended_model_path) {
+  const std::string json = diagnosis::diagnosis_json(run.result, extended_model_path);
+  return run.start_method.empty() ? json : with_start_method(json, run.start_method);
+}
+
 int run_diagnose(int argc, char** argv) {
   CLI::App app{"Fit the model, find what its simulation gets wrong beyond the noise, try extensions of the model "
                "built from its own structure, and keep one only on strong evidence.",
@@ -217,10 +222,7 @@ int run_diagnose(int argc, char** argv) {
       out.add(cpp.header_file, code.header);
       out.add(cpp.source_file, code.source);
     }
-    if (!json_path.empty()) {
-      const std::string json = diagnosis::diagnosis_json(result, extended ? extended_path : "");
-      out.add(json_path, run.start_method.empty() ? json : with_start_method(json, run.start_method));
-    }
+    if (!json_path.empty()) out.add(json_path, diagnose_run_json(run, extended ? extended_path : ""));
     if (!report_dir.empty()) diagnosis::write_diagnosis_report(out.stage_directory(report_dir), result);
     out.commit();
     if (json_path != "-") std::cout << summary(result);
