@@ -78,8 +78,7 @@ FitResult fit_eiv(const Model& model, const std::vector<DataSet>& data, const Fi
   // The start: output error's estimate, which settles identifiability and bounds (errors in variables changes the
   // weighting, not what the data determine).
   const FitResult start = fit(model, data, options);
-  FitResult result = start;
-  result.method = "eiv";
+  FitResult result = start;  // its members beside the finisher's (seed, starts, warnings) are output error's
   std::vector<int> free;
   for (const std::string& name : start.estimated) free.push_back(info.parameter_index(name));
   if (free.empty()) throw FitError("fit: --method eiv: output error left no parameter interior and identifiable");
