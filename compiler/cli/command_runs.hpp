@@ -71,13 +71,11 @@ struct DiagnoseRequest {
 struct DiagnoseRun {
   diagnosis::DiagnosisResult result;            // with its warnings set
   std::map<std::string, std::string> set;       // --set with --fix's values (the extended model is derived with it)
-  std::string start_method;                     // the method whose estimate started the nominal fit; "" for none
 };
 
 DiagnoseRun diagnose_model(DiagnoseRequest request);
 
-// The run's mbgen-diagnosis/1 JSON (`extended_model_path`: where the extended model is written, "" for nowhere),
-// with `start_method` where a method's estimate started the nominal fit.
+// The run's mbgen-diagnosis/1 JSON (`extended_model_path`: where the extended model is written, "" for nowhere).
 std::string diagnose_run_json(const DiagnoseRun& run, const std::string& extended_model_path);
 
 // ---- modal -------------------------------------------------------------------------------------------------------

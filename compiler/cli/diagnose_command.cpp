@@ -26,7 +26,6 @@
 #include "frontend/parser.hpp"
 
 #include <mbgen/diagnosis/data_split.hpp>
-#include <nlohmann/json.hpp>
 
 namespace mbgen::cli {
 
@@ -93,16 +92,6 @@ std::map<std::string, double> method_start(const ir::ModelIr& model, const symbo
   return estimate_as_start(*evaluator, estimate);
 }
 
-// The diagnosis's JSON with the method whose estimate started the nominal fit, after `seed`.
-std::string with_start_method(const std::string& json, const std::string& method) {
-  const nlohmann::ordered_json in = nlohmann::ordered_json::parse(json);
-  nlohmann::ordered_json out;
-  for (const auto& [key, value] : in.items()) {
-    out[key] = value;
-    if (key == "seed") out["start_method"] = method;
-  }
-  return out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-}
 
 }  // namespace
 
@@ -122,17 +111,16 @@ DiagnoseRun diagnose_model(DiagnoseRequest request) {
   check_method_takes(method, data);
   if (!method.output_error) {
     add_start(method_start(model, derive, data, options, method, request.method_options), options.fit);
-    run.start_method = method.name;
   }
   run.result = diagnosis::diagnose(model, text, data, options);
+  if (!method.output_error) run.result.start_method = method.name;
   run.result.warnings = passivity_warnings(model, data);
   run.set = derive.set;
   return run;
 }
 
 std::string diagnose_run_json(const DiagnoseRun& run, const std::string& extended_model_path) {
-  const std::string json = diagnosis::diagnosis_json(run.result, extended_model_path);
-  return run.start_method.empty() ? json : with_start_method(json, run.start_method);
+  return diagnosis::diagnosis_json(run.result, extended_model_path);
 }
 
 int run_diagnose(int argc, char** argv) {

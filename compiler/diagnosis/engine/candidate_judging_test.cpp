@@ -113,7 +113,7 @@ TEST_CASE("a chain candidate's description names the channel, the factor and a u
   CHECK(chain_description(two, fit_with({estimate("g_xs_rear", 0.8)}), "as enumerated", false) == "as enumerated");
 }
 
-TEST_CASE("the best variant stands for its candidate; those that fit as well are named with it", "[judging]") {
+TEST_CASE("the best variant stands for its candidate, and those that fit as well are named with it", "[judging]") {
   std::vector<CandidateOutcome> outcomes = {
       outcome("untie:k", "rear", -40.005, true, 2), outcome("untie:k", "front", -40),  // a tie within 0.01: the simpler
       outcome("untie:k", "both", -60, false),                                          // lower, but implausible

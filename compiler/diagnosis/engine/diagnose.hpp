@@ -100,6 +100,7 @@ struct ModelState {
 struct DiagnosisResult {
   std::string model_file;
   unsigned long long seed = 1;  // DiagnoseOptions::fit.seed, the searches' seed
+  std::string start_method;     // the estimation method whose estimate started the nominal fit (--method); "" none
   std::vector<std::string> warnings;  // the data checks' (the command's: a driving point with the wrong sign)
   std::vector<std::string> data;
   ModelState nominal;
