@@ -27,7 +27,7 @@
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
-#include "methods/analytical_solver.hpp"
+#include "elimination/analytical_solver.hpp"
 #include "symbolic/derive.hpp"
 
 namespace mbgen::cli {
@@ -100,12 +100,12 @@ std::string summary(const FitResult& r) {
 }
 
 // two-step's exact solver, made when its route may take it: GiNaC's on the model's symbolic coefficients
-// (compiler/methods/analytical_solver.hpp), which the runtime cannot make for lack of computer algebra.
+// (compiler/elimination/analytical_solver.hpp), which the runtime cannot make for lack of computer algebra.
 std::function<AnalyticalSolver()> analytical_solver(const ir::ModelIr& model, const symbolic::DeriveOptions& derive) {
   return [&model, &derive] {
     symbolic::DeriveOptions d = derive;
     d.transfer_functions = false;  // derived per pair, as the solver needs them
-    return analytical::make_analytical_solver(std::make_shared<const symbolic::SymbolicModel>(symbolic::derive(model, d)));
+    return elimination::make_analytical_solver(std::make_shared<const symbolic::SymbolicModel>(symbolic::derive(model, d)));
   };
 }
 
