@@ -8,13 +8,13 @@
 #include <mutex>
 #include <set>
 
-#include <mbgen/diagnosis/chain_scores.hpp>
-#include <mbgen/diagnosis/channel_residuals.hpp>
-#include <mbgen/diagnosis/data_split.hpp>
+#include <mbgen/residuals/chain_scores.hpp>
+#include <mbgen/residuals/channel_residuals.hpp>
+#include <mbgen/residuals/data_split.hpp>
 #include <mbgen/dynamics/frf.hpp>
 #include <mbgen/methods/modal_start.hpp>
 #include <mbgen/dynamics/parallel.hpp>
-#include <mbgen/diagnosis/same_response.hpp>
+#include <mbgen/residuals/same_response.hpp>
 #include <mbgen/estimation/spectral_companion.hpp>
 
 #include "diagnosis/engine/driving_points.hpp"

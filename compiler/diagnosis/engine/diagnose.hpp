@@ -19,7 +19,7 @@
 #pragma once
 
 #include <mbgen/estimation/fit.hpp>
-#include <mbgen/diagnosis/residual_analysis.hpp>
+#include <mbgen/residuals/residual_analysis.hpp>
 
 #include <functional>
 #include <map>
