@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "diagnosis/extension.hpp"
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::diagnosis {
 
