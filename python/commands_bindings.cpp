@@ -131,7 +131,8 @@ py::object diagnose_command(const py::object& model, const py::object& data, con
                             const py::object& fix, const py::object& free, const py::object& bound,
                             const py::object& starts, const py::object& seed, bool start_from_modes,
                             const py::object& full_fits,
-                            const py::object& fit_band) {
+                            const py::object& fit_band, const std::string& method) {
+  member("--method", method, method_names());
   ModelOptions options = model_options(set, fix, free, bound);
   cli::DiagnoseRequest request;
   request.model_path = model_file(model, options);
@@ -145,10 +146,11 @@ py::object diagnose_command(const py::object& model, const py::object& data, con
     request.options.full_fits = full_fits.cast<int>();
   }
   if (!fit_band.is_none()) request.fit_band = band_text(fit_band);
+  request.method = method;
   const std::string path = request.model_path;
   // As the command without --extended: no extended model is written, and the JSON's `extended_model` is empty.
   const std::string json =
-      guarded(path, [&] { return diagnosis::diagnosis_json(cli::diagnose_model(std::move(request)).result, ""); });
+      guarded(path, [&] { return cli::diagnose_run_json(cli::diagnose_model(std::move(request)), ""); });
   return json_to_python(json);
 }
 
@@ -258,7 +260,8 @@ py::object monitor_command(const py::object& model, const py::object& data, cons
                            const py::object& run_length, const py::object& structural_ratio, const py::object& starts,
                            const py::object& warm_starts, const py::object& seed, bool diagnosis,
                            const py::object& set, const py::object& fix, const py::object& free,
-                           const py::object& bound) {
+                           const py::object& bound, const std::string& method) {
+  member("--method", method, method_names());
   ModelOptions options = model_options(set, fix, free, bound);
   const std::string path = model_file(model, options);
   const std::vector<std::string> data_paths = paths(data, "--data");
@@ -266,6 +269,7 @@ py::object monitor_command(const py::object& model, const py::object& data, cons
   settings.sets = options.sets;
   settings.roles = options.roles;
   settings.no_diagnosis = !diagnosis;
+  settings.method = method;
   MonitorOptions& o = settings.options;
   if (!baseline.is_none()) o.baseline = int_option("--baseline", baseline, CLI::Range(2, 1000000));
   if (!run_length.is_none()) o.run_length = number_option("--run-length", run_length, CLI::Range(2.0, 1e12));
@@ -331,9 +335,10 @@ void register_commands(py::module_& m) {
         py::arg("fix") = py::none(), py::arg("free") = py::none(), py::arg("bound") = py::none(),
         py::arg("starts") = py::none(), py::arg("seed") = py::none(), py::arg("start_from_modes") = true,
         py::arg("full_fits") = py::none(),
-        py::arg("fit_band") = py::none(),
+        py::arg("fit_band") = py::none(), py::arg("method") = "auto",
         "`mbgen diagnose`: what the model gets wrong and which extension explains it; returns the "
-        "mbgen-diagnosis/1 JSON as Python objects.");
+        "mbgen-diagnosis/1 JSON as Python objects. method: `--method`, whose estimate (its options at their "
+        "defaults) is one more start of the nominal fit.");
   m.def("modal", &modal_command, py::arg("data"), py::kw_only(), py::arg("band") = py::none(),
         py::arg("model") = py::none(), py::arg("set") = py::none(), py::arg("max_order") = py::none(),
         py::arg("select") = py::none(), py::arg("refine") = true, py::arg("quantity") = "auto",
@@ -350,10 +355,11 @@ void register_commands(py::module_& m) {
         py::arg("run_length") = py::none(), py::arg("structural_ratio") = py::none(), py::arg("starts") = py::none(),
         py::arg("warm_starts") = py::none(), py::arg("seed") = py::none(), py::arg("diagnosis") = true,
         py::arg("set") = py::none(), py::arg("fix") = py::none(), py::arg("free") = py::none(),
-        py::arg("bound") = py::none(),
+        py::arg("bound") = py::none(), py::arg("method") = "auto",
         "`mbgen monitor`: each data set (with a measured force) fitted in time order, parameter changes and "
         "structural changes detected; returns the mbgen-monitor/1 JSON as Python objects. diagnosis=False is "
-        "--no-diagnosis.");
+        "--no-diagnosis; method: `--method`, whose estimate on each set (its options at their defaults) is one "
+        "more start of that set's fit.");
   m.def("monitor_output_only", &monitor_output_only_command, py::arg("data"), py::kw_only(),
         py::arg("baseline") = py::none(), py::arg("model") = py::none(), py::arg("false_alarm") = py::none(),
         py::arg("environmental_components") = py::none(), py::arg("compensation") = true,

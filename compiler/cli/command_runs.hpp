@@ -62,6 +62,10 @@ struct DiagnoseRequest {
   RoleOptions roles;
   diagnosis::DiagnoseOptions options;  // its `set` already checked by parse_set_options; progress as wanted
   std::string fit_band;                // --fit-band LO:HI, "" for every line
+  // --method: a method beside output error runs first on the data the nominal fit sees, and its estimate is one more
+  // start of that fit ("auto" or another output-error name: nothing added).
+  std::string method = "auto";
+  MethodOptions method_options;        // the methods' own options (--two-step-route, --ekf-drift, ...)
 };
 
 struct DiagnoseRun {
@@ -70,6 +74,9 @@ struct DiagnoseRun {
 };
 
 DiagnoseRun diagnose_model(DiagnoseRequest request);
+
+// The run's mbgen-diagnosis/1 JSON (`extended_model_path`: where the extended model is written, "" for nowhere).
+std::string diagnose_run_json(const DiagnoseRun& run, const std::string& extended_model_path);
 
 // ---- modal -------------------------------------------------------------------------------------------------------
 
@@ -135,6 +142,10 @@ struct MonitorSettings {
   std::vector<std::string> sets;   // --set, checked here
   RoleOptions roles;
   bool no_diagnosis = false;
+  // --method: a method beside output error runs first on each data set, and its estimate is one more start of that
+  // set's fit ("auto" or another output-error name: nothing added).
+  std::string method = "auto";
+  MethodOptions method_options;
 };
 
 // Monitors one machine: its model (path, or "-" for standard input) and its data sets, ordered by time; progress on

@@ -1,4 +1,5 @@
-// `mbgen diagnose MODEL.mdl --data FILE [--data FILE ...] [--json OUT.json] [--report DIR] [--extended OUT.mdl]`:
+// `mbgen diagnose MODEL.mdl --data FILE [--data FILE ...] [--method NAME] [--json OUT.json] [--report DIR]
+// [--extended OUT.mdl]`:
 // what the model gets wrong, which extension explains it, and the extended model with its generated code.
 #include <iostream>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "cli/data_checks.hpp"
 #include "cli/parameter_roles.hpp"
 #include "cli/load_data.hpp"
+#include "cli/method_option.hpp"
 #include "cli/output_files.hpp"
 #include "cli/number_checks.hpp"
 #include "cli/run_guarded.hpp"
@@ -22,6 +24,8 @@
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/diagnostics.hpp"
 #include "frontend/parser.hpp"
+
+#include <mbgen/residuals/data_split.hpp>
 
 namespace mbgen::cli {
 
@@ -74,6 +78,21 @@ std::string sibling(const std::string& mdl, const std::string& suffix) {
   return stem + suffix;
 }
 
+// The method's estimate as a start of the nominal fit: run on the part of the data that fit sees (within --fit-band,
+// the held-back validation part left out), so the validation stays data the nominal model was not fitted to.
+std::map<std::string, double> method_start(const ir::ModelIr& model, const symbolic::DeriveOptions& derive,
+                                           const std::vector<DataSet>& data, const diagnosis::DiagnoseOptions& options,
+                                           const MethodDescriptor& method, MethodOptions method_options) {
+  const auto evaluator = evaluator::make_evaluator(model, derive);
+  const SplitData split = split_for_validation(options.fit_data ? *options.fit_data : data);
+  method_options.analytical_solver = analytical_solver(model, derive);
+  const FitResult estimate = run_method(method, {*evaluator, split.fit, options.fit, method_options});
+  std::cerr << "diagnose: start from --method " << method.name << ": its estimate (nrmse " << estimate.nrmse
+            << ") starts the nominal fit\n";
+  return estimate_as_start(*evaluator, estimate);
+}
+
+
 }  // namespace
 
 DiagnoseRun diagnose_model(DiagnoseRequest request) {
@@ -88,10 +107,20 @@ DiagnoseRun diagnose_model(DiagnoseRequest request) {
       load_data(request.data_paths, evaluator::make_evaluator(model, derive)->info(), model, derive.set);
   if (!request.fit_band.empty()) options.fit_data = within_band(data, parse_band("--fit-band", request.fit_band));
   DiagnoseRun run;
+  const MethodDescriptor& method = method_named(request.method, "diagnose");
+  check_method_takes(method, data);
+  if (!method.output_error) {
+    add_start(method_start(model, derive, data, options, method, request.method_options), options.fit);
+  }
   run.result = diagnosis::diagnose(model, text, data, options);
+  if (!method.output_error) run.result.start_method = method.name;
   run.result.warnings = passivity_warnings(model, data);
   run.set = derive.set;
   return run;
+}
+
+std::string diagnose_run_json(const DiagnoseRun& run, const std::string& extended_model_path) {
+  return diagnosis::diagnosis_json(run.result, extended_model_path);
 }
 
 int run_diagnose(int argc, char** argv) {
@@ -119,6 +148,11 @@ int run_diagnose(int argc, char** argv) {
   app.add_option("--full-fits", options.full_fits,
                  "candidates fitted fully after the screening (default 6; 0: every candidate)")
       ->check(non_negative_number());
+  std::string method = "auto";
+  MethodOptions method_options;
+  add_method_choice(app, method, "an estimation method whose estimate is one more start of the nominal fit, which "
+                                 "then judges by output error as always: ");
+  add_method_own_options(app, method_options);
   app.add_option("--fit-band", fit_band,
                  "fit the models on the FRF lines within LO:HI Hz only (the band the model is meant to represent), "
                  "and judge them over all the data");
@@ -155,6 +189,8 @@ int run_diagnose(int argc, char** argv) {
                     ", iteration " + std::to_string(p.iteration));
     };
     request.fit_band = fit_band;
+    request.method = method;
+    request.method_options = method_options;
     const DiagnoseRun run = diagnose_model(std::move(request));
     progress_done();
     const diagnosis::DiagnosisResult& result = run.result;
@@ -174,7 +210,7 @@ int run_diagnose(int argc, char** argv) {
       out.add(cpp.header_file, code.header);
       out.add(cpp.source_file, code.source);
     }
-    if (!json_path.empty()) out.add(json_path, diagnosis::diagnosis_json(result, extended ? extended_path : ""));
+    if (!json_path.empty()) out.add(json_path, diagnose_run_json(run, extended ? extended_path : ""));
     if (!report_dir.empty()) diagnosis::write_diagnosis_report(out.stage_directory(report_dir), result);
     out.commit();
     if (json_path != "-") std::cout << summary(result);

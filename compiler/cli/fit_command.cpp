@@ -17,6 +17,7 @@
 #include "cli/commands.hpp"
 #include "cli/data_checks.hpp"
 #include "cli/load_data.hpp"
+#include "cli/method_option.hpp"
 #include "cli/modal_start_option.hpp"
 #include "cli/output_files.hpp"
 #include "cli/parameter_roles.hpp"
@@ -27,7 +28,6 @@
 #include "cli/version.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
-#include "elimination/analytical_solver.hpp"
 #include "symbolic/derive.hpp"
 
 namespace mbgen::cli {
@@ -99,43 +99,10 @@ std::string summary(const FitResult& r) {
   return out;
 }
 
-// two-step's exact solver, made when its route may take it: GiNaC's on the model's symbolic coefficients
-// (compiler/elimination/analytical_solver.hpp), which the runtime cannot make for lack of computer algebra.
-std::function<AnalyticalSolver()> analytical_solver(const ir::ModelIr& model, const symbolic::DeriveOptions& derive) {
-  return [&model, &derive] {
-    symbolic::DeriveOptions d = derive;
-    d.transfer_functions = false;  // derived per pair, as the solver needs them
-    return elimination::make_analytical_solver(std::make_shared<const symbolic::SymbolicModel>(symbolic::derive(model, d)));
-  };
-}
-
-// --method's help: the table's methods with their few words.
-std::string method_help() {
-  const std::vector<MethodDescriptor>& table = method_table();
-  std::string out;
-  for (std::size_t i = 0; i < table.size(); ++i) {
-    out += (i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + table[i].name;
-    if (!table[i].help.empty()) out += " (" + table[i].help + ")";
-  }
-  return out + "; docs/methods.md";
-}
-
-// The methods' own options, as the table declares them, bound to their members of `options`.
-void add_method_options(CLI::App& app, MethodOptions& options) {
-  for (const MethodDescriptor& m : method_table())
-    for (const MethodOption& o : m.options) {
-      if (o.kind == MethodOption::Kind::Choice)
-        app.add_option(o.flag, o.text(options), o.help)->check(CLI::IsMember(o.choices));
-      else
-        app.add_option(o.flag, o.number(options), o.help)->check(non_negative_number());
-    }
-}
-
 }  // namespace
 
 FitRun fit_model(FitRequest request) {
-  const MethodDescriptor* const method = find_method(request.method);
-  if (!method) throw FitError("fit: no method `" + request.method + "` (--method takes " + method_help() + ")");
+  const MethodDescriptor* const method = &method_named(request.method, "fit");
   symbolic::DeriveOptions derive;
   derive.set = std::move(request.set);
   const ir::ModelIr model = read_model_with_roles(request.model_path, request.roles, derive.set).model;
@@ -146,8 +113,7 @@ FitRun fit_model(FitRequest request) {
   data = load_data(request.data_paths, evaluator.info(), model, derive.set);
   if (!request.band.empty()) data = within_band(data, parse_band("--band", request.band));
   // A named method that cannot use the data is bad input (status 1), as docs/interfaces.md says.
-  for (const DataSet& d : data)
-    if (const std::string refusal = data_refusal(*method, d); !refusal.empty()) throw FitError(refusal);
+  check_method_takes(*method, data);
   if (request.start_from_modes && !method->output_error)
     throw FitError("fit: error: --start-from-modes starts the output-error search; --method " + method->name +
                    " has its own starts (drop --start-from-modes or use --method auto)");
@@ -163,14 +129,7 @@ FitRun fit_model(FitRequest request) {
   FitResult& result = run.result;
   MethodOptions& method_options = request.method_options;
   method_options.analytical_solver = analytical_solver(model, derive);
-  try {
-    result = method->run({evaluator, data, options, method_options});
-  } catch (const FitError& e) {
-    // A method that cannot use the data says why; the note names the methods that do without what it lacks.
-    const std::string note = preconditions_note(*method, e.what());
-    if (note.empty()) throw;
-    throw FitError(std::string(e.what()) + "\n" + note);
-  }
+  result = run_method(*method, {evaluator, data, options, method_options});
   if (modal_start) result.method_details["start_from_modes"] = start_from_modes_details(*modal_start);
   result.model = request.model_path;
   result.seed = options.seed;
@@ -204,7 +163,7 @@ int run_fit(int argc, char** argv) {
   FitOptions options;
   app.add_option("model", model_path, "model file (.mdl); - reads standard input")->required();
   app.add_option("--data", data_paths, "measured data: CSV (time or FRF) or UFF 58; repeatable, fitted jointly")->required();
-  app.add_option("--method", method, method_help())->check(CLI::IsMember(method_names()));
+  add_method_choice(app, method);
   app.add_option("--json", json_path, "write the result (schema mbgen-fit/1); - for standard output");
   std::vector<std::string> validate_paths;
   app.add_option("--validate", validate_paths, "score the estimate on other data (same kinds as --data; repeatable): "
@@ -225,7 +184,7 @@ int run_fit(int argc, char** argv) {
                "match the data's own (LSCF modes paired by MAC; docs/estimation.md)");
   app.add_option("--band", band, "fit only the FRF lines within LO:HI Hz (the band the model is meant to represent)");
   MethodOptions method_options;
-  add_method_options(app, method_options);
+  add_method_own_options(app, method_options);
   app.set_version_flag("--version", version_text());
   return run_guarded(app, argc, argv, [&] {
     FitRequest request;

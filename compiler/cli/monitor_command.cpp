@@ -22,6 +22,7 @@
 #include "cli/fleet_manifest.hpp"
 #include "cli/monitor_output_only.hpp"
 #include "cli/load_data.hpp"
+#include "cli/method_option.hpp"
 #include "cli/output_files.hpp"
 #include "cli/run_guarded.hpp"
 #include "cli/seed_option.hpp"
@@ -99,6 +100,17 @@ MonitorResult monitor_machine(const std::string& model_path, const std::vector<s
     throw CLI::ValidationError("--data", "monitoring needs more data sets than the baseline's " +
                                              std::to_string(options.baseline) + " (--baseline)");
 
+  // --method: the method's estimate on each set is one more start of that set's fit (the fit's own options, without
+  // the chosen starts of the series, run the method).
+  const MethodDescriptor& method = method_named(settings.method, "monitor");
+  check_method_takes(method, data);
+  if (!method.output_error) {
+    settings.method_options.analytical_solver = analytical_solver(parsed, derive);
+    options.add_starts = [&method, &evaluator, &settings, fit = options.fit](const DataSet& set, FitOptions& fo) {
+      const std::vector<DataSet> one{set};
+      add_start(estimate_as_start(*evaluator, run_method(method, {*evaluator, one, fit, settings.method_options})), fo);
+    };
+  }
   const FrfWeighting weighting = options.fit.frf_weighting;
   options.misfit = [&](const DataSet& set, const FitResult& fit) {
     return residual_misfit(*evaluator, set, fit, weighting);
@@ -114,6 +126,7 @@ MonitorResult monitor_machine(const std::string& model_path, const std::vector<s
   };
   MonitorResult result = monitor(*evaluator, data, times, options);
   result.model = model_path;
+  if (!method.output_error) result.start_method = method.name;
 
   // A structural change: the diagnosis of that data set against the model names the cause where it can.
   for (MonitorChange& change : result.changes) {
@@ -163,6 +176,9 @@ std::string item_digest(const FleetItem& item, const MonitorSettings& s) {
     << "baseline " << s.options.baseline << ", run-length " << s.options.run_length << ", structural-ratio "
     << s.options.structural_ratio << ", starts " << s.options.fit.starts << ", warm-starts " << s.options.warm_starts
     << ", seed " << s.options.fit.seed << (s.no_diagnosis ? ", no diagnosis" : "") << "\n";
+  // A method adds to the digest only where it changes the result (not output error: the fits are those without it).
+  if (!method_named(s.method, "monitor").output_error)
+    d << "method " << s.method << method_options_digest(s.method_options) << "\n";
   std::vector<std::string> sets = s.sets;
   std::sort(sets.begin(), sets.end());
   for (const std::string& set : sets) d << "set " << set << "\n";
@@ -243,6 +259,9 @@ int run_monitor(int argc, char** argv) {
       ->check(starts_range());
   app.add_option("--seed", options.fit.seed, "seed of the global searches (default 1)")->check(seed_check());
   app.add_flag("--no-diagnosis", settings.no_diagnosis, "report a structural change without running the diagnosis on it");
+  add_method_choice(app, settings.method, "an estimation method whose estimate on each data set is one more start of "
+                                          "that set's fit, which then judges by output error as always: ");
+  add_method_own_options(app, settings.method_options);
   app.add_option("--manifest", manifest_path,
                  "a fleet: CSV `machine,model,data` (docs/fleets.md); each machine is an item written to OUT/MACHINE");
   app.add_option("--item", item_selector,
@@ -281,7 +300,7 @@ int run_monitor(int argc, char** argv) {
       if (!model_path.empty())
         throw CLI::ValidationError("model", "with --output-only a model is optional and given as --model M.mdl");
       for (const char* option : {"--run-length", "--structural-ratio", "--starts", "--warm-starts", "--seed",
-                                 "--no-diagnosis", "--manifest", "--item", "--out", "--count"})
+                                 "--no-diagnosis", "--manifest", "--item", "--out", "--count", "--method"})
         if (app.count(option)) throw CLI::ValidationError(option, "not with --output-only");
       if (data_paths.empty()) throw CLI::ValidationError("--data", "at least one --data file is required");
       if (!settings.sets.empty() && oma.model_path.empty()) throw CLI::ValidationError("--set", "needs --model");

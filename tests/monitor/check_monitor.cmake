@@ -8,6 +8,7 @@
 #       INDICES: the data set(s) where detection is right, e.g. 5 or 5,6; PARAMETERS: the exact list that moved,
 #       comma-separated, or * for any; KIND: param (not structural) or structural; ONSET: the estimated onset
 #   -DMONITOR_ARGS="--no-diagnosis" (optional): more arguments of `mbgen monitor`
+#   -DSTART_METHOD=NAME (optional): the JSON's `start_method` (monitor --method NAME); empty: the JSON has none
 cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in script mode
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
@@ -69,6 +70,13 @@ file(READ "${WORK_DIR}/monitor.json" json)
 string(JSON schema GET "${json}" schema)
 if(NOT schema STREQUAL "mbgen-monitor/1")
   message(FATAL_ERROR "schema ${schema}")
+endif()
+string(JSON start_method ERROR_VARIABLE no_start_method GET "${json}" start_method)
+if(no_start_method)
+  set(start_method "")
+endif()
+if(NOT start_method STREQUAL "${START_METHOD}")
+  message(FATAL_ERROR "start_method '${start_method}', expected '${START_METHOD}'")
 endif()
 string(JSON n_series LENGTH "${json}" series)
 list(LENGTH sets n_sets)

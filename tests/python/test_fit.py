@@ -84,6 +84,18 @@ def test_diagnose_json_is_the_commands(diagnosed, mbgen_command, tmp_path):
     assert json.loads(out.read_text()) == diagnosed
 
 
+def test_diagnose_with_a_method_start_is_the_commands(diagnosed, mbgen_command, tmp_path):
+    # --method: the direct estimate is one more start of the nominal fit; the JSON names it, the verdict stays.
+    started = mbgen.diagnose(MODEL, FRF, method="direct")
+    assert started["start_method"] == "direct"
+    assert "start_method" not in diagnosed
+    assert started["verdict"] == diagnosed["verdict"]
+    out = tmp_path / "diagnosis.json"
+    subprocess.run([mbgen_command, "diagnose", str(MODEL), "--data", str(FRF), "--method", "direct", "--json",
+                    str(out)], check=True, capture_output=True)
+    assert json.loads(out.read_text()) == started
+
+
 def test_arx_two_stage_with_the_masses_fixed():
     # The case: arx-two-stage needs M known; fix= makes the masses known without editing the model.
     record = MDOF2 / "data" / "time_F1.csv"

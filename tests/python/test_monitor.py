@@ -64,6 +64,20 @@ def test_monitor_is_the_commands(frf_series, mbgen_command, tmp_path):
     assert "k11" in result["changes"][0]["parameters"]
 
 
+def test_monitor_with_a_method_start_is_the_commands(frf_series, mbgen_command, tmp_path):
+    # --method: each set's fit also starts from the two-step estimate on it; the same change is found.
+    result = mbgen.monitor(MODEL, frf_series, baseline=3, starts=4, warm_starts=2, diagnosis=False, method="two-step")
+    assert result["start_method"] == "two-step"
+    args = [MODEL, "--baseline", "3", "--starts", "4", "--warm-starts", "2", "--no-diagnosis", "--method", "two-step"]
+    for f in frf_series:
+        args += ["--data", f]
+    assert result == command_json(mbgen_command, tmp_path, args)
+    assert [c["index"] for c in result["changes"]] == [3]
+    assert "k11" in result["changes"][0]["parameters"]
+    with pytest.raises(mbgen.FitError, match="--method ekf needs time records"):
+        mbgen.monitor(MODEL, frf_series, method="ekf")
+
+
 def test_monitor_output_only_is_the_commands(oma_series, mbgen_command, tmp_path):
     result = mbgen.monitor_output_only(oma_series, baseline=5, model=MODEL)
     assert result["schema"] == "mbgen-monitor-operational/1"

@@ -11,7 +11,7 @@
 //      Repeat with every candidate on the extended model (greedy forward selection) while it still shows a finding.
 //      The measurement chain's candidates (a sensor's calibration or polarity, swapped cables, the force's) take part
 //      in every round, fitted where a cheap statistic supports them (chain_scores.hpp). The extended model
-//      must end near the noise level (mean normalized residual at most 3) and keep at most half of the nominal
+//      must end near the noise level (mean normalized residual at most 3) and keep at most a third of the nominal
 //      model's findings, or nothing is selected.
 //   5. Verdict: `extended`; `no_extension_justified` when nothing beyond noise remains; `unexplained` when a clear
 //      discrepancy remains that no candidate explains. A confident wrong extension is the worst outcome, so every
@@ -100,6 +100,7 @@ struct ModelState {
 struct DiagnosisResult {
   std::string model_file;
   unsigned long long seed = 1;  // DiagnoseOptions::fit.seed, the searches' seed
+  std::string start_method;     // the estimation method whose estimate started the nominal fit (--method); "" none
   std::vector<std::string> warnings;  // the data checks' (the command's: a driving point with the wrong sign)
   std::vector<std::string> data;
   ModelState nominal;

@@ -58,6 +58,7 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
   j["model"] = result.model_file;
   j["data"] = result.data;
   j["seed"] = result.seed;
+  if (!result.start_method.empty()) j["start_method"] = result.start_method;
   if (!result.warnings.empty()) j["warnings"] = result.warnings;
   ordered_json nominal_params = ordered_json::object();
   for (const ParameterEstimate& p : result.nominal.fit.parameters) nominal_params[p.name] = parameter(p);

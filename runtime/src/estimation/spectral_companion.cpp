@@ -1,8 +1,10 @@
 #include "mbgen/estimation/spectral_companion.hpp"
 
 #include "mbgen/data/welch.hpp"
+#include "mbgen/dynamics/frf.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace mbgen::estimation {
 
@@ -76,6 +78,43 @@ std::optional<SpectralCompanion> spectral_companion(const ModelInfo& info, const
   if (!any_record) return std::nullopt;
   out.averages = std::max(averages, 1);
   return out;
+}
+
+std::optional<SpectralCompanion> debiased_spectral_companion(const Model& model, const Eigen::VectorXd& p,
+                                                             const std::vector<DataSet>& data) {
+  const ModelInfo& info = model.info();
+  std::optional<SpectralCompanion> measured = spectral_companion(info, data);
+  if (!measured) return measured;
+  // The records with their outputs replaced by the model's response at p (the inputs, and so H1's segments, stay).
+  std::vector<DataSet> simulated = data;
+  for (DataSet& d : simulated) {
+    TimeRecord* record = std::get_if<TimeRecord>(&d.content);
+    if (!record) continue;
+    const Prediction prediction = predict(model, {d}, p);
+    for (std::size_t c = 0; c < prediction.channel_names.front().size(); ++c)
+      for (Signal& s : record->signals)
+        if (s.name == prediction.channel_names.front()[c]) s.values = prediction.channels.front()[c].real();
+  }
+  const std::optional<SpectralCompanion> of_model = spectral_companion(info, simulated);
+  if (!of_model || of_model->data.size() != measured->data.size()) return measured;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    if (data[i].is_frf()) continue;
+    FrfData& h1 = std::get<FrfData>(measured->data[i].content);
+    const FrfData& h1_model = std::get<FrfData>(of_model->data[i].content);
+    const std::vector<double> f(h1.f_hz.data(), h1.f_hz.data() + h1.f_hz.size());
+    const FrfResult exact = frf(model, p, f);
+    for (FrfChannel& c : h1.channels) {
+      const FrfChannel* m = h1_model.find(c.output, c.input);
+      const int o = info.output_index(c.output), in = info.input_index(c.input);
+      if (!m || o < 0 || in < 0) continue;
+      for (Eigen::Index k = 0; k < c.values.size(); ++k) {
+        const std::complex<double> biased = m->values[k];
+        const std::complex<double> ratio = exact.H[static_cast<std::size_t>(k)](o, in) / biased;
+        if (std::abs(biased) > 0 && std::isfinite(ratio.real()) && std::isfinite(ratio.imag())) c.values[k] *= ratio;
+      }
+    }
+  }
+  return measured;
 }
 
 }  // namespace mbgen::estimation

@@ -189,32 +189,33 @@ FitResult fit_direct(const Model& model, const std::vector<DataSet>& data, const
   Iteration& it = iv_wins ? runs[0] : runs[1];
   const Iteration& other = iv_wins ? runs[1] : runs[0];
 
-  FitResult result;
-  methods::describe_run(info, data, "direct", prior, result);
-  result.values = it.values;
-  for (int i : it.free) result.estimated.push_back(info.parameters[static_cast<std::size_t>(i)].name);
-  if (!it.free.empty()) {
-    result.covariance = it.sol.covariance;
-    const Eigen::VectorXd sd = result.covariance.diagonal().cwiseMax(0).cwiseSqrt();
-    result.correlation = result.covariance.cwiseQuotient(sd * sd.transpose());
-  }
+  methods::MethodOutcome outcome;
+  outcome.method = "direct";
+  outcome.prior = prior;
+  outcome.values = it.values;
+  for (int i : it.free) outcome.estimated.push_back(info.parameters[static_cast<std::size_t>(i)].name);
+  if (!it.free.empty()) outcome.covariance = it.sol.covariance;
   for (int i : candidates) {
-    ParameterEstimate e = methods::parameter_estimate(info, i, prior, result.values);
+    methods::ReportedParameter p;
+    p.index = i;
+    ParameterEstimate& e = p.verdicts;
     e.estimated = std::find(it.dropped.begin(), it.dropped.end(), i) == it.dropped.end();
     e.identifiable = e.estimated && !it.at_bound.count(i);
     if (it.at_bound.count(i)) e.at_bound = it.at_bound[i];
     if (const auto f = std::find(it.free.begin(), it.free.end(), i); f != it.free.end()) {
       const Eigen::Index j = f - it.free.begin();
-      e.std = std::sqrt(std::max(result.covariance(j, j), 0.0));
+      e.std = std::sqrt(std::max(outcome.covariance(j, j), 0.0));
     }
     std::vector<int> conf = it.confounded[i];
     std::sort(conf.begin(), conf.end());
     conf.erase(std::unique(conf.begin(), conf.end()), conf.end());
     for (int o : conf) e.confounded_with.push_back(info.parameters[static_cast<std::size_t>(o)].name);
-    result.parameters.push_back(e);
+    outcome.parameters.push_back(p);
   }
-  methods::score_by_output_error(model, data, options, candidates,
-                                 static_cast<int>(it.free.size() + it.at_bound.size()), result);
+  outcome.scored = candidates;
+  outcome.fitted = static_cast<int>(it.free.size() + it.at_bound.size());
+  FitResult result;
+  methods::finish_result(model, data, options, outcome, result);
   result.iterations = it.iterations;
   result.converged = it.converged;
   result.stop_reason = it.converged ? (linear ? "solved; the weights at the estimate settled"

@@ -6,7 +6,6 @@
 #include "numerics/levenberg_marquardt.hpp"
 #include "eiv_problem.hpp"
 #include "method_result.hpp"
-#include "method_setup.hpp"
 
 #include <Eigen/SVD>
 #include <nlohmann/json.hpp>
@@ -79,8 +78,7 @@ FitResult fit_eiv(const Model& model, const std::vector<DataSet>& data, const Fi
   // The start: output error's estimate, which settles identifiability and bounds (errors in variables changes the
   // weighting, not what the data determine).
   const FitResult start = fit(model, data, options);
-  FitResult result = start;
-  result.method = "eiv";
+  FitResult result = start;  // its members beside the finisher's (seed, starts, warnings) are output error's
   std::vector<int> free;
   for (const std::string& name : start.estimated) free.push_back(info.parameter_index(name));
   if (free.empty()) throw FitError("fit: --method eiv: output error left no parameter interior and identifiable");
@@ -134,19 +132,27 @@ FitResult fit_eiv(const Model& model, const std::vector<DataSet>& data, const Fi
   const Eigen::MatrixXd cov =
       s2 * scale.asDiagonal() * inverse_normal(J * scale.asDiagonal()) * scale.asDiagonal();
 
-  result.values = values;
-  for (ParameterEstimate& e : result.parameters) {
-    const int i = info.parameter_index(e.name);
-    e.value = values[i];
-    if (std::find(free.begin(), free.end(), i) != free.end()) {  // an interior optimum: no pull
-      e.pull_chi2 = 0;
-      e.toward = 0;
+  // The output-error fit's verdicts stand (identifiable, at a bound, confounded, the pull of one held at a bound);
+  // an interior optimum has no pull.
+  methods::MethodOutcome outcome;
+  outcome.method = "eiv";
+  outcome.prior = start.prior_values;
+  outcome.values = values;
+  for (const ParameterEstimate& e : start.parameters) {
+    methods::ReportedParameter p{info.parameter_index(e.name), e};
+    if (std::find(free.begin(), free.end(), p.index) != free.end()) {
+      p.verdicts.pull_chi2 = 0;
+      p.verdicts.toward = 0;
     }
+    outcome.parameters.push_back(p);
   }
-  methods::set_covariance(cov, result);
-  const int fitted = static_cast<int>(std::count_if(start.parameters.begin(), start.parameters.end(),
-                                                    [](const ParameterEstimate& e) { return e.estimated; }));
-  methods::score_by_output_error(model, data, options, setup.candidates, fitted, result);
+  outcome.estimated = start.estimated;
+  outcome.covariance = cov;
+  outcome.std_from_covariance = true;
+  outcome.scored = setup.candidates;
+  outcome.fitted = static_cast<int>(std::count_if(start.parameters.begin(), start.parameters.end(),
+                                                  [](const ParameterEstimate& e) { return e.estimated; }));
+  methods::finish_result(model, data, options, outcome, result);
   result.iterations = run.iterations;
   result.converged = run.converged && change < 1e-3;
   result.stop_reason = change < 1e-3 ? run.stop_reason

@@ -1,5 +1,6 @@
 #include "mbgen/methods/ekf.hpp"
 
+#include "method_result.hpp"
 #include "method_setup.hpp"
 
 #include "mbgen/dynamics/dynamics_error.hpp"
@@ -352,10 +353,23 @@ FitResult fit_ekf(const Model& model, const std::vector<DataSet>& data, const Fi
   }
 
   const Eigen::VectorXd values = filter.physical(pass.theta);
-  FitResult result;
-  methods::fill_common(model, data, setup, values, "ekf", result);
+  // Every candidate estimated, with the filter's covariance of them at the end of the data; scored with the
+  // default weighting (records: it does not apply) and tolerances.
+  methods::MethodOutcome outcome;
+  outcome.method = "ekf";
+  outcome.prior = setup.prior;
+  outcome.values = values;
+  for (int i : setup.candidates) {
+    outcome.parameters.push_back(methods::estimated_parameter(i));
+    outcome.estimated.push_back(model.info().parameters[static_cast<std::size_t>(i)].name);
+  }
   const Eigen::VectorXd g = filter.slopes(pass.theta);
-  methods::set_covariance(g.asDiagonal() * pass.P * g.asDiagonal(), result);
+  outcome.covariance = g.asDiagonal() * pass.P * g.asDiagonal();
+  outcome.std_from_covariance = true;
+  outcome.scored = setup.candidates;
+  outcome.fitted = static_cast<int>(setup.candidates.size());
+  FitResult result;
+  methods::finish_result(model, data, FitOptions{}, outcome, result);
   result.iterations = ekf.passes;
   result.converged = true;
   result.stop_reason = "end of data";

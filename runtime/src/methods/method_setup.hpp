@@ -1,7 +1,6 @@
-// What the estimation methods beside output error share (ekf, arx-two-stage): the parameters to estimate and their
-// priors, bounds transforms and checks, as mbgen::fit takes them from FitOptions; and the method-independent part
-// of a FitResult (output-error cost and NRMSE of a simulation at the estimate, BIC, modes), so that every method's
-// result can be compared with the output-error fit on the same terms. Internal header.
+// The setup of the estimation methods on time records beside output error (ekf, arx-two-stage): the parameters to
+// estimate and their priors, bounds transforms and checks, as mbgen::fit takes them from FitOptions. Their results
+// are finished as every method's are (method_result.hpp). Internal header.
 #pragma once
 
 #include "estimation/fit_setup.hpp"
@@ -26,16 +25,5 @@ MethodSetup method_setup(const Model& model, const std::vector<DataSet>& data, c
 
 // The parameter vector for data set `d`: `values` with its `# set` lines over them.
 Eigen::VectorXd values_for(const Model& model, const DataSet& d, const Eigen::VectorXd& values);
-
-// Fills the method-independent members of `r` at the full parameter vector `values`: model, data, method,
-// prior_values, values, residual_count, cost, initial_cost, residual_variance, nrmse and bic of the time-domain
-// output error (each output divided by its measured RMS, a simulation from rest, as the output-error fit weighs
-// it), and the modes. Parameters, covariance and the method's own members are the caller's.
-void fill_common(const Model& model, const std::vector<DataSet>& data, const MethodSetup& setup,
-                 const Eigen::VectorXd& values, const std::string& method, FitResult& r);
-
-// r.covariance (physical units, of r.estimated, in that order) given; sets r.correlation and each estimated
-// parameter's std in r.parameters.
-void set_covariance(const Eigen::MatrixXd& covariance, FitResult& r);
 
 }  // namespace mbgen::methods

@@ -122,10 +122,8 @@ std::optional<Eigen::VectorXd> newton(const CoefficientProblem& problem, const s
   return v;
 }
 
-}  // namespace
-
-FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, const FitOptions& options,
-                       const TwoStepOptions& two_step) {
+// The options' names, checked before any work (a library caller may pass any string).
+void check_options(const TwoStepOptions& two_step) {
   if (two_step.solver != "auto" && two_step.solver != "minimisation" && two_step.solver != "newton" &&
       two_step.solver != "analytical")
     throw FitError("two-step: unknown solver " + two_step.solver + " (auto, analytical, newton or minimisation)");
@@ -135,202 +133,284 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
     throw FitError("two-step: unknown order criterion " + two_step.criterion + " (aic, bic or fpe)");
   if (two_step.model != "armax" && two_step.model != "arx")
     throw FitError("two-step: unknown model " + two_step.model + " for records (armax or arx)");
-  if (data.empty()) throw FitError("two-step: no data");
-  const ModelInfo& info = model.info();
-  const estimation::FitSetup setup = estimation::prepare_fit(model, data, options);
-  const Eigen::VectorXd& prior = setup.prior;
-  const std::vector<int>& candidates = setup.candidates;
-  const std::vector<ParameterTransform>& transforms = setup.transforms;
+}
 
-  // ---- step one ----
-  const methods::StepOne one = methods::run_step_one(model, data, prior, candidates, two_step, options.threads);
-  CoefficientProblem problem(model, one.tfs);
-  const bool whitened = two_step.weighting == "covariance" && problem.use_covariance_weighting();
-  if (two_step.weighting == "covariance" && !whitened)
-    throw FitError("two-step: covariance weighting needs step one's coefficient covariance, which time records "
-                   "(ARX, ARMAX) do not give");
-  const Search search(problem, prior, transforms);
-  const auto n_eq = static_cast<Eigen::Index>(problem.targets().size());
+// What stays fixed during one run: output error's setup, step one's transfer functions and step two's problem on
+// their coefficients. Not copyable: the problem refers to step one's result, the search to the problem
+// (the problem is not const: choosing its weighting sets it up).
+struct TwoStepContext {
+  TwoStepContext(const Model& m, const std::vector<DataSet>& d, const FitOptions& o, const TwoStepOptions& t)
+      : model(m), info(m.info()), data(d), options(o), two_step(t), setup(estimation::prepare_fit(m, d, o)),
+        one(methods::run_step_one(m, d, setup.prior, setup.candidates, t, o.threads)), problem(m, one.tfs),
+        whitened(t.weighting == "covariance" && problem.use_covariance_weighting()),
+        search(problem, setup.prior, setup.transforms), n_eq(static_cast<Eigen::Index>(problem.targets().size())) {}
+  TwoStepContext(const TwoStepContext&) = delete;
+  TwoStepContext& operator=(const TwoStepContext&) = delete;
 
-  FitResult result;
-  methods::describe_run(info, data, "two-step", prior, result);
+  const Model& model;
+  const ModelInfo& info;
+  const std::vector<DataSet>& data;
+  const FitOptions& options;
+  const TwoStepOptions& two_step;
+  const estimation::FitSetup setup;  // prior, candidates, transforms
+  const methods::StepOne one;        // step one: the identified transfer functions
+  CoefficientProblem problem;  // step two: the model's coefficients against step one's
+  const bool whitened;               // the covariance weighting applies
+  const Search search;
+  const Eigen::Index n_eq;           // compared coefficients
+};
 
-  // Identifiability at the prior, on the coefficient residuals (relative sensitivities).
-  IdentifiabilityOptions id_options;
-  id_options.zero_tolerance = options.zero_tolerance;
-  id_options.rank_tolerance = options.rank_tolerance;
-  auto scaled_jacobian = [&](const std::vector<int>& cols, const Eigen::VectorXd& v) {
-    Eigen::VectorXd r;
-    Eigen::MatrixXd J;
-    problem.evaluate(v, cols, r, &J);
-    for (std::size_t j = 0; j < cols.size(); ++j) {
-      const double s = std::abs(v[cols[j]]) > 0 ? std::abs(v[cols[j]]) : transforms[static_cast<std::size_t>(cols[j])].scale;
-      J.col(static_cast<Eigen::Index>(j)) *= s;
-    }
-    return J;
-  };
-  std::vector<bool> identifiable(candidates.size(), true);
-  std::vector<std::vector<int>> confounded(candidates.size());
-  std::vector<int> free;
-  {
-    const IdentifiabilityAnalysis a = analyse_identifiability(scaled_jacobian(candidates, prior), id_options);
-    for (std::size_t c = 0; c < candidates.size(); ++c) {
-      identifiable[c] = a.identifiable[c];
-      for (int o : a.confounded_with[c]) confounded[c].push_back(candidates[static_cast<std::size_t>(o)]);
-      if (identifiable[c]) free.push_back(candidates[c]);
-    }
+// The coefficient residuals' Jacobian of `cols` at `v`, each column times the parameter's size (relative
+// sensitivities, as the identifiability analysis takes them).
+Eigen::MatrixXd scaled_jacobian(const TwoStepContext& ctx, const std::vector<int>& cols, const Eigen::VectorXd& v) {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J;
+  ctx.problem.evaluate(v, cols, r, &J);
+  for (std::size_t j = 0; j < cols.size(); ++j) {
+    const double s = std::abs(v[cols[j]]) > 0 ? std::abs(v[cols[j]]) : ctx.setup.transforms[static_cast<std::size_t>(cols[j])].scale;
+    J.col(static_cast<Eigen::Index>(j)) *= s;
   }
-  if (free.empty()) throw FitError("two-step: the identified coefficients determine none of the parameters to estimate");
-  if (n_eq < static_cast<Eigen::Index>(free.size()))
-    throw FitError("two-step: " + std::to_string(n_eq) + " compared coefficients cannot determine " +
-                   std::to_string(free.size()) + " parameters (the thesis: add a transfer function or lump parameters)");
-  const bool square = n_eq == static_cast<Eigen::Index>(free.size());
-  if (two_step.solver == "newton" && !square)
+  return J;
+}
+
+IdentifiabilityOptions identifiability_options(const FitOptions& options) {
+  IdentifiabilityOptions id;
+  id.zero_tolerance = options.zero_tolerance;
+  id.rank_tolerance = options.rank_tolerance;
+  return id;
+}
+
+// Which candidates the coefficients determine (at the prior), what each is confounded with, and those step two moves.
+struct StepTwoUnknowns {
+  std::vector<bool> identifiable;            // per candidate
+  std::vector<std::vector<int>> confounded;  // per candidate: model indices
+  std::vector<int> free;                     // the identifiable candidates
+  bool square = false;                       // as many compared coefficients as free parameters
+};
+
+// Step two's unknowns: the identifiable candidates, refused when the coefficients cannot determine them (too few
+// equations, or none determined) or when the numerical route was asked for a system that is not square.
+StepTwoUnknowns unknowns_at_prior(const TwoStepContext& ctx) {
+  const std::vector<int>& candidates = ctx.setup.candidates;
+  StepTwoUnknowns u;
+  u.identifiable.assign(candidates.size(), true);
+  u.confounded.resize(candidates.size());
+  const IdentifiabilityAnalysis a =
+      analyse_identifiability(scaled_jacobian(ctx, candidates, ctx.setup.prior), identifiability_options(ctx.options));
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    u.identifiable[c] = a.identifiable[c];
+    for (int o : a.confounded_with[c]) u.confounded[c].push_back(candidates[static_cast<std::size_t>(o)]);
+    if (u.identifiable[c]) u.free.push_back(candidates[c]);
+  }
+  if (u.free.empty()) throw FitError("two-step: the identified coefficients determine none of the parameters to estimate");
+  if (ctx.n_eq < static_cast<Eigen::Index>(u.free.size()))
+    throw FitError("two-step: " + std::to_string(ctx.n_eq) + " compared coefficients cannot determine " +
+                   std::to_string(u.free.size()) + " parameters (the thesis: add a transfer function or lump parameters)");
+  u.square = ctx.n_eq == static_cast<Eigen::Index>(u.free.size());
+  if (ctx.two_step.solver == "newton" && !u.square)
     throw FitError("two-step: the newton solver needs as many compared coefficients as parameters; there are " +
-                   std::to_string(n_eq) + " for " + std::to_string(free.size()));
+                   std::to_string(ctx.n_eq) + " for " + std::to_string(u.free.size()));
+  return u;
+}
 
-  // Starting points: the prior, then log-uniform within +-log(spread) of it in internal coordinates (as fit()).
-  const int starts = std::max(1, options.starts);
-  const std::vector<Eigen::VectorXd> start_points =
-      estimation::start_points(search.internal(free, prior), free, transforms, options);
+// Step two (c)'s outcome: every start's run, the best, and how many starts reached it.
+struct Minimisation {
+  std::vector<estimation::LmResult> runs;
+  int best_start = 0;
+  Eigen::VectorXd minimum;  // all model parameters at the best run
+  int at_best = 0;
+};
 
-  // ---- step two (c): minimisation of Q_TF from every start ----
+// Step two (c): the coefficient mismatch Q_TF minimised from every start (the prior, then log-uniform within
+// +-log(spread) of it in internal coordinates, as fit()); the starts that reached the same estimate (every parameter
+// within 1e-4 of it, relatively) are the repeatability the thesis's Table 5.5 reports.
+Minimisation minimise_mismatch(const TwoStepContext& ctx, const std::vector<int>& free,
+                               const std::vector<Eigen::VectorXd>& start_points) {
   estimation::LmOptions lm;
-  lm.max_iterations = options.max_iterations;
-  lm.cost_tolerance = options.cost_tolerance;
-  lm.step_tolerance = options.step_tolerance;
-  lm.gradient_tolerance = options.gradient_tolerance;
-  const estimation::ResidualFunction f = search.function(free);
-  const std::vector<estimation::LmResult> runs = estimation::run_starts(starts, options.threads, [&](int s) {
+  lm.max_iterations = ctx.options.max_iterations;
+  lm.cost_tolerance = ctx.options.cost_tolerance;
+  lm.step_tolerance = ctx.options.step_tolerance;
+  lm.gradient_tolerance = ctx.options.gradient_tolerance;
+  const estimation::ResidualFunction f = ctx.search.function(free);
+  Minimisation m;
+  m.runs = estimation::run_starts(std::max(1, ctx.options.starts), ctx.options.threads, [&](int s) {
     return estimation::levenberg_marquardt(f, start_points[static_cast<std::size_t>(s)], lm);
   });
-  for (const auto& run : runs) result.start_costs.push_back(run.cost);
-  result.best_start = estimation::best_start(runs);
-  const estimation::LmResult& best = runs[static_cast<std::size_t>(result.best_start)];
+  m.best_start = estimation::best_start(m.runs);
+  const estimation::LmResult& best = m.runs[static_cast<std::size_t>(m.best_start)];
   if (!std::isfinite(best.cost)) throw FitError("two-step: the model cannot be evaluated at any starting point");
-  const Eigen::VectorXd minimum = search.full(free, best.x);
-  // Starts that reached the same estimate (every parameter within 1e-4 of it, relatively): the repeatability the
-  // thesis's Table 5.5 reports.
-  int at_best = 0;
-  for (const auto& run : runs) {
+  m.minimum = ctx.search.full(free, best.x);
+  for (const auto& run : m.runs) {
     if (!std::isfinite(run.cost)) continue;
-    const Eigen::VectorXd v = search.full(free, run.x);
+    const Eigen::VectorXd v = ctx.search.full(free, run.x);
     double d = 0;
-    for (int i : free) d = std::max(d, std::abs(v[i] - minimum[i]) / std::max(std::abs(minimum[i]), 1e-300));
-    if (d < 1e-4) ++at_best;
+    for (int i : free) d = std::max(d, std::abs(v[i] - m.minimum[i]) / std::max(std::abs(m.minimum[i]), 1e-300));
+    if (d < 1e-4) ++m.at_best;
   }
+  return m;
+}
 
-  // ---- step two (b): Newton on the square system, from the minimum and every start ----
+// Step two (b)'s outcome: the distinct roots and method_details.two_step.step_two.newton.
+struct NewtonRoots {
   std::vector<NewtonSolution> roots;
-  nlohmann::json newton_json;
-  if (square) {
-    Eigen::VectorXd scale(static_cast<Eigen::Index>(free.size()));
-    for (std::size_t j = 0; j < free.size(); ++j) scale[static_cast<Eigen::Index>(j)] = transforms[static_cast<std::size_t>(free[j])].scale;
-    std::vector<Eigen::VectorXd> from = {minimum};
-    for (const auto& theta : start_points) from.push_back(search.full(free, theta));
-    for (const auto& v0 : from) {
-      double residual = 0;
-      const std::optional<Eigen::VectorXd> root = newton(problem, free, v0, scale, &residual);
-      if (!root) continue;
-      bool known = false;
-      for (auto& r : roots) {
-        double d = 0;
-        for (int i : free) d = std::max(d, std::abs(r.values[i] - (*root)[i]) / std::max(std::abs(r.values[i]), 1e-300));
-        if (d < 1e-6) {
-          ++r.starts;
-          known = true;
-          break;
-        }
-      }
-      if (!known) roots.push_back({*root, residual, methods::admissible(model, *root, free), 1});
-    }
-    nlohmann::json sols = nlohmann::json::array();
-    for (const auto& r : roots) {
-      nlohmann::json vals;
-      for (int i : free) vals[info.parameters[static_cast<std::size_t>(i)].name] = number(r.values[i]);
-      sols.push_back({{"values", vals}, {"admissible", r.admissible}, {"max_mismatch", number(r.residual)},
-                      {"reached_from", r.starts}});
-    }
-    newton_json = {{"applicable", true}, {"starts", static_cast<int>(from.size())}, {"solutions", sols}};
-  } else {
-    newton_json = {{"applicable", false},
-                   {"reason", std::to_string(n_eq) + " coefficient equations for " + std::to_string(free.size()) +
-                                  " parameters: not square; the minimisation is the least-squares solution"}};
-  }
+  nlohmann::json details;
+};
 
-  // ---- step two (a): the analytical solution, where a solver is given ----
-  // The covariance weighting is a weighted least-squares solution of all the equations; the analytical route solves
-  // a square subsystem exactly, where no weight acts, so `auto` leaves it out when the weighting is asked for (it
-  // used to take it and say "whitened" while the weights changed nothing).
+// Step two (b): Newton on the square system, from the minimum and every start; where the system is not square it
+// does not apply (the minimisation is the least-squares solution).
+NewtonRoots newton_roots(const TwoStepContext& ctx, const StepTwoUnknowns& u, const Eigen::VectorXd& minimum,
+                         const std::vector<Eigen::VectorXd>& start_points) {
+  const std::vector<int>& free = u.free;
+  NewtonRoots out;
+  if (!u.square) {
+    out.details = {{"applicable", false},
+                   {"reason", std::to_string(ctx.n_eq) + " coefficient equations for " + std::to_string(free.size()) +
+                                  " parameters: not square; the minimisation is the least-squares solution"}};
+    return out;
+  }
+  Eigen::VectorXd scale(static_cast<Eigen::Index>(free.size()));
+  for (std::size_t j = 0; j < free.size(); ++j)
+    scale[static_cast<Eigen::Index>(j)] = ctx.setup.transforms[static_cast<std::size_t>(free[j])].scale;
+  std::vector<Eigen::VectorXd> from = {minimum};
+  for (const auto& theta : start_points) from.push_back(ctx.search.full(free, theta));
+  for (const auto& v0 : from) {
+    double residual = 0;
+    const std::optional<Eigen::VectorXd> root = newton(ctx.problem, free, v0, scale, &residual);
+    if (!root) continue;
+    bool known = false;
+    for (auto& r : out.roots) {
+      double d = 0;
+      for (int i : free) d = std::max(d, std::abs(r.values[i] - (*root)[i]) / std::max(std::abs(r.values[i]), 1e-300));
+      if (d < 1e-6) {
+        ++r.starts;
+        known = true;
+        break;
+      }
+    }
+    if (!known) out.roots.push_back({*root, residual, methods::admissible(ctx.model, *root, free), 1});
+  }
+  nlohmann::json sols = nlohmann::json::array();
+  for (const auto& r : out.roots) {
+    nlohmann::json vals;
+    for (int i : free) vals[ctx.info.parameters[static_cast<std::size_t>(i)].name] = number(r.values[i]);
+    sols.push_back({{"values", vals}, {"admissible", r.admissible}, {"max_mismatch", number(r.residual)},
+                    {"reached_from", r.starts}});
+  }
+  out.details = {{"applicable", true}, {"starts", static_cast<int>(from.size())}, {"solutions", sols}};
+  return out;
+}
+
+// Step two (a): the analytical solution, where a solver is given and the route may take it. The covariance
+// weighting is a weighted least-squares solution of all the equations; the analytical route solves a square
+// subsystem exactly, where no weight acts, so `auto` leaves it out when the weighting is asked for.
+methods::AnalyticalOutcome analytical_solution(const TwoStepContext& ctx, const std::vector<int>& free,
+                                               const Eigen::VectorXd& minimum) {
+  const std::string& solver = ctx.two_step.solver;
   methods::AnalyticalOutcome analytical;
-  if (whitened && two_step.solver == "analytical")
+  if (ctx.whitened && solver == "analytical")
     throw FitError("two-step: the analytical route solves a square subsystem exactly, where the covariance weighting "
                    "has nothing to weight; use the minimisation route (or auto) with it");
-  if (whitened && two_step.solver == "auto") {
+  if (ctx.whitened && solver == "auto") {
     analytical.reason = "not tried: the covariance weighting asks for the weighted least-squares solution";
     analytical.details = {{"available", nullptr}, {"reason", analytical.reason}};
-  } else if (two_step.solver == "auto" || two_step.solver == "analytical") {
-    analytical = methods::analytical_route(model, one.tfs, free, prior, minimum, two_step.analytical);
-    if (!analytical.solved && two_step.solver == "analytical")
+  } else if (solver == "auto" || solver == "analytical") {
+    analytical = methods::analytical_route(ctx.model, ctx.one.tfs, free, ctx.setup.prior, minimum, ctx.two_step.analytical);
+    if (!analytical.solved && solver == "analytical")
       throw FitError("two-step: the analytical route cannot be taken: " + analytical.reason);
   } else {
-    analytical.reason = "not tried: route " + std::string(two_step.solver == "newton" ? "numerical" : two_step.solver) + " asked for";
+    analytical.reason = "not tried: route " + std::string(solver == "newton" ? "numerical" : solver) + " asked for";
     analytical.details = {{"available", nullptr}, {"reason", analytical.reason}};
   }
+  return analytical;
+}
 
-  // The estimate (Table 3.2): the analytical solution where there is an admissible one, else Newton's admissible root
-  // nearest the minimum where the system is square (the numerical solution before the minimisation), else the
-  // minimum.
-  Eigen::VectorXd values = minimum;
-  std::string solver = "minimisation";
+// The estimate and the route that gave it.
+struct StepTwoEstimate {
+  Eigen::VectorXd values;
+  std::string solver;  // "analytical", "newton" or "minimisation"
+};
+
+// The estimate (the thesis's Table 3.2): the analytical solution where there is an admissible one, else Newton's
+// admissible root nearest the minimum where the system is square (the numerical solution before the minimisation),
+// else the minimum.
+StepTwoEstimate choose_estimate(const TwoStepContext& ctx, const StepTwoUnknowns& u, const Eigen::VectorXd& minimum,
+                                const NewtonRoots& newton, const methods::AnalyticalOutcome& analytical) {
+  StepTwoEstimate e{minimum, "minimisation"};
   if (analytical.solved) {
-    values = analytical.values;
-    solver = "analytical";
-  } else if (square && two_step.solver != "minimisation") {
+    e.values = analytical.values;
+    e.solver = "analytical";
+  } else if (u.square && ctx.two_step.solver != "minimisation") {
     double nearest = std::numeric_limits<double>::infinity();
-    for (const auto& r : roots) {
+    for (const auto& r : newton.roots) {
       if (!r.admissible) continue;
       double d = 0;
-      for (int i : free) d += std::pow(std::log(std::abs(r.values[i]) / std::max(std::abs(minimum[i]), 1e-300)), 2);
+      for (int i : u.free) d += std::pow(std::log(std::abs(r.values[i]) / std::max(std::abs(minimum[i]), 1e-300)), 2);
       if (d < nearest) {
         nearest = d;
-        values = r.values;
-        solver = "newton";
+        e.values = r.values;
+        e.solver = "newton";
       }
     }
-    if (two_step.solver == "newton" && solver != "newton")
+    if (ctx.two_step.solver == "newton" && e.solver != "newton")
       throw FitError("two-step: Newton's method found no admissible root of the coefficient equations from " +
-                     std::to_string(starts + 1) + " starts");
+                     std::to_string(std::max(1, ctx.options.starts) + 1) + " starts");
   }
+  return e;
+}
 
-  // ---- uncertainty: step one's coefficient covariance through step two's linearisation (sandwich) ----
-  Eigen::VectorXd r_est, model_coefficients;
+// The free parameters' covariance and how it was had, and step two's residual and model coefficients at the
+// estimate.
+struct StepTwoUncertainty {
+  Eigen::MatrixXd covariance;  // of `free`; empty where step one gives none
+  std::string note;
+  Eigen::VectorXd residual, model_coefficients;
+};
+
+// Uncertainty: step one's coefficient covariance through step two's linearisation at the estimate (sandwich), or
+// through the exact solution of the analytical route's square subsystem; none where step one has none (records).
+StepTwoUncertainty propagate_uncertainty(const TwoStepContext& ctx, const std::vector<int>& free,
+                                         const StepTwoEstimate& estimate, const methods::AnalyticalOutcome& analytical) {
+  StepTwoUncertainty u;
   Eigen::MatrixXd J_est;
-  problem.evaluate(values, free, r_est, &J_est, &model_coefficients);
-  const Eigen::MatrixXd sigma_hat = problem.identified_covariance();
-  Eigen::MatrixXd cov;
-  std::string uncertainty_note;
-  if (solver == "analytical" && analytical.covariance.size()) {
-    cov = analytical.covariance;
-    uncertainty_note = "step one's coefficient covariance propagated through the exact solution of the chosen square "
-                       "subsystem S: J_S^-1 S_S J_S^-T";
+  ctx.problem.evaluate(estimate.values, free, u.residual, &J_est, &u.model_coefficients);
+  const Eigen::MatrixXd sigma_hat = ctx.problem.identified_covariance();
+  if (estimate.solver == "analytical" && analytical.covariance.size()) {
+    u.covariance = analytical.covariance;
+    u.note = "step one's coefficient covariance propagated through the exact solution of the chosen square "
+             "subsystem S: J_S^-1 S_S J_S^-T";
   } else if (sigma_hat.size()) {
-    const Eigen::MatrixXd W = problem.weight();
+    const Eigen::MatrixXd W = ctx.problem.weight();
     Eigen::VectorXd sc(static_cast<Eigen::Index>(free.size()));
-    for (std::size_t j = 0; j < free.size(); ++j) sc[static_cast<Eigen::Index>(j)] = std::max(std::abs(values[free[j]]), 1e-300);
+    for (std::size_t j = 0; j < free.size(); ++j)
+      sc[static_cast<Eigen::Index>(j)] = std::max(std::abs(estimate.values[free[j]]), 1e-300);
     const Eigen::MatrixXd Js = J_est * sc.asDiagonal();
     const Eigen::MatrixXd Hi = pinv_spd(Js.transpose() * Js);
     const Eigen::MatrixXd Sw = W * sigma_hat * W.transpose();
-    cov = sc.asDiagonal() * (Hi * Js.transpose() * Sw * Js * Hi) * sc.asDiagonal();
-    uncertainty_note = "step one's coefficient covariance propagated through step two's linearisation at the estimate: "
-                       "(J^T W J)^-1 J^T W S W J (J^T W J)^-1";
+    u.covariance = sc.asDiagonal() * (Hi * Js.transpose() * Sw * Js * Hi) * sc.asDiagonal();
+    u.note = "step one's coefficient covariance propagated through step two's linearisation at the estimate: "
+             "(J^T W J)^-1 J^T W S W J (J^T W J)^-1";
   } else {
-    uncertainty_note = "std null: " + one.tfs.front().tf.covariance_note;
-    for (const auto& s : one.tfs)
-      if (s.tf.covariance.size() == 0) uncertainty_note = "std null: " + s.tf.covariance_note;
+    u.note = "std null: " + ctx.one.tfs.front().tf.covariance_note;
+    for (const auto& s : ctx.one.tfs)
+      if (s.tf.covariance.size() == 0) u.note = "std null: " + s.tf.covariance_note;
   }
+  return u;
+}
 
-  // Parameters the minimum pressed against a bound.
+// Finish: parameters the estimate pressed against a bound held there; the interior ones estimated, with their part
+// of the covariance (NaN-filled where there is none: the matrices keep the size of `estimated`, as fit.hpp has them);
+// each candidate's verdicts, its std from the whole covariance of the free parameters (those held at a bound
+// included); and step two's singular values, not the output-error Jacobian's.
+FitResult finish(const TwoStepContext& ctx, const StepTwoUnknowns& u, Eigen::VectorXd values, const Eigen::MatrixXd& cov,
+                 const Minimisation& minimisation) {
+  const ModelInfo& info = ctx.info;
+  const std::vector<int>& free = u.free;
+  const std::vector<int>& candidates = ctx.setup.candidates;
+  const std::vector<ParameterTransform>& transforms = ctx.setup.transforms;
+  methods::MethodOutcome outcome;
+  outcome.method = "two-step";
+  outcome.prior = ctx.setup.prior;
+
   std::map<int, std::string> at_bound;
   for (std::size_t j = 0; j < free.size(); ++j) {
     const int i = free[j];
@@ -344,28 +424,28 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
   std::vector<std::size_t> interior;
   for (std::size_t j = 0; j < free.size(); ++j)
     if (!at_bound.count(free[j])) interior.push_back(j);
-  for (std::size_t j : interior) result.estimated.push_back(info.parameters[static_cast<std::size_t>(free[j])].name);
+  for (std::size_t j : interior) outcome.estimated.push_back(info.parameters[static_cast<std::size_t>(free[j])].name);
   if (cov.size() && !interior.empty()) {
-    result.covariance.resize(static_cast<Eigen::Index>(interior.size()), static_cast<Eigen::Index>(interior.size()));
+    outcome.covariance.resize(static_cast<Eigen::Index>(interior.size()), static_cast<Eigen::Index>(interior.size()));
     for (std::size_t a = 0; a < interior.size(); ++a)
       for (std::size_t b = 0; b < interior.size(); ++b)
-        result.covariance(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) =
+        outcome.covariance(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) =
             cov(static_cast<Eigen::Index>(interior[a]), static_cast<Eigen::Index>(interior[b]));
-    const Eigen::VectorXd sd = result.covariance.diagonal().cwiseMax(0).cwiseSqrt();
-    result.correlation = result.covariance.cwiseQuotient(sd * sd.transpose());
   } else if (!interior.empty()) {
-    // No covariance (time records): the matrices keep the size of `estimated`, as fit.hpp has them, and say unknown.
     const Eigen::Index k = static_cast<Eigen::Index>(interior.size());
-    result.covariance = Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::quiet_NaN());
-    result.correlation = result.covariance;
+    outcome.covariance = Eigen::MatrixXd::Constant(k, k, std::numeric_limits<double>::quiet_NaN());
   }
-  result.values = values;
-  result.singular_values = analyse_identifiability(scaled_jacobian(candidates, values), id_options).singular_values;
+  outcome.values = values;
+  outcome.singular_values =
+      analyse_identifiability(scaled_jacobian(ctx, candidates, values), identifiability_options(ctx.options))
+          .singular_values;
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int i = candidates[c];
-    ParameterEstimate e = methods::parameter_estimate(info, i, prior, values);
-    e.estimated = identifiable[c];
-    e.identifiable = identifiable[c] && !at_bound.count(i);
+    methods::ReportedParameter p;
+    p.index = i;
+    ParameterEstimate& e = p.verdicts;
+    e.estimated = u.identifiable[c];
+    e.identifiable = u.identifiable[c] && !at_bound.count(i);
     if (at_bound.count(i)) e.at_bound = at_bound[i];
     e.std = std::numeric_limits<double>::quiet_NaN();
     const auto it = std::find(free.begin(), free.end(), i);
@@ -373,90 +453,139 @@ FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, con
       const Eigen::Index j = it - free.begin();
       e.std = std::sqrt(std::max(cov(j, j), 0.0));
     }
-    std::vector<int> conf = confounded[c];
+    std::vector<int> conf = u.confounded[c];
     std::sort(conf.begin(), conf.end());
     conf.erase(std::unique(conf.begin(), conf.end()), conf.end());
     for (int o : conf) e.confounded_with.push_back(info.parameters[static_cast<std::size_t>(o)].name);
-    result.parameters.push_back(e);
+    outcome.parameters.push_back(p);
   }
-
-  // The data misfit at the estimate on the output-error scale, and the modes, as every method reports them
-  // (method_result.hpp). No candidates: the singular values stay step two's (set above).
-  methods::score_by_output_error(model, data, options, {}, static_cast<int>(free.size()), result);
+  outcome.fitted = static_cast<int>(free.size());
+  FitResult result;
+  methods::finish_result(ctx.model, ctx.data, ctx.options, outcome, result);
+  for (const auto& run : minimisation.runs) result.start_costs.push_back(run.cost);
+  result.best_start = minimisation.best_start;
+  const estimation::LmResult& best = minimisation.runs[static_cast<std::size_t>(minimisation.best_start)];
   result.iterations = best.iterations;
   result.converged = best.converged;
   result.stop_reason = best.stop_reason;
   result.cost_history = best.history;
+  return result;
+}
 
-  // ---- method_details ----
+// method_details.step_two: the route and why, the coefficients compared, each route's own outcome and the
+// uncertainty's source.
+nlohmann::json step_two_details(const TwoStepContext& ctx, const StepTwoUnknowns& u, const Minimisation& minimisation,
+                                const NewtonRoots& newton, const methods::AnalyticalOutcome& analytical,
+                                const StepTwoEstimate& estimate, const StepTwoUncertainty& uncertainty,
+                                std::string& route, std::string& route_reason) {
+  const std::string& solver = estimate.solver;
+  const Eigen::Index n_eq = ctx.n_eq;
   nlohmann::json start_costs = nlohmann::json::array();
-  for (double c : result.start_costs) start_costs.push_back(number(c));
+  for (const auto& run : minimisation.runs) start_costs.push_back(number(run.cost));
   nlohmann::json coefficients = nlohmann::json::array();
   double q_tf = 0;  // the thesis's Eq. 3.99 whatever the weighting
   for (Eigen::Index i = 0; i < n_eq; ++i) {
-    const double v = problem.targets()[static_cast<std::size_t>(i)].value;
-    q_tf += std::pow((model_coefficients[i] - v) / v, 2);
+    const double v = ctx.problem.targets()[static_cast<std::size_t>(i)].value;
+    q_tf += std::pow((uncertainty.model_coefficients[i] - v) / v, 2);
   }
   for (Eigen::Index i = 0; i < n_eq; ++i) {
-    const methods::CoefficientTarget& t = problem.targets()[static_cast<std::size_t>(i)];
-    const methods::StepOneTf& s = one.tfs[t.tf];
+    const methods::CoefficientTarget& t = ctx.problem.targets()[static_cast<std::size_t>(i)];
+    const methods::StepOneTf& s = ctx.one.tfs[t.tf];
+    const double model = uncertainty.model_coefficients[i];
     coefficients.push_back({{"data", s.file},
                             {"polynomial", t.channel < 0 ? "denominator" : s.tf.outputs[static_cast<std::size_t>(t.channel)] + "/" + s.tf.input},
                             {"power", t.power},
                             {"identified", number(t.value)},
-                            {"model", number(model_coefficients[i])},
-                            {"relative_mismatch", number((model_coefficients[i] - t.value) / std::abs(t.value))}});
+                            {"model", number(model)},
+                            {"relative_mismatch", number((model - t.value) / std::abs(t.value))}});
   }
-  const std::string route = solver == "newton" ? "numerical" : solver;
-  std::string route_reason;
+  route = solver == "newton" ? "numerical" : solver;
   if (solver == "analytical") {
     route_reason = "the exact solution of " + std::to_string(analytical.equations.size()) + " of the " +
                    std::to_string(n_eq) + " coefficient equations";
   } else {
-    route_reason = two_step.solver == "auto" ? "analytical route not taken: " + analytical.reason + "; " : "";
-    route_reason += solver == "newton" ? "Newton's admissible root of the square system"
-                    : !square         ? "the minimisation (the least-squares solution of the overdetermined system)"
-                    : two_step.solver == "minimisation" ? "the minimisation, as asked"
-                                                        : "the minimisation (Newton found no admissible root)";
+    const std::string& asked = ctx.two_step.solver;
+    route_reason = asked == "auto" ? "analytical route not taken: " + analytical.reason + "; " : "";
+    route_reason += solver == "newton"       ? "Newton's admissible root of the square system"
+                    : !u.square              ? "the minimisation (the least-squares solution of the overdetermined system)"
+                    : asked == "minimisation" ? "the minimisation, as asked"
+                                              : "the minimisation (Newton found no admissible root)";
   }
-  nlohmann::json step_two = {
-      {"route", route},
-      {"route_reason", route_reason},
-      {"solver", solver},
-      {"equations", n_eq},
-      {"unknowns", static_cast<int>(free.size())},
-      {"weighting", whitened ? "covariance: the normalised mismatches whitened by step one's covariance"
-                             : "normalised by the identified coefficient (thesis Eq. 3.98)"},
-      {"q_tf", number(q_tf)},
-      {"cost", number(r_est.squaredNorm())},
-      {"coefficients", coefficients},
-      {"minimisation", {{"starts", starts}, {"best_start", result.best_start}, {"starts_at_best", at_best},
-                        {"cost", number(best.cost)}, {"start_costs", start_costs}}},
-      {"newton", newton_json},
-      {"analytical", analytical.details},
-      {"uncertainty", uncertainty_note}};
+  const estimation::LmResult& best = minimisation.runs[static_cast<std::size_t>(minimisation.best_start)];
+  return {{"route", route},
+          {"route_reason", route_reason},
+          {"solver", solver},
+          {"equations", n_eq},
+          {"unknowns", static_cast<int>(u.free.size())},
+          {"weighting", ctx.whitened ? "covariance: the normalised mismatches whitened by step one's covariance"
+                                     : "normalised by the identified coefficient (thesis Eq. 3.98)"},
+          {"q_tf", number(q_tf)},
+          {"cost", number(uncertainty.residual.squaredNorm())},
+          {"coefficients", coefficients},
+          {"minimisation", {{"starts", std::max(1, ctx.options.starts)}, {"best_start", minimisation.best_start},
+                            {"starts_at_best", minimisation.at_best}, {"cost", number(best.cost)},
+                            {"start_costs", start_costs}}},
+          {"newton", newton.details},
+          {"analytical", analytical.details},
+          {"uncertainty", uncertainty.note}};
+}
+
+// method_details.two_step: a summary, step one's and step two's details, and the checks of the identified transfer
+// functions against the model's at the estimate (zero-pole maps, suspect poles).
+nlohmann::json two_step_details(const TwoStepContext& ctx, const Eigen::VectorXd& values, nlohmann::json step_two,
+                                const std::string& route, const std::string& route_reason) {
   nlohmann::json zero_pole = nlohmann::json::array(), checks = nlohmann::json::array();
   int suspect = 0;
-  for (const methods::StepOneTf& s : one.tfs) {
+  for (const methods::StepOneTf& s : ctx.one.tfs) {
     Eigen::VectorXd v = values;
     for (const auto& [p, value] : s.overrides) v[p] = value;
     const methods::Validation val = methods::validate(
-        s, s.truncated_to.empty() ? methods::model_tf(model, v, s.input, s.outputs, {})
-                                  : methods::model_tf_truncated(model, v, s.input, s.outputs, s.truncated_to, {}));
+        s, s.truncated_to.empty() ? methods::model_tf(ctx.model, v, s.input, s.outputs, {})
+                                  : methods::model_tf_truncated(ctx.model, v, s.input, s.outputs, s.truncated_to, {}));
     zero_pole.push_back(val.zero_pole);
     checks.push_back(val.checks);
     suspect += val.suspect_poles;
   }
   nlohmann::json details;
   details["summary"] = "step two by the " + route + " route: " + route_reason +
-                       (whitened ? "; residuals whitened by step one's coefficient covariance" : "");
-  details["step_one"] = one.details;
-  details["step_two"] = step_two;
+                       (ctx.whitened ? "; residuals whitened by step one's coefficient covariance" : "");
+  details["step_one"] = ctx.one.details;
+  details["step_two"] = std::move(step_two);
   details["zero_pole"] = zero_pole;
   details["checks"] = {{"transfer_functions", checks},
                        {"verdict", suspect ? "suspect: " + std::to_string(suspect) + " identified poles fail a check"
                                            : "valid: every identified pole passes the checks"}};
-  result.method_details["two_step"] = details.dump();
+  return details;
+}
+
+}  // namespace
+
+// check_options -> step one (TwoStepContext) -> unknowns_at_prior -> minimise_mismatch -> newton_roots
+// -> analytical_solution -> choose_estimate -> propagate_uncertainty -> finish (+ the details)
+FitResult fit_two_step(const Model& model, const std::vector<DataSet>& data, const FitOptions& options,
+                       const TwoStepOptions& two_step) {
+  check_options(two_step);
+  if (data.empty()) throw FitError("two-step: no data");
+  const TwoStepContext ctx(model, data, options, two_step);
+  if (two_step.weighting == "covariance" && !ctx.whitened)
+    throw FitError("two-step: covariance weighting needs step one's coefficient covariance, which time records "
+                   "(ARX, ARMAX) do not give");
+  const StepTwoUnknowns unknowns = unknowns_at_prior(ctx);
+  const std::vector<Eigen::VectorXd> start_points =
+      estimation::start_points(ctx.search.internal(unknowns.free, ctx.setup.prior), unknowns.free,
+                               ctx.setup.transforms, options);
+  const Minimisation minimisation = minimise_mismatch(ctx, unknowns.free, start_points);
+  const NewtonRoots newton = newton_roots(ctx, unknowns, minimisation.minimum, start_points);
+  const methods::AnalyticalOutcome analytical = analytical_solution(ctx, unknowns.free, minimisation.minimum);
+  const StepTwoEstimate estimate = choose_estimate(ctx, unknowns, minimisation.minimum, newton, analytical);
+  const StepTwoUncertainty uncertainty = propagate_uncertainty(ctx, unknowns.free, estimate, analytical);
+
+  FitResult result = finish(ctx, unknowns, estimate.values, uncertainty.covariance, minimisation);
+  std::string route, route_reason;
+  nlohmann::json step_two =
+      step_two_details(ctx, unknowns, minimisation, newton, analytical, estimate, uncertainty, route, route_reason);
+  result.method_details["two_step"] =
+      two_step_details(ctx, result.values, std::move(step_two), route, route_reason).dump();
   return result;
 }
 

@@ -73,6 +73,7 @@ MonitorResult monitor(const Model& model, const std::vector<DataSet>& data,
       }
       fo.starts = std::min(options.warm_starts, options.fit.starts);
     }
+    if (options.add_starts) options.add_starts(set, fo);
     MonitorPoint point;
     point.file = set.file();
     point.time = i < static_cast<int>(times.size()) ? times[static_cast<std::size_t>(i)] : std::nullopt;

@@ -22,6 +22,7 @@ std::string monitor_result_json(const MonitorResult& r) {
   nlohmann::json j;
   j["schema"] = "mbgen-monitor/1";
   j["model"] = r.model;
+  if (!r.start_method.empty()) j["start_method"] = r.start_method;
   nlohmann::json base;
   base["sets"] = r.baseline;
   base["misfit"] = number(r.baseline_misfit);

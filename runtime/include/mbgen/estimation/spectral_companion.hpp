@@ -26,4 +26,15 @@ struct SpectralCompanion {
 // record is too short for 8 segments of 64 samples: the caller then searches on the records directly.
 std::optional<SpectralCompanion> spectral_companion(const ModelInfo& info, const std::vector<DataSet>& data);
 
+// The same with the estimator's own bias at parameters `p` divided out: each record's H1 line multiplied by
+// H(p) / H1_p, where H1_p is the same estimate (segments, window, hold compensation) of the model's response
+// simulated from the record's inputs. An H1 of finite resolution flattens a lightly damped peak (at 4 Hz lines a
+// spindle mode comes out 2.4 dB low); compared with exact model FRFs, that bias is a misfit which a richer model can
+// take up, so that a model right on the records would show "evidence" for an extension on the plain H1. Take `p`
+// where a model fitted to the records puts its modes, the data's: models that keep them are then judged on these
+// FRFs as the records judge them. The ratio is sharp at a lightly damped mode: taken at a model whose mode lies half
+// a line off, it moves the flattened peak instead of undoing it. Lines where H1_p vanishes keep their value.
+std::optional<SpectralCompanion> debiased_spectral_companion(const Model& model, const Eigen::VectorXd& p,
+                                                             const std::vector<DataSet>& data);
+
 }  // namespace mbgen::estimation

@@ -1,6 +1,7 @@
 // The estimation methods as one table (runtime/src/methods/README.md; docs/methods.md): what `mbgen fit --method`
-// offers, the data each method takes, what else it needs, its options and how it runs. The CLI reads the table for
-// --method's choices and help, its options, its refusals and its dispatch, so a method is added in one place.
+// (and diagnose's and monitor's, where the estimate starts their output-error fits) offers, the data each method
+// takes, what else it needs, its options and how it runs. The CLI reads the table for --method's choices and help,
+// its options, its refusals and its dispatch, so a method is added in one place.
 //
 //   const MethodDescriptor* m = mbgen::find_method("two-step");
 //   FitResult r = m->run({model, data, fit_options, method_options});

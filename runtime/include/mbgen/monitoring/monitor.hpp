@@ -47,6 +47,9 @@ struct MonitorOptions {
   // RSS/(n - k). `mbgen monitor` takes the mean normalized residual of the diagnosis's residual analysis instead
   // (residual against a noise level estimated from the data set itself).
   std::function<double(const DataSet&, const FitResult&)> misfit;
+  // Called with each data set and its fit's options before the fit: may add starts (`mbgen monitor --method`: another
+  // estimation method's estimate on that set). Empty: the starts above only.
+  std::function<void(const DataSet&, FitOptions&)> add_starts;
   std::function<void(const MonitorProgress&)> progress;
 };
 
@@ -88,6 +91,7 @@ struct MonitoredParameter {
 
 struct MonitorResult {
   std::string model;
+  std::string start_method;  // the method whose estimate on each set started its fit (MonitorOptions::add_starts); "" none
   int baseline = 0;
   double k = 0, h = 0, run_length = 0, structural_ratio = 0;
   double single_set_limit = 0;  // a single standardized shift beyond it alarms on its own
