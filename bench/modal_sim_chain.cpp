@@ -16,7 +16,7 @@
 
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/parser.hpp"
-#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/model_modes.hpp"
 #include "mbgen/dynamics/simulate.hpp"
 #include "mbgen/dynamics/state_space.hpp"
 #include "seconds_since.hpp"

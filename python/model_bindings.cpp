@@ -8,7 +8,7 @@
 
 #include <mbgen/dynamics/dynamics_error.hpp>
 #include <mbgen/dynamics/frf.hpp>
-#include <mbgen/dynamics/modal.hpp>
+#include <mbgen/dynamics/model_modes.hpp>
 #include <mbgen/dynamics/simulate.hpp>
 #include <mbgen/dynamics/state_space.hpp>
 #include <mbgen/data/time_record.hpp>

@@ -94,7 +94,7 @@ struct ModalRun {
   ModalIdentification result;
   ModalOptions options;
   std::optional<ModelComparison> comparison;  // with a model
-  std::optional<ir::ModelIr> model;           // the model file, with a model
+  std::optional<ir::ModelIr> declared;        // the model file as parsed (the IR), with a model
   std::string quantity_source;
   // What the JSON, the report and the summary are made from; refers into this run, which must outlive it.
   ModalReportInput input() const { return {data, result, options, comparison ? &*comparison : nullptr, quantity_source}; }

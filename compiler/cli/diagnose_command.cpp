@@ -25,7 +25,7 @@
 #include "frontend/diagnostics.hpp"
 #include "frontend/parser.hpp"
 
-#include <mbgen/diagnosis/data_split.hpp>
+#include <mbgen/residuals/data_split.hpp>
 
 namespace mbgen::cli {
 
@@ -84,7 +84,7 @@ std::map<std::string, double> method_start(const ir::ModelIr& model, const symbo
                                            const std::vector<DataSet>& data, const diagnosis::DiagnoseOptions& options,
                                            const MethodDescriptor& method, MethodOptions method_options) {
   const auto evaluator = evaluator::make_evaluator(model, derive);
-  const diagnosis::SplitData split = diagnosis::split_for_validation(options.fit_data ? *options.fit_data : data);
+  const SplitData split = split_for_validation(options.fit_data ? *options.fit_data : data);
   method_options.analytical_solver = analytical_solver(model, derive);
   const FitResult estimate = run_method(method, {*evaluator, split.fit, options.fit, method_options});
   std::cerr << "diagnose: start from --method " << method.name << ": its estimate (nrmse " << estimate.nrmse

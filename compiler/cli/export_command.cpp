@@ -4,7 +4,7 @@
 #include <mbgen/data/csv.hpp>
 #include <mbgen/data/data_error.hpp>
 #include <mbgen/dynamics/frf.hpp>
-#include <mbgen/dynamics/modal.hpp>
+#include <mbgen/dynamics/model_modes.hpp>
 #include <mbgen/dynamics/state_space.hpp>
 #include <mbgen/data/uff.hpp>
 

@@ -1,6 +1,6 @@
 #include "cli/export_mat.hpp"
 
-#include <mbgen/dynamics/modal.hpp>
+#include <mbgen/dynamics/model_modes.hpp>
 #include <mbgen/dynamics/state_space.hpp>
 
 #include "cli/mat_file.hpp"

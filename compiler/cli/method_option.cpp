@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "cli/number_checks.hpp"
-#include "methods/analytical_solver.hpp"
+#include "elimination/analytical_solver.hpp"
 
 namespace mbgen::cli {
 
@@ -60,7 +60,7 @@ std::function<AnalyticalSolver()> analytical_solver(const ir::ModelIr& model, co
   return [&model, &derive] {
     symbolic::DeriveOptions d = derive;
     d.transfer_functions = false;  // derived per pair, as the solver needs them
-    return analytical::make_analytical_solver(std::make_shared<const symbolic::SymbolicModel>(symbolic::derive(model, d)));
+    return elimination::make_analytical_solver(std::make_shared<const symbolic::SymbolicModel>(symbolic::derive(model, d)));
   };
 }
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 #include "symbolic/derive.hpp"
 
 namespace mbgen::cli {

@@ -39,8 +39,8 @@ ModalRun modal_identification(ModalRequest request) {
   if (!request.model_path.empty()) {
     symbolic::DeriveOptions derive;
     derive.set = parse_set_options(request.sets);
-    run.model.emplace(frontend::parse_file(request.model_path));
-    model = evaluator::make_evaluator(*run.model, derive);
+    run.declared.emplace(frontend::parse_file(request.model_path));
+    model = evaluator::make_evaluator(*run.declared, derive);
   }
   std::vector<FrfData> frfs;
   FrfQuantity quantity = FrfQuantity::Unknown;
@@ -237,14 +237,14 @@ int run_modal(int argc, char** argv) {
     const ModalRun run = modal_identification(std::move(request));
     ModalReportInput in = run.input();
     std::optional<ShapeGeometry> geometry;  // the report draws the shapes on the model's
-    if (run.model && !report_dir.empty())
-      in.geometry = &geometry.emplace(evaluator::shape_geometry(*run.model, parse_set_options(sets)));
+    if (run.declared && !report_dir.empty())
+      in.geometry = &geometry.emplace(evaluator::shape_geometry(*run.declared, parse_set_options(sets)));
     OutputFiles out;
     if (!json_path.empty()) out.add(json_path, modal_result_json(in));
     if (!report_dir.empty()) write_modal_report(out.stage_directory(report_dir), in);
     if (!synthesis_path.empty()) {
       const DataTexts synthesis = synthesis_texts(run.data, run.result, synthesis_format, data_paths,
-                                                  run.model ? &*run.model : nullptr, parse_set_options(sets));
+                                                  run.declared ? &*run.declared : nullptr, parse_set_options(sets));
       out.add(synthesis_path, synthesis.data);
       if (synthesis_uff) out.add(synthesis_path + ".map", synthesis.mapping);
     }

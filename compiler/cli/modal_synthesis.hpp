@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cli/data_writing.hpp"
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::cli {
 

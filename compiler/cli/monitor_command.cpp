@@ -28,7 +28,7 @@
 #include "cli/seed_option.hpp"
 #include "cli/starts_option.hpp"
 #include "cli/version.hpp"
-#include <mbgen/diagnosis/channel_residuals.hpp>
+#include <mbgen/residuals/channel_residuals.hpp>
 #include "diagnosis/engine/diagnose.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
 #include "frontend/message.hpp"
@@ -66,7 +66,7 @@ std::string summary(const MonitorResult& r) {
 // mean normalized residual 4) came in about one set in eight and gave four times the baseline's misfit, as large
 // as the loose wall's own findings.
 double residual_misfit(const Model& model, const DataSet& set, const FitResult& fit, const FrfWeighting& weighting) {
-  const std::vector<ChannelResidual> channels = diagnosis::channel_residuals(model, {set}, fit.values, weighting);
+  const std::vector<ChannelResidual> channels = channel_residuals(model, {set}, fit.values, weighting);
   return analyse_residuals(channels).mean_z;
 }
 

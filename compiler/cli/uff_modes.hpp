@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::cli {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::diagnosis {
 

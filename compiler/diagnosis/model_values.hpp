@@ -5,7 +5,7 @@
 #include <map>
 #include <string>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::diagnosis {
 

@@ -4,7 +4,7 @@
 #include <set>
 #include <string>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::diagnosis {
 

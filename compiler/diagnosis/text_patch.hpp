@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "frontend/lexer.hpp"
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::diagnosis {
 

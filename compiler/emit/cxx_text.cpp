@@ -4,7 +4,7 @@
 
 #include "ir/identifier.hpp"
 
-#include <mbgen/data/utf8.hpp>
+#include "text/utf8.hpp"
 
 namespace mbgen::emit {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/model_modes.hpp"
 #include "symbolic/symbolic_model.hpp"
 
 namespace mbgen::emit::detail {

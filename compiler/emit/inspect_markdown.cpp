@@ -1,7 +1,7 @@
 // Markdown inspection: tables of parameters and modes, matrices as tables of infix expressions.
 #include <sstream>
 
-#include <mbgen/data/markdown.hpp>
+#include <mbgen/report/markdown.hpp>
 
 #include "emit/infix_printer.hpp"
 #include "emit/inspect.hpp"

@@ -4,7 +4,7 @@
 // symbolic stage.
 #pragma once
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::frontend {
 

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <utility>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::frontend {
 

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::frontend {
 

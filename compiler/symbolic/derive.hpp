@@ -4,7 +4,7 @@
 #include <map>
 #include <string>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 #include "symbolic/symbolic_model.hpp"
 
 namespace mbgen::symbolic {

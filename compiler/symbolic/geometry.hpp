@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 #include "symbolic/to_ginac.hpp"
 
 namespace mbgen::symbolic {

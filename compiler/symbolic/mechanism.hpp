@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 #include "symbolic/geometry.hpp"
 #include "symbolic/kinematics.hpp"
 #include "symbolic/to_ginac.hpp"

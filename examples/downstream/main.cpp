@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include <mbgen/dynamics/frf.hpp>
-#include <mbgen/dynamics/modal.hpp>
+#include <mbgen/dynamics/model_modes.hpp>
 
 #include "spindle_model.hpp"
 

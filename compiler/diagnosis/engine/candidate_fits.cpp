@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <set>
 
-#include <mbgen/diagnosis/same_response.hpp>
+#include <mbgen/residuals/same_response.hpp>
 
 #include "diagnosis/engine/candidate_judging.hpp"
 #include "diagnosis/engine/screening.hpp"

@@ -5,7 +5,7 @@
 #include <limits>
 #include <set>
 
-#include <mbgen/diagnosis/chain_scores.hpp>
+#include <mbgen/residuals/chain_scores.hpp>
 
 #include "diagnosis/engine/candidate_judging.hpp"
 #include "diagnosis/engine/text_format.hpp"

@@ -19,7 +19,7 @@
 #pragma once
 
 #include <mbgen/estimation/fit.hpp>
-#include <mbgen/diagnosis/residual_analysis.hpp>
+#include <mbgen/residuals/residual_analysis.hpp>
 
 #include <functional>
 #include <map>
@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "diagnosis/extension.hpp"
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::diagnosis {
 

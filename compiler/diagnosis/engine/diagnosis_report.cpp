@@ -1,6 +1,6 @@
 #include "diagnosis/engine/diagnosis_report.hpp"
 
-#include <mbgen/data/gnuplot.hpp>
+#include <mbgen/report/gnuplot.hpp>
 #include <mbgen/report/report_document.hpp>
 
 #include <cmath>

@@ -1,16 +1,16 @@
 // Driving points whose measured phase a passive structure cannot have: evidence about the measurement chain that
-// needs the model's geometry but no fit (mbgen/diagnosis/chain_scores.hpp, driving_point_passivity). `fit` and
+// needs the model's geometry but no fit (mbgen/residuals/chain_scores.hpp, driving_point_passivity). `fit` and
 // `diagnose` warn about them first; the diagnosis also fits the polarity candidates they point to, whatever a fit that
 // could not follow the reversed data says (docs/diagnosis.md, "The measurement chain").
 #pragma once
 
-#include <mbgen/diagnosis/chain_scores.hpp>
+#include <mbgen/residuals/chain_scores.hpp>
 #include <mbgen/data/data_set.hpp>
 
 #include <string>
 #include <vector>
 
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 namespace mbgen::diagnosis {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include <mbgen/diagnosis/channel_residuals.hpp>
+#include <mbgen/residuals/channel_residuals.hpp>
 
 #include "diagnosis/engine/candidate_judging.hpp"
 #include "evaluator/symbolic_evaluator.hpp"

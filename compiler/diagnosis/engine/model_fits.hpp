@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include <mbgen/diagnosis/data_split.hpp>
+#include <mbgen/residuals/data_split.hpp>
 #include <mbgen/dynamics/parallel.hpp>
 
 #include "diagnosis/engine/diagnose.hpp"

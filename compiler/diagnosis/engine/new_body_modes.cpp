@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <complex>
 
-#include <mbgen/modal_identification/state_modes.hpp>
+#include <mbgen/dynamics/state_modes.hpp>
 #include "numerics/constants.hpp"
 
 namespace mbgen::diagnosis {

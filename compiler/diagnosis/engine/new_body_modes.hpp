@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 
 #include <mbgen/model.hpp>
-#include <mbgen/diagnosis/residual_analysis.hpp>
+#include <mbgen/residuals/residual_analysis.hpp>
 
 namespace mbgen::diagnosis {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <mbgen/diagnosis/channel_residuals.hpp>
+#include <mbgen/residuals/channel_residuals.hpp>
 
 #include "diagnosis/engine/thresholds.hpp"
 

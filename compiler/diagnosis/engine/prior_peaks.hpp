@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include <mbgen/diagnosis/residual_analysis.hpp>
+#include <mbgen/residuals/residual_analysis.hpp>
 #include <mbgen/estimation/fit.hpp>
 
 namespace mbgen::diagnosis {

@@ -1,4 +1,4 @@
-#include <mbgen/diagnosis/same_response.hpp>
+#include <mbgen/residuals/same_response.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -5,7 +5,7 @@
 #include "fit_report_sections.hpp"
 #include "mbgen/dynamics/dynamics_error.hpp"
 #include "mbgen/estimation/frf_confidence.hpp"
-#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/gnuplot.hpp"
 #include "mbgen/report/report_document.hpp"
 #include "mbgen/report/report_files.hpp"
 #include "numerics/constants.hpp"

@@ -1,7 +1,7 @@
 // The fit report's residual-test and validation sections (fit_report_sections.hpp).
 #include "fit_report_sections.hpp"
 
-#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/gnuplot.hpp"
 #include "mbgen/report/report_files.hpp"
 #include "numerics/constants.hpp"
 

@@ -7,7 +7,7 @@
 #include "model_coefficients.hpp"
 
 #include "mbgen/dynamics/dynamics_error.hpp"
-#include "mbgen/methods/modal.hpp"
+#include "mbgen/methods/modal_fit.hpp"
 #include "mbgen/methods/two_step.hpp"
 
 #include <catch2/catch.hpp>

@@ -3,7 +3,7 @@
 #include "estimation/output_error.hpp"
 
 #include "mbgen/estimation/identifiability.hpp"
-#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/model_modes.hpp"
 
 #include <algorithm>
 #include <cmath>

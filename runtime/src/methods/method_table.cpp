@@ -6,7 +6,7 @@
 #include "mbgen/methods/direct.hpp"
 #include "mbgen/methods/eiv.hpp"
 #include "mbgen/methods/hybrid.hpp"
-#include "mbgen/methods/modal.hpp"
+#include "mbgen/methods/modal_fit.hpp"
 
 #include <algorithm>
 

@@ -1,7 +1,7 @@
 #include "modal_configurations.hpp"
 
 #include "mbgen/estimation/fit.hpp"
-#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/model_modes.hpp"
 #include "mbgen/modal_identification/modal_pairing.hpp"
 
 #include <stdexcept>

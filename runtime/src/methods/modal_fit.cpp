@@ -2,7 +2,7 @@
 // The pairing and the per-mode objectives are in modal_objectives.cpp, the configurations (`# set` values) and their
 // reference modes in modal_configurations.cpp; here the refusals, the Sobol partition, the repeated local
 // optimisation of each subproblem, the damping least squares, and the result.
-#include "mbgen/methods/modal.hpp"
+#include "mbgen/methods/modal_fit.hpp"
 
 #include "method_result.hpp"
 #include "modal_configurations.hpp"

@@ -4,7 +4,7 @@
 #include "mbgen_test/estimation.hpp"
 #include "mbgen_test/truthgen.hpp"
 
-#include "mbgen/methods/modal.hpp"
+#include "mbgen/methods/modal_fit.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

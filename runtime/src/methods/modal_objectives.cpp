@@ -1,6 +1,6 @@
 #include "modal_objectives.hpp"
 
-#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/model_modes.hpp"
 #include "mbgen/modal_identification/modal_pairing.hpp"
 
 #include <algorithm>

@@ -8,7 +8,7 @@
 #include "modal_solve.hpp"
 
 #include "mbgen/methods/operational_update.hpp"
-#include "mbgen/modal_identification/operational_update.hpp"
+#include "mbgen/modal_identification/operational_comparison.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>

@@ -1,6 +1,6 @@
 // The report directory of `mbgen modal`: report.md and report.html with the mode table and SVG plots drawn by
 // gnuplot from .dat files and .gp scripts (the scripts stay, so plots can be redrawn where gnuplot was missing).
-#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/gnuplot.hpp"
 #include "mbgen/modal_identification/modal_report.hpp"
 #include "mbgen/report/report_document.hpp"
 

@@ -1,7 +1,7 @@
 // The model's modes and residues at the measured channels, from the state-space eigenproblem, and the pairing
 // of identified modes with them by MAC.
 #include "mbgen/modal_identification/modal_pairing.hpp"
-#include "mbgen/modal_identification/state_modes.hpp"
+#include "mbgen/dynamics/state_modes.hpp"
 #include "shape_metrics.hpp"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // The model's modes at the response channels, their pairing with identified operational modes by MAC, and the
-// weighted modal residuals of a model update against them (mbgen/modal_identification/operational_update.hpp).
-#include "mbgen/modal_identification/operational_update.hpp"
-#include "mbgen/modal_identification/state_modes.hpp"
+// weighted modal residuals of a model update against them (mbgen/modal_identification/operational_comparison.hpp).
+#include "mbgen/modal_identification/operational_comparison.hpp"
+#include "mbgen/dynamics/state_modes.hpp"
 #include "shape_metrics.hpp"
 
 #include <cmath>

@@ -1,8 +1,8 @@
 // The identified operational modes' standard deviations by batch means over data blocks
-// (mbgen/modal_identification/operational_update.hpp). SSI-cov gives no uncertainty of its own, and the scatter of a
-// cluster over the orders is not one: every order sees the same correlations, so they share their estimation error.
-// Blocks of the record are independent data.
-#include "mbgen/modal_identification/operational_update.hpp"
+// (mbgen/modal_identification/operational_comparison.hpp). SSI-cov gives no uncertainty of its own, and the scatter
+// of a cluster over the orders is not one: every order sees the same correlations, so they share their estimation
+// error. Blocks of the record are independent data.
+#include "mbgen/modal_identification/operational_comparison.hpp"
 #include "shape_metrics.hpp"
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // The report and the terminal table of `mbgen modal --output-only`, laid out as the FRF path's (modal_report.cpp).
-#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/gnuplot.hpp"
 #include "mbgen/modal_identification/output_only_report.hpp"
 #include "mbgen/report/report_document.hpp"
 

@@ -2,7 +2,7 @@
 // drawn by gnuplot.
 #include "mbgen/monitoring/monitor_report.hpp"
 
-#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/gnuplot.hpp"
 #include "mbgen/report/report_document.hpp"
 #include "mbgen/report/report_files.hpp"
 

@@ -2,7 +2,7 @@
 #include "mbgen/monitoring/operational_report.hpp"
 
 #include "mbgen/estimation/fit.hpp"
-#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/gnuplot.hpp"
 #include "mbgen/report/report_document.hpp"
 #include "mbgen/report/report_files.hpp"
 

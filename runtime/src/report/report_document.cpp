@@ -1,7 +1,7 @@
 // The report document and its Markdown rendering (report.md).
 #include "mbgen/report/report_document.hpp"
 
-#include "mbgen/data/markdown.hpp"
+#include "mbgen/report/markdown.hpp"
 
 #include <stdexcept>
 

@@ -1,7 +1,7 @@
 // Local sensitivities of the modes by first-order eigenvalue perturbation of the state matrix:
 // dlambda = w^T dA v with w^T v = 1 (state_modes normalizes left * right = I), dA from state_space_derivatives.
 #include "mbgen/sensitivity/sensitivity.hpp"
-#include "mbgen/modal_identification/state_modes.hpp"
+#include "mbgen/dynamics/state_modes.hpp"
 #include "mbgen/dynamics/state_space.hpp"
 #include "numerics/constants.hpp"
 

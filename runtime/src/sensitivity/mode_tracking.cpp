@@ -1,7 +1,7 @@
 // The oscillating modes of a model and how modes are followed from one parameter set to another.
 #include "mbgen/modal_identification/modal_identification.hpp"
 #include "mbgen/sensitivity/sensitivity.hpp"
-#include "mbgen/modal_identification/state_modes.hpp"
+#include "mbgen/dynamics/state_modes.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Which channel sees each mode best: the mode's share of the channel's response at the mode's frequency, from the
 // exact partial fractions H(s) = D + sum_e C v_e w_e^T B / (s - lambda_e) over every eigenvalue.
 #include "mbgen/sensitivity/sensitivity.hpp"
-#include "mbgen/modal_identification/state_modes.hpp"
+#include "mbgen/dynamics/state_modes.hpp"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 #include "mbgen/dynamics/frf.hpp"
-#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/model_modes.hpp"
 #include "mbgen/sensitivity/sensitivity.hpp"
 #include "mbgen_test/mdof2.hpp"
 

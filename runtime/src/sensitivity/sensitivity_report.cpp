@@ -1,6 +1,6 @@
 // The report directory of `mbgen sensitivity`: report.md and report.html with tables and SVG plots drawn by
 // gnuplot from .dat files and .gp scripts; and the terminal summary.
-#include "mbgen/data/gnuplot.hpp"
+#include "mbgen/report/gnuplot.hpp"
 #include "mbgen/report/mode_shape_figures.hpp"
 #include "mbgen/report/report_document.hpp"
 #include "mbgen/sensitivity/sensitivity_report.hpp"

@@ -17,7 +17,7 @@
 #include "mbgen/data/data_set.hpp"
 #include "mbgen/data/frf_data.hpp"
 #include "mbgen/data/frf_sigma.hpp"  // FrfWeighting: the FRF residuals' standard deviation
-#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/model_modes.hpp"
 #include "mbgen/model.hpp"
 #include "mbgen/dynamics/parallel.hpp"
 #include "mbgen/estimation/residual_tests.hpp"

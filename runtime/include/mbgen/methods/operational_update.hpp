@@ -17,7 +17,7 @@
 #pragma once
 
 #include "mbgen/estimation/fit.hpp"
-#include "mbgen/modal_identification/operational_update.hpp"
+#include "mbgen/modal_identification/operational_comparison.hpp"
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
 // The analytical route (a) of the two-step method's step two (thesis Sec. 3.6.2, Table 3.2; docs/methods.md#two-step):
 // the coefficient equations L_i(p) = L^_i solved exactly. The runtime has no computer algebra, so it hands the
-// equations to an AnalyticalSolver that a caller supplies (`mbgen fit` supplies GiNaC's, compiler/methods/) and
+// equations to an AnalyticalSolver that a caller supplies (`mbgen fit` supplies GiNaC's, compiler/elimination/) and
 // judges the solutions it returns (real, within the bounds, a positive definite mass matrix) by the numbers it has.
 #pragma once
 

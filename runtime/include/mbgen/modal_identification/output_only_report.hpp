@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "mbgen/modal_identification/operational_update.hpp"
+#include "mbgen/modal_identification/operational_comparison.hpp"
 #include "mbgen/modal_identification/output_only_modal.hpp"
 
 namespace mbgen {

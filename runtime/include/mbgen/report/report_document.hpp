@@ -103,8 +103,8 @@ std::string to_markdown(const Document& doc);
 // same document and files give the same bytes.
 std::string to_html(const Document& doc, const std::string& dir);
 
-// Draws the plots (each STEM.gp in `dir`, see mbgen/data/gnuplot.hpp), adds the note when they could not be drawn, and
-// writes DIR/report.md and DIR/report.html, each whole or not at all. Throws FitError when it cannot write them.
+// Draws the plots (each STEM.gp in `dir`, see gnuplot.hpp), adds the note when they could not be drawn, and writes
+// DIR/report.md and DIR/report.html, each whole or not at all. Throws FitError when it cannot write them.
 void write_report(const std::string& dir, Document doc, const std::vector<std::string>& plot_stems);
 
 }  // namespace mbgen::report

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/model_modes.hpp"
 #include "mbgen/model.hpp"
 
 namespace mbgen {

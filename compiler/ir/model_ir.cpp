@@ -1,4 +1,4 @@
-#include "ir/model.hpp"
+#include "ir/model_ir.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "mbgen/data/markdown.hpp"
+#include "mbgen/report/markdown.hpp"
 
 #include <algorithm>
 #include <cstring>

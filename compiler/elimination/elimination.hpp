@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace mbgen::analytical {
+namespace mbgen::elimination {
 
 struct EliminationLimits {
   std::size_t max_terms = 4000;  // terms of an expanded equation
@@ -41,4 +41,4 @@ struct Elimination {
 Elimination eliminate(const std::vector<GiNaC::ex>& equations, const std::vector<GiNaC::symbol>& unknowns, bool square,
                       const EliminationLimits& limits = {});
 
-}  // namespace mbgen::analytical
+}  // namespace mbgen::elimination

@@ -1,6 +1,7 @@
-// A model against output-only modes (docs/modal.md, "A model against output-only modes"): the identified modes'
-// uncertainties from data blocks, the model's modes at the response channels, their pairing by MAC, the weighted
-// modal residuals, and what an update reports. The solve itself is mbgen/methods/operational_update.hpp.
+// A model compared with output-only modes (docs/modal.md, "A model against output-only modes"): the identified
+// modes' uncertainties from data blocks, the model's modes at the response channels, their pairing by MAC, the
+// weighted modal residuals, and what an update reports. The update that fits the model to them, an estimation
+// method, is mbgen/methods/operational_update.hpp.
 #pragma once
 
 #include <Eigen/Core>

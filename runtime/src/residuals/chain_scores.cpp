@@ -1,4 +1,4 @@
-#include "mbgen/diagnosis/chain_scores.hpp"
+#include "mbgen/residuals/chain_scores.hpp"
 #include "numerics/constants.hpp"
 
 #include <cmath>

@@ -1,4 +1,5 @@
-// Modal analysis of M q'' + C q' + K q = 0.
+// The model's modes: modal analysis of M q'' + C q' + K q = 0 (experimental modal analysis of measured data is
+// mbgen/modal_identification/).
 //
 // modal_analysis solves the state-space eigenproblem of x = [q; q'],
 //   A = [[0, I], [-M^-1 K, -M^-1 C]],

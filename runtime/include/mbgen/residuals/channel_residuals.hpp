@@ -1,5 +1,5 @@
 // Measured vs model FRFs per channel, with the measurement's standard deviation: the input of the residual
-// analysis (mbgen/diagnosis/residual_analysis.hpp). FRF data is used as measured, its noise level from its coherence; a
+// analysis (mbgen/residuals/residual_analysis.hpp). FRF data is used as measured, its noise level from its coherence; a
 // time record is first turned into FRFs by Welch H1, so both kinds of data are judged the same way. The model's side of
 // a record is its simulated response through the same H1, so that the estimator's own bias (a peak lowered and widened
 // by the finite resolution) is on both sides and not taken for a model error; the noise level is that of the H1 of
@@ -7,11 +7,11 @@
 #pragma once
 
 #include <mbgen/estimation/fit.hpp>
-#include <mbgen/diagnosis/residual_analysis.hpp>
+#include <mbgen/residuals/residual_analysis.hpp>
 
 #include <vector>
 
-namespace mbgen::diagnosis {
+namespace mbgen {
 
 // The fit that gave the values judged: its data (the lines it saw) and the parameters it estimated.
 struct FittedOn {
@@ -30,4 +30,4 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
                                                const Eigen::VectorXd& values, const FrfWeighting& weighting,
                                                const FittedOn& fitted = {});
 
-}  // namespace mbgen::diagnosis
+}  // namespace mbgen

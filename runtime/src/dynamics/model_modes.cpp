@@ -1,4 +1,4 @@
-#include "mbgen/dynamics/modal.hpp"
+#include "mbgen/dynamics/model_modes.hpp"
 
 #include "matrix_checks.hpp"
 #include "mbgen/dynamics/dynamics_error.hpp"

@@ -1,10 +1,10 @@
-#include "mbgen/diagnosis/data_split.hpp"
+#include "mbgen/residuals/data_split.hpp"
 
 #include <mbgen/data/frf_sigma.hpp>
 
 #include <cmath>
 
-namespace mbgen::diagnosis {
+namespace mbgen {
 
 namespace {
 
@@ -85,4 +85,4 @@ double validation_nrmse(const Model& model, const SplitData& split, const Eigen:
   return ref > 0 ? std::sqrt(err / ref) : 0.0;
 }
 
-}  // namespace mbgen::diagnosis
+}  // namespace mbgen

@@ -9,7 +9,7 @@
 
 #include <vector>
 
-namespace mbgen::diagnosis {
+namespace mbgen {
 
 struct SplitData {
   std::vector<DataSet> fit;         // what the estimator sees
@@ -25,4 +25,4 @@ SplitData split_for_validation(const std::vector<DataSet>& data, double fit_frac
 double validation_nrmse(const Model& model, const SplitData& split, const Eigen::VectorXd& values,
                         const FrfWeighting& weighting);
 
-}  // namespace mbgen::diagnosis
+}  // namespace mbgen

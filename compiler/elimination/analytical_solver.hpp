@@ -21,7 +21,7 @@
 
 #include "symbolic/symbolic_model.hpp"
 
-namespace mbgen::analytical {
+namespace mbgen::elimination {
 
 constexpr std::size_t kMaxUnknowns = 10;
 constexpr std::size_t kMaxSubsystems = 70;
@@ -53,4 +53,4 @@ GiNaC::numeric exact(double x);
 // The runtime's hook: solve_exactly with the identified doubles as exact rationals, solutions as doubles.
 AnalyticalSolver make_analytical_solver(std::shared_ptr<const symbolic::SymbolicModel> sm);
 
-}  // namespace mbgen::analytical
+}  // namespace mbgen::elimination

@@ -1,4 +1,4 @@
-#include "mbgen/diagnosis/same_response.hpp"
+#include "mbgen/residuals/same_response.hpp"
 
 #include <mbgen/dynamics/frf.hpp>
 
@@ -8,7 +8,7 @@
 #include <random>
 #include <stdexcept>
 
-namespace mbgen::diagnosis {
+namespace mbgen {
 
 std::vector<double> probe_frequencies(const std::vector<DataSet>& data) {
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
@@ -93,4 +93,4 @@ bool same_response(const Model& a, const Model& b, const std::vector<double>& pr
   return true;
 }
 
-}  // namespace mbgen::diagnosis
+}  // namespace mbgen

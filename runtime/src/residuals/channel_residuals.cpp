@@ -1,4 +1,4 @@
-#include "mbgen/diagnosis/channel_residuals.hpp"
+#include "mbgen/residuals/channel_residuals.hpp"
 
 #include <mbgen/dynamics/frf.hpp>
 #include <mbgen/data/frf_noise.hpp>
@@ -12,9 +12,9 @@
 #include <optional>
 #include <tuple>
 
-#include <mbgen/diagnosis/data_split.hpp>
+#include <mbgen/residuals/data_split.hpp>
 
-namespace mbgen::diagnosis {
+namespace mbgen {
 
 namespace {
 
@@ -313,4 +313,4 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
   return out;
 }
 
-}  // namespace mbgen::diagnosis
+}  // namespace mbgen

@@ -1,4 +1,4 @@
-#include "mbgen/modal_identification/state_modes.hpp"
+#include "mbgen/dynamics/state_modes.hpp"
 
 #include "mbgen/dynamics/dynamics_error.hpp"
 #include "numerics/constants.hpp"

@@ -3,8 +3,8 @@
 // docs/reference-models.md, not from the compiler's derivation), and the route inside fit_two_step on noiseless and
 // noisy closed-form FRFs (tests/support/mbgen_test/estimation.hpp, an independent assembly) against the numerical
 // route. The truthgen data sets and the command line: tests/two_step.
-#include "methods/analytical_solver.hpp"
-#include "methods/elimination.hpp"
+#include "elimination/analytical_solver.hpp"
+#include "elimination/elimination.hpp"
 
 #include "mbgen_test/estimation.hpp"
 #include "evaluator/symbolic_evaluator.hpp"
@@ -66,7 +66,7 @@ CoefficientSystem mdof2_system(const Model& model) {
 TEST_CASE("elimination solves for the unknowns that enter linearly, in turn", "[analytical][elimination]") {
   const GiNaC::symbol x("x"), y("y"), z("z"), a("a");
   // x y = 6, x + y = 5 (a quadratic after eliminating y), 2 z = x + a: two branches, x = 2 or 3.
-  const analytical::Elimination e = analytical::eliminate({x * y - 6, x + y - 5, 2 * z - x - a}, {x, y, z}, true);
+  const elimination::Elimination e = elimination::eliminate({x * y - 6, x + y - 5, 2 * z - x - a}, {x, y, z}, true);
   REQUIRE(e.failure.empty());
   REQUIRE(e.branches.size() == 2);
   std::vector<GiNaC::ex> xs;
@@ -78,22 +78,22 @@ TEST_CASE("elimination solves for the unknowns that enter linearly, in turn", "[
   CHECK(GiNaC::normal((xs[0] - 2) * (xs[0] - 3)).is_zero());
   CHECK(GiNaC::normal(xs[0] + xs[1] - 5).is_zero());
   // Dependent equations: no closed form, and it says so.
-  const analytical::Elimination d = analytical::eliminate({x + y - 1, 2 * x + 2 * y - 2}, {x, y}, true);
+  const elimination::Elimination d = elimination::eliminate({x + y - 1, 2 * x + 2 * y - 2}, {x, y}, true);
   CHECK(d.branches.empty());
   CHECK(d.failure.find("dependent") != std::string::npos);
   // Overdetermined (greedy): the unused equation is a check.
-  const analytical::Elimination g = analytical::eliminate({x - a, y - 2 * x, y - 2 * a}, {x, y}, false);
+  const elimination::Elimination g = elimination::eliminate({x - a, y - 2 * x, y - 2 * a}, {x, y}, false);
   REQUIRE(g.branches.size() == 1);
   CHECK(g.branches[0].checks == std::vector<int>{2});
   // Degree above 2 in every unknown: refused.
-  CHECK(!analytical::eliminate({x * x * x - 2}, {x}, true).failure.empty());
+  CHECK(!elimination::eliminate({x * x * x - 2}, {x}, true).failure.empty());
 }
 
 TEST_CASE("a double is read as its exact rational", "[analytical]") {
-  CHECK(analytical::exact(0.375) == GiNaC::numeric(3, 8));
-  CHECK(analytical::exact(-1.5e6) == GiNaC::numeric(-1500000));
-  CHECK(analytical::exact(0.1).to_double() == 0.1);
-  CHECK(analytical::exact(0.1) != GiNaC::numeric(1, 10));  // 0.1 is not a double
+  CHECK(elimination::exact(0.375) == GiNaC::numeric(3, 8));
+  CHECK(elimination::exact(-1.5e6) == GiNaC::numeric(-1500000));
+  CHECK(elimination::exact(0.1).to_double() == 0.1);
+  CHECK(elimination::exact(0.1) != GiNaC::numeric(1, 10));  // 0.1 is not a double
 }
 
 TEST_CASE("mdof2's coefficient equations solved exactly give the exact rational truth", "[analytical][mdof2]") {
@@ -106,11 +106,11 @@ TEST_CASE("mdof2's coefficient equations solved exactly give the exact rational 
                                              GiNaC::numeric(51, 100)};
   const std::vector<GiNaC::numeric> identified =
       mdof2_coefficients<GiNaC::numeric>(truth[0], truth[1], truth[2], truth[3], truth[4], truth[5], truth[6]);
-  const analytical::ExactSolution s = analytical::solve_exactly(*sm, system, identified);
+  const elimination::ExactSolution s = elimination::solve_exactly(*sm, system, identified);
   REQUIRE(s.unavailable.empty());
   REQUIRE(s.subsystems.size() == 8);  // every choice of 7 of the 8 equations
   int solved = 0;
-  for (const analytical::ExactSubsystem& sub : s.subsystems) {
+  for (const elimination::ExactSubsystem& sub : s.subsystems) {
     INFO("subsystem without equation " << [&] {
       for (int i = 0; i < 8; ++i)
         if (std::find(sub.equations.begin(), sub.equations.end(), i) == sub.equations.end()) return i;
@@ -134,7 +134,7 @@ TEST_CASE("mdof2's coefficient equations solved exactly give the exact rational 
   CHECK(s.subsystems.back().failure.find("dependent") != std::string::npos);  // equations 1..7: a0 left out
   CHECK(s.subsystems.front().failure.find("dependent") != std::string::npos); // equations 0..6: b0 of d2/F1 left out
   // m1 = 1/b2 in every closed form that solves.
-  for (const analytical::ExactSubsystem& sub : s.subsystems)
+  for (const elimination::ExactSubsystem& sub : s.subsystems)
     if (sub.failure.empty() && std::find(sub.equations.begin(), sub.equations.end(), 6) != sub.equations.end())
       CHECK(GiNaC::normal(sub.closed_form[0] - 1 / s.coefficients[6]).is_zero());
 }
@@ -146,7 +146,7 @@ TEST_CASE("the analytical route refuses what it cannot solve, saying why", "[ana
   std::vector<GiNaC::numeric> identified(8, GiNaC::numeric(1));
   // A coefficient that is not the runtime's (a wrong value at the prior): the blocks or the normalisation differ.
   system.equations[2].model_at_prior *= 1.01;
-  CHECK(analytical::solve_exactly(*sm, system, identified).unavailable.find("not the runtime's") != std::string::npos);
+  CHECK(elimination::solve_exactly(*sm, system, identified).unavailable.find("not the runtime's") != std::string::npos);
 }
 
 namespace {
@@ -171,7 +171,7 @@ TEST_CASE("fit_two_step by the analytical route on noiseless FRFs equals the num
   const FrfData d = test::mdof2_frf_data(truth_values(), Eigen::VectorXd::LinSpaced(1561, 10, 400), 0.0, rng);
   TwoStepOptions a;
   a.solver = "analytical";
-  a.analytical = analytical::make_analytical_solver(mdof2_symbolic());
+  a.analytical = elimination::make_analytical_solver(mdof2_symbolic());
   const FitResult ra = fit_two_step(*model, {d}, {}, a);
   TwoStepOptions m;
   m.solver = "minimisation";
@@ -206,7 +206,7 @@ TEST_CASE("the analytical route on noisy FRFs: as accurate as the numerical rout
   const auto model = evaluator::make_evaluator(mdof2_ir());
   TwoStepOptions a;
   a.solver = "analytical";
-  a.analytical = analytical::make_analytical_solver(mdof2_symbolic());
+  a.analytical = elimination::make_analytical_solver(mdof2_symbolic());
   const double bound[7] = {0.02, 0.02, 0.02, 0.02, 0.02, 0.02, 0.10};
   for (unsigned seed = 1; seed <= 3; ++seed) {
     std::mt19937 rng(seed);

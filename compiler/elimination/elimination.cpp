@@ -1,10 +1,10 @@
-#include "methods/elimination.hpp"
+#include "elimination/elimination.hpp"
 
 #include <algorithm>
 #include <optional>
 #include <tuple>
 
-namespace mbgen::analytical {
+namespace mbgen::elimination {
 
 namespace {
 
@@ -165,4 +165,4 @@ Elimination eliminate(const std::vector<GiNaC::ex>& equations, const std::vector
   return result;
 }
 
-}  // namespace mbgen::analytical
+}  // namespace mbgen::elimination

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <random>
 
-#include <mbgen/diagnosis/chain_scores.hpp>
+#include <mbgen/residuals/chain_scores.hpp>
 
 using namespace mbgen;
 

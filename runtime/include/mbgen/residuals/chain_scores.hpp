@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include <mbgen/diagnosis/residual_analysis.hpp>
+#include <mbgen/residuals/residual_analysis.hpp>
 
 namespace mbgen {
 

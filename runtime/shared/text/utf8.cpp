@@ -1,4 +1,4 @@
-#include "mbgen/data/utf8.hpp"
+#include "text/utf8.hpp"
 
 namespace mbgen {
 

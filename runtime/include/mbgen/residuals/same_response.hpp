@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace mbgen::diagnosis {
+namespace mbgen {
 
 // Eight probe frequencies spread (logarithmically) over the band the data cover: FRF lines, or from the record
 // length's reciprocal to 0.4 times the sample rate.
@@ -29,4 +29,4 @@ std::vector<double> probe_frequencies(const std::vector<DataSet>& data);
 bool same_response(const Model& a, const Model& b, const std::vector<double>& probe_hz,
                    const std::set<std::string>& names_in_use);
 
-}  // namespace mbgen::diagnosis
+}  // namespace mbgen

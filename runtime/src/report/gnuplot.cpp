@@ -1,5 +1,5 @@
-#include "mbgen/data/gnuplot.hpp"
-#include "mbgen/data/utf8.hpp"
+#include "mbgen/report/gnuplot.hpp"
+#include "text/utf8.hpp"
 
 #include <cerrno>
 #include <string>

@@ -1,4 +1,4 @@
-#include "methods/analytical_solver.hpp"
+#include "elimination/analytical_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,10 +6,10 @@
 #include <stdexcept>
 
 #include "emit/infix_printer.hpp"
-#include "methods/elimination.hpp"
+#include "elimination/elimination.hpp"
 #include "symbolic/transfer_functions.hpp"
 
-namespace mbgen::analytical {
+namespace mbgen::elimination {
 
 namespace {
 
@@ -275,4 +275,4 @@ AnalyticalSolver make_analytical_solver(std::shared_ptr<const symbolic::Symbolic
   };
 }
 
-}  // namespace mbgen::analytical
+}  // namespace mbgen::elimination

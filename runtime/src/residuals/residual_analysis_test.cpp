@@ -1,4 +1,4 @@
-#include "mbgen/diagnosis/residual_analysis.hpp"
+#include "mbgen/residuals/residual_analysis.hpp"
 
 #include <catch2/catch.hpp>
 
