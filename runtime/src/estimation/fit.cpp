@@ -7,6 +7,7 @@
 #include "mbgen/estimation/fit.hpp"
 
 #include "estimator.hpp"
+#include "fit_inputs.hpp"
 #include "fit_setup.hpp"
 #include "numerics/levenberg_marquardt.hpp"
 #include "local_fit_memo.hpp"
@@ -32,6 +33,7 @@
 namespace mbgen {
 
 using estimation::Estimator;
+using estimation::identifiability_options;
 using estimation::kAbandoned;
 using estimation::LmOptions;
 using estimation::LmResult;
@@ -74,13 +76,6 @@ LmOptions lm_options(const FitOptions& options) {
   lm.continue_gain = options.continue_gain;
   lm.iteration_cap = options.iteration_cap;
   return lm;
-}
-
-IdentifiabilityOptions identifiability_options(const FitOptions& options) {
-  IdentifiabilityOptions id;
-  id.zero_tolerance = options.zero_tolerance;
-  id.rank_tolerance = options.rank_tolerance;
-  return id;
 }
 
 // What stays fixed during one fit. Not copyable: the estimator refers to the problem.

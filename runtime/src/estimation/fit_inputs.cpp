@@ -37,4 +37,11 @@ std::vector<int> candidate_parameters(const ModelInfo& info, const FitOptions& o
   return out;
 }
 
+IdentifiabilityOptions identifiability_options(const FitOptions& options) {
+  IdentifiabilityOptions id;
+  id.zero_tolerance = options.zero_tolerance;
+  id.rank_tolerance = options.rank_tolerance;
+  return id;
+}
+
 }  // namespace mbgen::estimation

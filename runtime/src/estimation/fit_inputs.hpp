@@ -3,6 +3,7 @@
 #pragma once
 
 #include "mbgen/estimation/fit.hpp"
+#include "mbgen/estimation/identifiability.hpp"
 
 #include <Eigen/Core>
 
@@ -16,5 +17,8 @@ Eigen::VectorXd checked_prior(const Model& model, const std::vector<DataSet>& da
 
 // The candidates for estimation, in model order: FitOptions::estimate, or else the parameters of role Estimate.
 std::vector<int> candidate_parameters(const ModelInfo& info, const FitOptions& options);
+
+// The identifiability analysis's tolerances, as FitOptions gives them.
+IdentifiabilityOptions identifiability_options(const FitOptions& options);
 
 }  // namespace mbgen::estimation

@@ -26,6 +26,7 @@
 
 namespace mbgen {
 
+using estimation::identifiability_options;
 using methods::CoefficientProblem;
 
 namespace {
@@ -171,13 +172,6 @@ Eigen::MatrixXd scaled_jacobian(const TwoStepContext& ctx, const std::vector<int
     J.col(static_cast<Eigen::Index>(j)) *= s;
   }
   return J;
-}
-
-IdentifiabilityOptions identifiability_options(const FitOptions& options) {
-  IdentifiabilityOptions id;
-  id.zero_tolerance = options.zero_tolerance;
-  id.rank_tolerance = options.rank_tolerance;
-  return id;
 }
 
 // Which candidates the coefficients determine (at the prior), what each is confounded with, and those step two moves.
