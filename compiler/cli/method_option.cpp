@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <memory>
 
+#include <mbgen/methods/hybrid.hpp>
+#include <mbgen/methods/modal_start.hpp>
+
 #include "cli/number_checks.hpp"
 #include "elimination/analytical_solver.hpp"
 
@@ -79,23 +82,16 @@ std::map<std::string, double> estimate_as_start(const Model& model, const FitRes
   std::map<std::string, double> start;
   for (const ParameterEstimate& e : result.parameters) {
     if (!e.estimated || !std::isfinite(e.value)) continue;
-    const ParameterInfo& p = info.parameters[static_cast<std::size_t>(info.parameter_index(e.name))];
-    double v = e.value;
-    if (!e.at_bound.empty()) {
-      const double margin = 1e-3 * (e.prior != 0 ? std::abs(e.prior) : 1.0);
-      v = std::min(std::max(v, p.lower + margin), p.upper - margin);
-    }
-    start[e.name] = v;
+    start[e.name] = start_inside_bounds(e, info.parameters[static_cast<std::size_t>(info.parameter_index(e.name))]);
   }
   return start;
 }
 
 void add_start(const std::map<std::string, double>& values, FitOptions& options) {
   if (values.empty()) return;
-  if (!options.also_start_at.empty())
-    options.further_starts_at.insert(options.further_starts_at.begin(), options.also_start_at);
-  options.also_start_at = values;
-  options.starts += 1;
+  const int starts = options.starts;
+  start_first_at(values, options);
+  options.starts = starts + 1;
 }
 
 }  // namespace mbgen::cli

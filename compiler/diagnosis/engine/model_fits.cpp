@@ -9,6 +9,19 @@
 
 namespace mbgen::diagnosis {
 
+namespace {
+
+// `fo` estimates every parameter of role estimate but those `held` at their values (none held: FitOptions' own
+// choice stands).
+void estimate_all_but(const ModelInfo& info, const std::vector<std::string>& held, FitOptions& fo) {
+  if (held.empty()) return;
+  for (const ParameterInfo& p : info.parameters)
+    if (p.role == ParameterRole::Estimate && std::find(held.begin(), held.end(), p.name) == held.end())
+      fo.estimate.push_back(p.name);
+}
+
+}  // namespace
+
 std::map<std::string, double> values_by_name(const ModelInfo& info, const Eigen::VectorXd& values) {
   std::map<std::string, double> out;
   for (std::size_t i = 0; i < info.parameters.size(); ++i)
@@ -59,6 +72,17 @@ void FitContext::screen_on_h1(std::vector<DataSet> h1, int averages) {
   screen_on_companion_ = true;
 }
 
+FitOptions FitContext::local_fit_options(const ModelInfo& info, const std::map<std::string, double>& from) const {
+  FitOptions fo = options_.fit;
+  fo.values = estimated_values(info, from);
+  fo.also_start_at.clear();
+  fo.optimum_start_at.clear();
+  fo.further_starts_at.clear();
+  fo.threads = 1;
+  fo.progress = nullptr;
+  return fo;
+}
+
 std::unique_ptr<Model> FitContext::derive_model(const ir::ModelIr& model) const {
   symbolic::DeriveOptions derive;
   derive.set = options_.set;
@@ -79,10 +103,7 @@ ModelState FitContext::assess(const Model& evaluator, const ir::ModelIr& model, 
   fo.also_start_at = also_start_at;
   fo.optimum_start_at = optimum_start_at;
   fo.further_starts_at = further_starts_at;
-  if (!held.empty())
-    for (const ParameterInfo& p : evaluator.info().parameters)
-      if (p.role == ParameterRole::Estimate && std::find(held.begin(), held.end(), p.name) == held.end())
-        fo.estimate.push_back(p.name);
+  estimate_all_but(evaluator.info(), held, fo);
   const ModelInfo& info = evaluator.info();
   for (const auto& [name, v] : estimated_values(info, start)) fo.values[name] = v;
   fo.starts = starts + static_cast<int>(further_starts_at.size()) + static_cast<int>(!optimum_start_at.empty());
@@ -115,18 +136,9 @@ bool FitContext::leads_lower_on_companion(const Model& evaluator, const std::vec
   if (!screen_on_companion_) return true;
   const ModelInfo& info = evaluator.info();
   const auto local_fit = [&](const std::map<std::string, double>& from) {
-    FitOptions fo = options_.fit;
-    fo.values = estimated_values(info, from);
-    if (!held.empty())
-      for (const ParameterInfo& p : info.parameters)
-        if (p.role == ParameterRole::Estimate && std::find(held.begin(), held.end(), p.name) == held.end())
-          fo.estimate.push_back(p.name);
-    fo.also_start_at.clear();
-    fo.optimum_start_at.clear();
-    fo.further_starts_at.clear();
+    FitOptions fo = local_fit_options(info, from);
+    estimate_all_but(info, held, fo);
     fo.starts = 1;
-    fo.threads = 1;
-    fo.progress = nullptr;
     fo.frf_weighting.averages = std::max(fo.frf_weighting.averages, screen_averages_);
     return fit(evaluator, screen_data_, fo);
   };

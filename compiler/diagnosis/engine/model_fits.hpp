@@ -54,6 +54,10 @@ class FitContext {
   // With records: screen on the records' H1 estimates (estimation/spectral_companion.hpp) from now on.
   void screen_on_h1(std::vector<DataSet> h1, int averages);
 
+  // The options of a local fit from `from` (the values of it that model `info` estimates): the diagnosis's fit
+  // options without their chosen starts, on one thread, without progress.
+  FitOptions local_fit_options(const ModelInfo& info, const std::map<std::string, double>& from) const;
+
   // Derivation and tape compilation use GiNaC, which is not thread-safe: only ever on the calling thread.
   std::unique_ptr<Model> derive_model(const ir::ModelIr& model) const;
 

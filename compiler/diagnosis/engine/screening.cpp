@@ -22,15 +22,9 @@ void screen(const FitContext& fits, const std::vector<Extension>& extensions,
   const auto screening_fit = [&](const Model& evaluator, const Extension* ext, Kind kind,
                                  const std::shared_ptr<estimation::LocalFitMemo>& memo) {
     const bool is_base = ext == nullptr;
-    FitOptions fo = fits.options().fit;
     const ModelInfo& info = evaluator.info();
-    fo.values = estimated_values(info, base.values);
-    fo.also_start_at.clear();
-    fo.optimum_start_at.clear();
-    fo.further_starts_at.clear();
-    fo.threads = 1;
+    FitOptions fo = fits.local_fit_options(info, base.values);
     fo.cores = cores;
-    fo.progress = nullptr;
     fo.memo = memo;
     if (kind == Kind::Records) {
       fo.starts = 1;

@@ -20,23 +20,23 @@ nlohmann::json estimates(const FitResult& r) {
 
 }  // namespace
 
+double start_inside_bounds(const ParameterEstimate& estimate, const ParameterInfo& p) {
+  if (estimate.at_bound.empty()) return estimate.value;
+  const double margin = 1e-3 * (estimate.prior != 0 ? std::abs(estimate.prior) : 1.0);
+  return std::min(std::max(estimate.value, p.lower + margin), p.upper - margin);
+}
+
 FitResult fit_hybrid(const Model& model, const std::vector<DataSet>& data, const FitOptions& options) {
   const ModelInfo& info = model.info();
   const FitResult direct = fit_direct(model, data, options);
 
   // The direct estimate becomes the prior of the output-error fit (start 0 and the centre of the random starts); the
-  // model's own values (with the user's) are start 1. A parameter the direct method left at a bound starts just
-  // inside it (a bound is the edge of the output-error fit's reparameterisation).
+  // model's own values (with the user's) are start 1.
   FitOptions refine = options;
   refine.also_start_at.clear();
   for (const ParameterEstimate& e : direct.parameters) {
     const ParameterInfo& p = info.parameters[static_cast<std::size_t>(info.parameter_index(e.name))];
-    double v = e.value;
-    if (!e.at_bound.empty()) {
-      const double margin = 1e-3 * (e.prior != 0 ? std::abs(e.prior) : 1.0);
-      v = std::min(std::max(v, p.lower + margin), p.upper - margin);
-    }
-    refine.values[e.name] = v;
+    refine.values[e.name] = start_inside_bounds(e, p);
     refine.also_start_at[e.name] = e.prior;
   }
   refine.starts = std::max(options.starts, 2);

@@ -15,4 +15,9 @@ namespace mbgen {
 
 FitResult fit_hybrid(const Model& model, const std::vector<DataSet>& data, const FitOptions& options = {});
 
+// Where an output-error fit started from another method's estimate starts parameter `p`: at the estimate, or, for a
+// parameter the method left at a bound, just inside it (a bound is the edge of the output-error fit's
+// reparameterisation).
+double start_inside_bounds(const ParameterEstimate& estimate, const ParameterInfo& p);
+
 }  // namespace mbgen
