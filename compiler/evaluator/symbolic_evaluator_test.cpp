@@ -6,6 +6,8 @@
 #include <random>
 
 #include "frontend/parser.hpp"
+#include <mbgen/dynamics/frf.hpp>
+#include "symbolic/derive.hpp"
 
 using namespace mbgen;
 
@@ -103,4 +105,33 @@ TEST_CASE("the evaluator reports the model's metadata", "[evaluator]") {
   CHECK(info.outputs == std::vector<std::string>{"d1", "d2"});
   CHECK_THROWS_WITH(eval->evaluate(Eigen::VectorXd::Zero(2), *std::make_unique<ModelMatrices>()),
                     "model `mdof2` has 8 parameters, got a vector of 2");
+}
+
+// A delay's Pade section near t = 0 is the identity: the FRF of an accelerometer behind it is the plain one at
+// every line, the lowest included, with every entry of the matrices bounded (a fit that seeks t -> 0 evaluates
+// there). Written for the section's own state, its pivot grew as 1 / t^2 and the FRF at 0.03 Hz was "singular".
+TEST_CASE("a delay near zero leaves an accelerometer's FRF as it is, down to the lowest line", "[evaluator]") {
+  const std::string plain_text = mbgen::test::example_model_text("mdof2") + "output a2 acceleration of mass2 along x\n";
+  const std::string late_text = plain_text + "param td = 1e-4 \"s\" estimate in [0, 1e-3]\nfilter late on a2 delay time td sections 2\n";
+  const evaluator::SymbolicEvaluator plain(symbolic::derive(frontend::parse_string(plain_text, "plain.mdl")));
+  const evaluator::SymbolicEvaluator late(symbolic::derive(frontend::parse_string(late_text, "late.mdl")));
+  const int td = late.info().parameter_index("td");
+  REQUIRE(td >= 0);
+  const std::vector<double> lines = {0.03125, 1.0, 30.0, 200.0};
+  const FrfResult expected = frf(plain, plain.info().default_values(), lines);
+  for (double t : {1e-12, 1e-30, 1e-200}) {
+    Eigen::VectorXd p = late.info().default_values();
+    p[td] = t;
+    ModelMatrices m;
+    late.evaluate(p, m);
+    CHECK(m.M.allFinite());
+    CHECK(m.C.allFinite());
+    CHECK(m.K.allFinite());
+    CHECK(m.Cv.allFinite());
+    const FrfResult got = frf(late, p, lines);
+    const int a2 = plain.info().output_index("a2");
+    REQUIRE(late.info().output_index("a2") == a2);
+    for (std::size_t k = 0; k < lines.size(); ++k)
+      CHECK(std::abs(got.H[k](a2, 0) - expected.H[k](a2, 0)) <= 1e-7 * std::abs(expected.H[k](a2, 0)));  // the delay itself: w t <= 1.3e-9
+  }
 }

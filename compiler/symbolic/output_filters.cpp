@@ -89,23 +89,28 @@ void add_output_filters(const ParameterTable& params, SymbolicModel& out) {
       const Section& sec = sections[k][j];
       const std::string state = sections[k].size() == 1 ? "w" : "w" + std::to_string(j + 1);
       out.coordinates.push_back({f.name, ir::Dof::X, state});
-      // w'' + a1 w' + a0 w - y_in = 0, with y_in = Cd q + Cv q' + Ca q'' (the output's rows so far).
-      out.M(w, w) = 1;
-      out.C(w, w) = sec.a1;
-      out.K(w, w) = sec.a0;
+      // The section w'' + a1 w' + a0 w = y_in, with y_in = Cd q + Cv q' + Ca q'' (the output's rows so far), and
+      // y_out = b2 y_in + (b1 - b2 a1) w' + (b0 - b2 a0) w, is written for the state z = a0 w:
+      //   z'' / a0 + (a1 / a0) z' + z - y_in = 0,   y_out = b2 y_in + ((b1 - b2 a1) z' + (b0 - b2 a0) z) / a0.
+      // Every entry then stays bounded whatever the filter's constants: a delay near zero (a0 = 12 / t^2) reads
+      // (t^2 / 12) z'' + (t / 2) z' + z = y_in, y_out = y_in - t z', which is y_in at t = 0. Written for w, its
+      // pivot of K - w^2 M + jw C grew as 1 / t^2 against the structure's, and the FRF's singularity test failed
+      // (frame3's delay candidates, whose fits seek t -> 0, at 0.03 Hz). Every a0 is positive.
+      out.M(w, w) = 1 / sec.a0;
+      out.C(w, w) = sec.a1 / sec.a0;
+      out.K(w, w) = 1;
       for (unsigned i = 0; i < w; ++i) {
         out.M(w, i) = -out.Ca(o, i);
         out.C(w, i) = -out.Cv(o, i);
         out.K(w, i) = -out.Cd(o, i);
       }
-      // y_out = b2 y_in + (b1 - b2 a1) w' + (b0 - b2 a0) w.
       for (unsigned i = 0; i < w; ++i) {
         out.Cd(o, i) = sec.b2 * out.Cd(o, i);
         out.Cv(o, i) = sec.b2 * out.Cv(o, i);
         out.Ca(o, i) = sec.b2 * out.Ca(o, i);
       }
-      out.Cd(o, w) = sec.b0 - sec.b2 * sec.a0;
-      out.Cv(o, w) = sec.b1 - sec.b2 * sec.a1;
+      out.Cd(o, w) = (sec.b0 - sec.b2 * sec.a0) / sec.a0;
+      out.Cv(o, w) = (sec.b1 - sec.b2 * sec.a1) / sec.a0;
     }
   }
 }

@@ -67,6 +67,12 @@ void screen(const FitContext& fits, const std::vector<Extension>& extensions,
   }
   const std::size_t n = extensions.size();
   std::vector<std::vector<double>> bic(kinds.size(), std::vector<double>(n, std::numeric_limits<double>::infinity()));
+  // A candidate whose screening fit on the FRFs fails (its model cannot be evaluated there: a delay's dynamic
+  // stiffness singular at the lowest line) has failed: its full fit, on the same lines, fails the same way. It takes
+  // no full fit's place and speaks for no sibling variant (on frame3 two such delays took two of the six places,
+  // and drew in their siblings' full fits, 10 s of a round). A failed Gauss-Newton screening on the records is no
+  // evidence either way.
+  std::vector<std::string> screening_error(n);
   ordered_parallel(
       fitted.size(), *cores,
       [&](std::size_t i) {
@@ -82,21 +88,32 @@ void screen(const FitContext& fits, const std::vector<Extension>& extensions,
             s.info = evaluators[k]->info();
             s.values = values_by_name(s.info, r.values);
             s.fit = std::move(r);
-          } catch (const std::exception&) {
-            bic[t][k] = -std::numeric_limits<double>::infinity();  // fitted fully, where a failure is reported
+          } catch (const std::exception& e) {
+            if (t > 0) continue;  // bic stays +inf: no evidence from this ranking
+            screening_error[k] = e.what();
+            break;
           }
         }
       },
       [](std::size_t) {});
+  std::vector<std::size_t> judged;  // the candidates whose screening fit on the FRFs ran
+  for (std::size_t k : fitted) {
+    if (screening_error[k].empty()) {
+      judged.push_back(k);
+      continue;
+    }
+    screened_out[k] = 1;
+    outcomes[k] = failed(extensions[k], round, screening_error[k]);
+  }
   // The kept: the best of each ranking in turn.
   std::vector<std::vector<std::size_t>> orders;
   for (std::size_t t = 0; t < kinds.size(); ++t) {
-    std::vector<std::size_t> order = fitted;
+    std::vector<std::size_t> order = judged;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bic[t][a] < bic[t][b]; });
     orders.push_back(order);
   }
   // Only a candidate whose screening shows evidence goes on: a BIC below the current model's by more than
-  // |min_delta_bic| in one of the rankings (a failed screening fit too, whose failure the full fit reports). For a
+  // |min_delta_bic| in one of the rankings. For a
   // candidate that contains the current model the screening fit is the score test carried to convergence: without
   // evidence there, the full fit could only find a distant optimum, and a later round on a model near the noise
   // spent most of its time fitting candidates that all ended above it.
@@ -106,7 +123,7 @@ void screen(const FitContext& fits, const std::vector<Extension>& extensions,
     return false;
   };
   std::set<std::size_t> kept;
-  for (std::size_t r = 0; kept.size() < static_cast<std::size_t>(fits.options().full_fits) && r < fitted.size(); ++r)
+  for (std::size_t r = 0; kept.size() < static_cast<std::size_t>(fits.options().full_fits) && r < judged.size(); ++r)
     for (std::size_t t = 0; t < kinds.size() && kept.size() < static_cast<std::size_t>(fits.options().full_fits); ++t)
       if (evidence(orders[t][r])) kept.insert(orders[t][r]);
   // A candidate's variants are forms of one explanation, which the full fits choose among. A variant whose
@@ -116,16 +133,15 @@ void screen(const FitContext& fits, const std::vector<Extension>& extensions,
   // and only the on-feet variant was kept, which leaves a clear misfit; fully fitted, the simple variant names it.)
   std::set<std::string> kept_ids;
   for (std::size_t k : kept) kept_ids.insert(extensions[k].id);
-  for (std::size_t k : fitted)
-    if (!extensions[k].variant.empty() && kept_ids.count(extensions[k].id) && std::isfinite(bic[0][k]) &&
-        states[k].fit.cost > base_cost[0])
+  for (std::size_t k : judged)
+    if (!extensions[k].variant.empty() && kept_ids.count(extensions[k].id) && states[k].fit.cost > base_cost[0])
       kept.insert(k);
-  for (std::size_t k : fitted) {
+  for (std::size_t k : judged) {
     outcomes[k].screen_delta_bic = bic[0][k] - base_bic[0];
     if (kinds.size() > 1) outcomes[k].screen_records_delta_bic = bic[1][k] - base_bic[1];
   }
-  for (std::size_t k : fitted) {
-    if (kept.count(k) || !std::isfinite(bic[0][k])) continue;
+  for (std::size_t k : judged) {
+    if (kept.count(k)) continue;
     screened_out[k] = 1;
     CandidateOutcome o = outline(extensions[k], round);
     o.fit = states[k].fit;
