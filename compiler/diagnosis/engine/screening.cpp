@@ -1,7 +1,6 @@
 #include "diagnosis/engine/screening.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <set>
 
@@ -113,10 +112,9 @@ void screen(const FitContext& fits, const std::vector<Extension>& extensions,
     orders.push_back(order);
   }
   // Only a candidate whose screening shows evidence goes on: a BIC below the current model's by more than
-  // |min_delta_bic| in one of the rankings. For a
-  // candidate that contains the current model the screening fit is the score test carried to convergence: without
-  // evidence there, the full fit could only find a distant optimum, and a later round on a model near the noise
-  // spent most of its time fitting candidates that all ended above it.
+  // |min_delta_bic| in one of the rankings. For a candidate that contains the current model the screening fit is
+  // the score test carried to convergence: without evidence there, the full fit could only find a distant optimum,
+  // and a later round on a model near the noise spent most of its time fitting candidates that all ended above it.
   const auto evidence = [&](std::size_t k) {
     for (std::size_t t = 0; t < kinds.size(); ++t)
       if (!(bic[t][k] - base_bic[t] >= fits.options().min_delta_bic)) return true;
