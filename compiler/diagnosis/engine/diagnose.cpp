@@ -158,7 +158,7 @@ class Diagnoser {
       return false;
     }
     ModelState& chosen = states[static_cast<std::size_t>(best)];
-    const Judgement explained = explains(current, chosen, round < fits_.options().max_extensions);
+    const Judgement explained = explains(current, chosen, fits_.options().max_extensions - round, fits_.options().max_final_residual);
     if (!explained.why.empty()) fits_.say(explained.why);
     if (!explained.holds) return false;
     result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);

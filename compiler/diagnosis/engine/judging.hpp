@@ -46,8 +46,10 @@ int best_qualifying(const std::vector<CandidateOutcome>& outcomes);
 Judgement predicts_as_well(const std::vector<CandidateOutcome>& outcomes, int best);
 
 // Whether `chosen` explains what `current` gets wrong: the residual's excess over the noise at least halves; or,
-// when `further_round` (another round may follow), it lowers the excess and clears one of current's findings.
-Judgement explains(const ModelState& current, const ModelState& chosen, bool further_round);
+// while `rounds_left` further rounds may follow, it lowers the excess and clears one of current's findings, at a
+// pace (thresholds::kPartialPaceMargin) at which those rounds could bring the mean normalized residual down to
+// `final_residual`, what the extended model must reach in the end.
+Judgement explains(const ModelState& current, const ModelState& chosen, int rounds_left, double final_residual);
 
 // Whether the extensions that took the nominal model to `current` together explain enough to be kept: the residual
 // near the noise (options.max_final_residual), the nominal model's strongest finding cleared, no mode moved that the

@@ -86,19 +86,33 @@ TEST_CASE("a finding still shows unless its band falls below the threshold and i
 
 TEST_CASE("an extension explains when the excess halves, or partly when a further round may follow", "[judging]") {
   const ModelState current = state({1, 9, 9, 1, 13, 13}, {finding(45, 65, 13), finding(15, 35, 9)}, 7.0);
-  const Judgement halved = explains(current, state({1, 2, 2, 1, 6, 6}, {}, 3.0), true);
+  const Judgement halved = explains(current, state({1, 2, 2, 1, 6, 6}, {}, 3.0), 1, 3.0);
   CHECK(halved.holds);
   CHECK(halved.why.empty());
   // 7 -> 5 clears the 15-35 Hz finding only: a partial explanation while another round may follow, never at the end.
   const ModelState partly = state({1, 1, 1, 1, 13, 13}, {finding(45, 65, 13)}, 5.0);
-  const Judgement partial = explains(current, partly, true);
+  const Judgement partial = explains(current, partly, 1, 3.0);
   CHECK(partial.holds);
   CHECK(partial.why.find("clears: misfit near 25 Hz; a partial explanation") != std::string::npos);
-  const Judgement last = explains(current, partly, false);
+  const Judgement last = explains(current, partly, 0, 3.0);
   CHECK_FALSE(last.holds);
   CHECK(last.why.find("not an explanation") != std::string::npos);
   // Lower overall but clearing nothing: not an explanation.
-  CHECK_FALSE(explains(current, state({1, 8, 8, 1, 12, 12}, {}, 6.0), true).holds);
+  CHECK_FALSE(explains(current, state({1, 8, 8, 1, 12, 12}, {}, 6.0), 1, 3.0).holds);
+}
+
+TEST_CASE("a partial explanation is taken only at a pace that could reach the noise in the rounds left",
+          "[judging]") {
+  const ModelState current = state({1, 9, 9, 1, 13, 13}, {finding(45, 65, 13), finding(15, 35, 9)}, 7.0);
+  // 7 -> 6.5 clears the 15-35 Hz finding. To reach 3 it needs 3.5 more: one round at twice its pace gives 1, four
+  // rounds 4.
+  const ModelState slowly = state({1, 1, 1, 1, 13, 13}, {finding(45, 65, 13)}, 6.5);
+  const Judgement one_left = explains(current, slowly, 1, 3.0);
+  CHECK_FALSE(one_left.holds);
+  CHECK(one_left.why.find("at that pace the 1 round left could not bring it to 3") != std::string::npos);
+  CHECK_FALSE(explains(current, slowly, 3, 3.0).holds);  // 3 rounds: 3 < 3.5
+  CHECK(explains(current, slowly, 4, 3.0).holds);
+  CHECK(explains(current, slowly, 1, 6.0).holds);  // a lenient end: 0.5 more, and one round gives 1
 }
 
 TEST_CASE("the BIC winner must predict the held-back data about as well as the best qualifying candidate",

@@ -134,18 +134,23 @@ bool FitContext::leads_lower_on_companion(const Model& evaluator, const std::vec
                                           const std::map<std::string, double>& start,
                                           const std::map<std::string, double>& own) const {
   if (!screen_on_companion_) return true;
-  const ModelInfo& info = evaluator.info();
-  const auto local_fit = [&](const std::map<std::string, double>& from) {
-    FitOptions fo = local_fit_options(info, from);
-    estimate_all_but(info, held, fo);
-    fo.starts = 1;
-    fo.frf_weighting.averages = std::max(fo.frf_weighting.averages, screen_averages_);
-    return fit(evaluator, screen_data_, fo);
-  };
+  const std::optional<double> from = bic_on_companion(evaluator, held, start);
+  const std::optional<double> from_own = bic_on_companion(evaluator, held, own);
+  if (!from || !from_own) return true;  // not judged on the H1: refit on the records
+  return *from < *from_own + options_.min_delta_bic;
+}
+
+std::optional<double> FitContext::bic_on_companion(const Model& evaluator, const std::vector<std::string>& held,
+                                                   const std::map<std::string, double>& start) const {
+  if (!screen_on_companion_) return std::nullopt;
+  FitOptions fo = local_fit_options(evaluator.info(), start);
+  estimate_all_but(evaluator.info(), held, fo);
+  fo.starts = 1;
+  fo.frf_weighting.averages = std::max(fo.frf_weighting.averages, screen_averages_);
   try {
-    return local_fit(start).bic < local_fit(own).bic + options_.min_delta_bic;
+    return fit(evaluator, screen_data_, fo).bic;
   } catch (const std::exception&) {
-    return true;  // not judged on the H1: refit on the records
+    return std::nullopt;
   }
 }
 

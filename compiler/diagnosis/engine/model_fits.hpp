@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,11 @@ class FitContext {
   bool leads_lower_on_companion(const Model& evaluator, const std::vector<std::string>& held,
                                 const std::map<std::string, double>& start,
                                 const std::map<std::string, double>& own) const;
+
+  // With records: the BIC of a model fitted on the records' H1 estimates from `start` (one local fit, `held` as in
+  // assess()); none without a companion or where that fit fails.
+  std::optional<double> bic_on_companion(const Model& evaluator, const std::vector<std::string>& held,
+                                         const std::map<std::string, double>& start) const;
 
   // One progress line, under the fits' progress lock: a candidate's line may come while another candidate's fit
   // reports progress.
