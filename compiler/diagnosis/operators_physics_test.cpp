@@ -3,6 +3,9 @@
 #include "diagnosis/model_values.hpp"
 #include "diagnosis/test_support.hpp"
 
+#include <set>
+#include <string>
+
 using namespace mbgen;
 using namespace mbgen::diagnosis;
 using GiNaC::ex;
@@ -382,6 +385,29 @@ TEST_CASE("free_parameter:c12 changes the role only", "[diagnosis][physics]") {
   for (ir::Parameter& p : back.parameters)
     if (p.name == "c12") p.role = ir::Role::Fixed;
   CHECK(frontend::write_model(back) == frontend::write_model(ex2.model));
+}
+
+TEST_CASE("no output is left without a filter of its own: the same misfit on every output is not the sensors'",
+          "[diagnosis][physics]") {
+  const test::Example ex2 = test::load("mdof2");
+  ExtensionContext ctx;
+  ctx.outputs_with_findings = {"d1", "d2"};
+  ctx.band_lo_hz = 10;
+  ctx.band_hi_hz = 400;
+  const auto sensor_ids = [&](const ir::ModelIr& model, const std::string& text) {
+    std::set<std::string> ids;
+    for (const Extension& x : enumerate_extensions(model, text, ctx))
+      if (x.operator_name == "sensor_dynamics") ids.insert(x.id);
+    return ids;
+  };
+  CHECK(sensor_ids(ex2.model, ex2.text) == std::set<std::string>{"sensor_dynamics:d1", "sensor_dynamics:d2"});
+  const Extension* delayed = nullptr;
+  const std::vector<Extension> xs = enumerate_extensions(ex2.model, ex2.text, ctx);
+  for (const Extension& x : xs)
+    if (x.id == "sensor_dynamics:d2" && x.variant == "delay") delayed = &x;
+  REQUIRE(delayed);
+  // With d2 delayed, d1 is the last output without a filter: d2 may get another, d1 none.
+  CHECK(sensor_ids(delayed->model, delayed->mdl_text) == std::set<std::string>{"sensor_dynamics:d2"});
 }
 
 TEST_CASE("sensor_dynamics:d2's signal-chain forms: one filter on d2 each, started from the residual's delay",

@@ -158,7 +158,8 @@ class Diagnoser {
       return false;
     }
     ModelState& chosen = states[static_cast<std::size_t>(best)];
-    const Judgement explained = explains(current, chosen, fits_.options().max_extensions - round, fits_.options().max_final_residual);
+    const Judgement explained =
+        explains(current, chosen, fits_.options().max_extensions - round, fits_.options().max_final_residual);
     if (!explained.why.empty()) fits_.say(explained.why);
     if (!explained.holds) return false;
     result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
@@ -199,8 +200,16 @@ class Diagnoser {
           !fits_.leads_lower_on_companion(*fits_.derive_model(current.model), {},
                                           states[static_cast<std::size_t>(from)].values, current.values))
         break;
-      ModelState refit = fits_.assess(current.model, current.text, states[static_cast<std::size_t>(from)].values,
-                                      fits_.options().candidate_starts);
+      // A start the current model cannot be evaluated at is no better optimum: the current fit stands. (An mdof2
+      // support with a Maxwell element, draw 6: a compliant wall's fit took the delay on d2, selected the round
+      // before, to 0 s, where the delay's coordinate has no mass, and the whole diagnosis stopped with an error.)
+      ModelState refit;
+      try {
+        refit = fits_.assess(current.model, current.text, states[static_cast<std::size_t>(from)].values,
+                             fits_.options().candidate_starts);
+      } catch (const std::exception&) {
+        break;
+      }
       if (!(refit.fit.cost < current.fit.cost * (1.0 - 1e-9))) break;
       fits_.say("the current model fits better started from the estimate of " +
                 outcomes[static_cast<std::size_t>(from)].id +

@@ -108,8 +108,8 @@ Judgement explains(const ModelState& current, const ModelState& chosen, int roun
   for (const Discrepancy& d : current.residual.discrepancies)
     if (!cleared && !still_shows(current.channels, chosen, d, current.residual.threshold)) cleared = &d;
   if (!cleared) return j;
-  // Rounds that cannot end in a model to keep are not run (a frame3 with a torsion outside the library went
-  // 254 -> 204 -> 164 -> 150 in three rounds, 80 s, and was then rejected as a partial explanation).
+  // Rounds that at this pace could not end in a model to keep are not run (a frame3 with a torsion outside the
+  // library went 254 -> 204 -> 164 -> 150 in three rounds, 80 s, and was then rejected as a partial explanation).
   if (rounds_left * thresholds::kPartialPaceMargin * (before - after) < after - final_residual) {
     j.why = format("best candidate leaves the mean normalized residual at %.3g (from %.3g) and clears: ", after,
                    before) +

@@ -14,7 +14,7 @@ inline constexpr double kExplainedExcessFraction = 0.5;
 // A partial explanation is taken for a further round only while the rounds left could bring the residual near the
 // noise (DiagnoseOptions::max_final_residual) at this many times its own pace. Greedy selection takes the largest
 // gain first, so a later round usually gains less; an effect that another one masked may gain a little more (a
-// spindle's low-pass once its base was in: 123 against the base's 118).
+// spindle's low-pass once its base was in: 125 against the base's 118).
 inline constexpr double kPartialPaceMargin = 2.0;
 
 // A fit pressed an estimate against a bound when the data pull it beyond by more than this in chi-square
