@@ -19,7 +19,8 @@ namespace mbgen::estimation {
 // timing: it waits for the leader's step when it is ahead. It gives up at step i when its descent over the last
 // `window` steps, kept up to its iteration cap, would still leave its cost above the leader's cost at step i (which
 // the leader's final cost can only undercut). A fit slowing down is then not let run out its iteration cap for a
-// result that is bound to lose. The leader must not wait on the follower (it never does): run the leader first.
+// result that at its pace would lose; one that would drop after a plateau is lost with it. The leader must not wait
+// on the follower (it never does): start the leader first.
 class RefinementRace {
  public:
   // The leader's callbacks: each accepted step's cost, then its final cost (also after a failure: call always).
