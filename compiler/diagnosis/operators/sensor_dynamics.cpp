@@ -171,7 +171,7 @@ std::vector<Extension> sensor_dynamics(const OperatorInput& in) {
   std::vector<Extension> out;
   // A sensor's or its signal chain's dynamics change its own output only: the same kind of misfit on every output
   // is the structure's or the input's. So the last output without a filter of its own gets none (an mdof2 support
-  // with a Maxwell element, outside the library, was "explained" by a delay of 80 us on d2 and then one on d1).
+  // with a Maxwell element, outside the library, was "explained" by a delay on d2 and then one on d1).
   std::set<std::string> filtered;
   for (const ir::Filter& f : in.model.filters) filtered.insert(f.output);
   const bool last_unfiltered = in.model.outputs.size() > 1 && filtered.size() + 1 == in.model.outputs.size();
