@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "diagnosis/engine/prior_peaks.hpp"
 #include "diagnosis/engine/text_format.hpp"
 #include "diagnosis/engine/thresholds.hpp"
 
@@ -96,7 +97,8 @@ Judgement predicts_as_well(const std::vector<CandidateOutcome>& outcomes, int be
 // A partial explanation may be completed by a later round (two effects at once: a compliant base alone halved
 // neither a low-pass's phase drift nor the excess, 244 -> 126, and both went unnamed). Either way the final model is
 // judged whole (full_explanation).
-Judgement explains(const ModelState& current, const ModelState& chosen, int rounds_left, double final_residual) {
+Judgement explains(const ModelState& current, const ModelState& chosen, int rounds_left, double final_residual,
+                   const std::string& own_output) {
   const double before = current.residual.mean_z, after = chosen.residual.mean_z;
   if (before > 1.0 && after - 1.0 <= thresholds::kExplainedExcessFraction * (before - 1.0)) return {};
   Judgement j;
@@ -104,9 +106,14 @@ Judgement explains(const ModelState& current, const ModelState& chosen, int roun
   j.why = format("best candidate leaves the mean normalized residual at %.3g (from %.3g; noise alone gives 1): "
                  "not an explanation", after, before);
   if (rounds_left <= 0 || !(after < before)) return j;
+  // A sensor's dynamics change its own output only: a finding on another output that its fit clears was cleared by
+  // the structure's parameters refitted around it (a spindle's Maxwell bearing, outside the library: a low-pass on
+  // xs_front "cleared" a shift on xh_front, and a soft mount then completed a wrong extension in 3 of 8 draws).
   const Discrepancy* cleared = nullptr;
   for (const Discrepancy& d : current.residual.discrepancies)
-    if (!cleared && !still_shows(current.channels, chosen, d, current.residual.threshold)) cleared = &d;
+    if (!cleared && (own_output.empty() || output_of(d.channel) == own_output) &&
+        !still_shows(current.channels, chosen, d, current.residual.threshold))
+      cleared = &d;
   if (!cleared) return j;
   // Rounds that at this pace could not end in a model to keep are not run (a frame3 with a torsion outside the
   // library went 254 -> 204 -> 164 -> 150 in three rounds, 80 s, and was then rejected as a partial explanation).

@@ -48,8 +48,10 @@ Judgement predicts_as_well(const std::vector<CandidateOutcome>& outcomes, int be
 // Whether `chosen` explains what `current` gets wrong: the residual's excess over the noise at least halves; or,
 // while `rounds_left` further rounds may follow, it lowers the excess and clears one of current's findings, at a
 // pace (thresholds::kPartialPaceMargin) at which those rounds could bring the mean normalized residual down to
-// `final_residual`, what the extended model must reach in the end.
-Judgement explains(const ModelState& current, const ModelState& chosen, int rounds_left, double final_residual);
+// `final_residual`, what the extended model must reach in the end. `own_output`, when given (a sensor's dynamics):
+// only a finding on that output counts as cleared by a partial explanation.
+Judgement explains(const ModelState& current, const ModelState& chosen, int rounds_left, double final_residual,
+                   const std::string& own_output = "");
 
 // Whether the extensions that took the nominal model to `current` together explain enough to be kept: the residual
 // near the noise (options.max_final_residual), the nominal model's strongest finding cleared, no mode moved that the

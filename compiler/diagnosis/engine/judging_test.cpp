@@ -101,6 +101,17 @@ TEST_CASE("an extension explains when the excess halves, or partly when a furthe
   CHECK_FALSE(explains(current, state({1, 8, 8, 1, 12, 12}, {}, 6.0), 1, 3.0).holds);
 }
 
+TEST_CASE("a sensor's dynamics explain in part only through a finding on their own output", "[judging]") {
+  const ModelState current = state({1, 9, 9, 1, 13, 13}, {finding(45, 65, 13), finding(15, 35, 9)}, 7.0);
+  const ModelState partly = state({1, 1, 1, 1, 13, 13}, {finding(45, 65, 13)}, 5.0);
+  CHECK(explains(current, partly, 1, 3.0, "y").holds);  // the findings lie on channel y/F
+  const Judgement elsewhere = explains(current, partly, 1, 3.0, "x");
+  CHECK_FALSE(elsewhere.holds);
+  CHECK(elsewhere.why.find("not an explanation") != std::string::npos);
+  // Halving the excess needs no finding of its own.
+  CHECK(explains(current, state({1, 2, 2, 1, 6, 6}, {}, 3.0), 1, 3.0, "x").holds);
+}
+
 TEST_CASE("a partial explanation is taken only at a pace that could reach the noise in the rounds left",
           "[judging]") {
   const ModelState current = state({1, 9, 9, 1, 13, 13}, {finding(45, 65, 13), finding(15, 35, 9)}, 7.0);
