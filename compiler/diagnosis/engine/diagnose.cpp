@@ -274,9 +274,15 @@ class Diagnoser {
     const std::set<std::string> now = outputs_missed_alone(s.channels);
     for (const std::string& o : sensor_outputs_)
       if (now.count(o)) ctx.outputs_with_findings.insert(o);
-    for (const Discrepancy& d : s.residual.discrepancies)
-      if (d.kind == "phase_trend" && !ctx.output_delay_s.count(output_of(d.channel)))
-        ctx.output_delay_s[output_of(d.channel)] = d.delay_s;
+    // A phase drift that one output alone shows is a signal chain's signature as well (a low-pass's lag, a delay),
+    // also where the structure's misfit shows on every output: a compliant base beside a low-pass on xs_front.
+    std::set<std::string> drifting;
+    for (const Discrepancy& d : s.residual.discrepancies) {
+      if (d.kind != "phase_trend") continue;
+      drifting.insert(output_of(d.channel));
+      if (!ctx.output_delay_s.count(output_of(d.channel))) ctx.output_delay_s[output_of(d.channel)] = d.delay_s;
+    }
+    if (drifting.size() == 1) ctx.outputs_with_findings.insert(*drifting.begin());
     for (const ChannelResidual& c : s.channels) {
       if (c.f_hz.empty()) continue;
       ctx.band_lo_hz = ctx.band_lo_hz > 0 ? std::min(ctx.band_lo_hz, c.f_hz.front()) : c.f_hz.front();
