@@ -109,7 +109,8 @@ TEST_CASE("spindle: the candidates come from its structure", "[diagnosis]") {
     for (const Extension& x : xs) test::check_candidate(x);
     ctx.outputs_with_findings = {"xs_front"};
     xs = enumerate_extensions(ex.model, ex.text, ctx);
-    CHECK_THAT(variants_of(xs), Equals(std::vector<std::string>{"mounting resonance", "low-pass", "high-pass", "delay"}));
+    CHECK_THAT(variants_of(xs),
+               Equals(std::vector<std::string>{"mounting resonance", "low-pass", "high-pass", "delay"}));
     for (const Extension& x : xs) test::check_candidate(x);
   }
   SECTION("a finding without a peak on one output's channels brings its signal chain's forms, not the mounting") {

@@ -65,8 +65,8 @@ struct ExtensionContext {
   // The same per output (the channels "OUTPUT/INPUT" of that output), strongest first; outputs without one absent.
   std::map<std::string, std::vector<double>> output_peak_hz;
   std::set<std::string> varying_parameters;  // parameters the data sets set differently (e.g. n_sp)
-  // Outputs whose channels show a finding of any kind (a peak, a misfit, a phase trend...): what a sensor's own
-  // dynamics or its signal conditioning could explain.
+  // Outputs whose misfit a sensor's signal conditioning could explain (its filters): one the model misses alone
+  // (more than twice every other output, from the nominal model on), or the one output whose phase drifts.
   std::set<std::string> outputs_with_findings;
   std::map<std::string, double> output_delay_s;  // a delay the residual's phase shows on the output's channels
   double band_lo_hz = 0, band_hi_hz = 0;         // the judged lines' frequency range over all data
