@@ -146,6 +146,8 @@ std::string label(const Extension& ext) { return ext.id + (ext.variant.empty() ?
 CandidateOutcome outline(const Extension& ext, int round) {
   CandidateOutcome o;
   o.id = ext.id;
+  o.operator_name = ext.operator_name;
+  o.target = ext.target;
   o.description = ext.description;
   o.variant = ext.variant;
   o.round = round;

@@ -158,11 +158,10 @@ class Diagnoser {
       return false;
     }
     ModelState& chosen = states[static_cast<std::size_t>(best)];
-    const std::string& id = outcomes[static_cast<std::size_t>(best)].id;
-    const std::string sensor = "sensor_dynamics:";
+    const CandidateOutcome& winner = outcomes[static_cast<std::size_t>(best)];
     const Judgement explained =
         explains(current, chosen, fits_.options().max_extensions - round, fits_.options().max_final_residual,
-                 id.rfind(sensor, 0) == 0 ? id.substr(sensor.size()) : "");
+                 winner.operator_name == "sensor_dynamics" ? winner.target : "");
     if (!explained.why.empty()) fits_.say(explained.why);
     if (!explained.holds) return false;
     result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);

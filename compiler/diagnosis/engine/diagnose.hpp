@@ -59,6 +59,7 @@ struct DiagnoseOptions {
 
 struct CandidateOutcome {
   std::string id, description;
+  std::string operator_name, target;  // Extension's: the id's two parts
   // For a candidate with variants (Extension::variant): the one reported (the lowest BIC), and the others that
   // fit exactly as well (within 0.01 in BIC), which the data cannot tell from it.
   std::string variant;
