@@ -60,6 +60,19 @@ struct Extension {
   std::vector<std::string> resonating_bodies;
 };
 
+// What a fit of e around the current estimate holds at their start values while the model's own parameters settle
+// around them first (FitOptions::settle_first): the new parameters of an element of the structure (a body, spring,
+// mass or mode), which the current estimate, fitted without it, has partly absorbed. None for the measurement
+// chain's factors and a sensor's dynamics: they leave the structure's modes where they are, and the chain's
+// factors start at their least-squares values against the current estimate already (settled the other way round;
+// the structure settled around a held input factor took it as a scale, spindle mount and mass, draw 2).
+inline std::vector<std::string> settling_held(const Extension& e) {
+  std::vector<std::string> names;
+  if (e.operator_name == "measurement_chain" || e.operator_name == "sensor_dynamics") return names;
+  for (const NewParameter& p : e.new_parameters) names.push_back(p.name);
+  return names;
+}
+
 struct ExtensionContext {
   std::vector<double> peak_hz;               // unexplained resonances in the residual, strongest first (may be empty)
   // The same per output (the channels "OUTPUT/INPUT" of that output), strongest first; outputs without one absent.

@@ -17,21 +17,24 @@ namespace {
 
 // A candidate's fit: two searches, around the current estimate and around the priors (where the current
 // estimate has bent parameters to mimic the missing effect, the priors are the better start); the lower cost
-// wins. With time records one search starts from both (also_start_at): each search ends in simulation-based
+// wins. Around the current estimate, the model's own parameters first settle around a new structural element
+// (settling_held, FitOptions::settle_first).
+// With time records one search starts from both (also_start_at): each search ends in simulation-based
 // refinements of its best start and of its centre, which cost most of a candidate's time, so the priors get a
 // start of the search rather than a search of their own. `held`: new parameters kept at their start values.
 // Each search also starts from the candidate's alternative starts (its new mode at the next peaks).
 ModelState search(const FitContext& fits, const Extension& ext, const Model& evaluator, const ModelState& base,
                   const Workers& workers, const std::vector<std::string>& held) {
   const std::vector<std::map<std::string, double>>& further = ext.alternative_starts;
+  const std::vector<std::string> settle = settling_held(ext);
   if (fits.has_records()) {
     std::map<std::string, double> priors;
     for (const ParameterInfo& p : evaluator.info().parameters) priors[p.name] = p.value;
     return fits.assess(evaluator, ext.model, ext.mdl_text, base.values, fits.options().candidate_starts + 1, workers,
-                       priors, held, further, ext.nesting);
+                       priors, held, further, ext.nesting, settle);
   }
   ModelState s = fits.assess(evaluator, ext.model, ext.mdl_text, base.values, fits.options().candidate_starts, workers,
-                             {}, held, further, ext.nesting);
+                             {}, held, further, ext.nesting, settle);
   ModelState from_priors =
       fits.assess(evaluator, ext.model, ext.mdl_text, {}, fits.options().candidate_starts, workers, {}, held, further);
   if (from_priors.fit.cost < s.fit.cost) s = std::move(from_priors);

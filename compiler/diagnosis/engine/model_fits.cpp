@@ -78,6 +78,7 @@ FitOptions FitContext::local_fit_options(const ModelInfo& info, const std::map<s
   fo.also_start_at.clear();
   fo.optimum_start_at.clear();
   fo.further_starts_at.clear();
+  fo.settle_first.clear();
   fo.threads = 1;
   fo.progress = nullptr;
   return fo;
@@ -98,11 +99,13 @@ ModelState FitContext::assess(const Model& evaluator, const ir::ModelIr& model, 
                               const std::map<std::string, double>& start, int starts, const Workers& workers,
                               const std::map<std::string, double>& also_start_at, const std::vector<std::string>& held,
                               const std::vector<std::map<std::string, double>>& further_starts_at,
-                              const std::map<std::string, double>& optimum_start_at) const {
+                              const std::map<std::string, double>& optimum_start_at,
+                              const std::vector<std::string>& settle_first) const {
   FitOptions fo = options_.fit;
   fo.also_start_at = also_start_at;
   fo.optimum_start_at = optimum_start_at;
   fo.further_starts_at = further_starts_at;
+  fo.settle_first = settle_first;
   estimate_all_but(evaluator.info(), held, fo);
   const ModelInfo& info = evaluator.info();
   for (const auto& [name, v] : estimated_values(info, start)) fo.values[name] = v;

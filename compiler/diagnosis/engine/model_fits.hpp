@@ -70,12 +70,13 @@ class FitContext {
   // thread.
   // `held`: parameters with role estimate that this fit keeps at their values (the others are estimated).
   // `also_start_at`, `further_starts_at`, `optimum_start_at`: starts of the fit's search in addition to its
-  // `starts` (FitOptions).
+  // `starts`; `settle_first`: parameters held while the others settle from each start (FitOptions).
   ModelState assess(const Model& evaluator, const ir::ModelIr& model, const std::string& text,
                     const std::map<std::string, double>& start, int starts, const Workers& workers,
                     const std::map<std::string, double>& also_start_at = {}, const std::vector<std::string>& held = {},
                     const std::vector<std::map<std::string, double>>& further_starts_at = {},
-                    const std::map<std::string, double>& optimum_start_at = {}) const;
+                    const std::map<std::string, double>& optimum_start_at = {},
+                    const std::vector<std::string>& settle_first = {}) const;
 
   // With records: whether a model, fitted on the records' H1 estimates from `start` (another model's estimates),
   // ends lower there in BIC than fitted from its own estimate `own`. A better optimum shows on the H1 as well, where

@@ -40,6 +40,7 @@ void screen(const FitContext& fits, const std::vector<Extension>& extensions,
     // point (a mount's stiffness untied from its mirror image: x-direction data see only the pair's sum until
     // the asymmetry couples the planes). The searches from the priors and the alternative starts are the full
     // fit's.
+    if (!is_base) fo.settle_first = settling_held(*ext);
     if (!is_base && !ext->nesting.empty()) {
       fo.starts = 2;
       fo.optimum_start_at = ext->nesting;

@@ -11,13 +11,23 @@ Eigen::VectorXd Estimator::full_values(const std::vector<int>& free, const Eigen
   return physical_values(prior_, free, transforms_, theta);
 }
 
+Eigen::VectorXd Estimator::full_values(const std::vector<int>& free, const Eigen::VectorXd& theta,
+                                       const Eigen::VectorXd& held_at) const {
+  return physical_values(held_at, free, transforms_, theta);
+}
+
 Eigen::VectorXd Estimator::internal(const std::vector<int>& free, const Eigen::VectorXd& full) const {
   return internal_values(free, transforms_, full);
 }
 
 ResidualFunction Estimator::function(const std::vector<int>& free, ResidualKind kind) const {
-  return [this, free, kind](const Eigen::VectorXd& theta, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
-    const Eigen::VectorXd full = full_values(free, theta);
+  return function(free, kind, prior_);
+}
+
+ResidualFunction Estimator::function(const std::vector<int>& free, ResidualKind kind,
+                                     const Eigen::VectorXd& held_at) const {
+  return [this, free, kind, held_at](const Eigen::VectorXd& theta, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    const Eigen::VectorXd full = full_values(free, theta, held_at);
     // The chain rule to theta, applied as the Jacobian is written.
     Eigen::VectorXd derivative(static_cast<Eigen::Index>(free.size()));
     for (std::size_t j = 0; j < free.size(); ++j)

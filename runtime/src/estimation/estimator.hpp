@@ -20,12 +20,17 @@ class Estimator {
   Estimator(const OutputErrorProblem& problem, const Eigen::VectorXd& prior, std::vector<ParameterTransform> transforms)
       : problem_(problem), prior_(prior), transforms_(std::move(transforms)) {}
 
-  // The full parameter vector with the free ones at internal coordinates theta, and back.
+  // The full parameter vector with the free ones at internal coordinates theta (the others at `held_at`, by
+  // default the prior), and back.
   Eigen::VectorXd full_values(const std::vector<int>& free, const Eigen::VectorXd& theta) const;
+  Eigen::VectorXd full_values(const std::vector<int>& free, const Eigen::VectorXd& theta,
+                              const Eigen::VectorXd& held_at) const;
   Eigen::VectorXd internal(const std::vector<int>& free, const Eigen::VectorXd& full) const;
 
   // r(theta) and its Jacobian with respect to theta; false where the model cannot be evaluated (a failed trial step).
   ResidualFunction function(const std::vector<int>& free, ResidualKind kind) const;
+  // The same with the parameters not free at `held_at` (all model parameters) instead of the prior.
+  ResidualFunction function(const std::vector<int>& free, ResidualKind kind, const Eigen::VectorXd& held_at) const;
 
   // Jacobian of the weighted residuals in physical units with columns multiplied by the parameters' magnitudes
   // (relative sensitivities; a parameter at zero by its transform's scale). `scale_out` and `r_out` receive that

@@ -228,7 +228,8 @@ constexpr double kNoiseMargin = 0.1;
 // The memo key of a start's local fit (local_fit_memo.hpp); none where the residuals cannot be evaluated there.
 std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const std::vector<int>& free, const Eigen::VectorXd& theta,
                                                const LmOptions& search_lm, const ResidualFunction& weighted,
-                                               const ResidualFunction& log_ratio, bool log_ratio_first) {
+                                               const ResidualFunction& log_ratio, bool log_ratio_first,
+                                               const std::vector<int>& settling) {
   estimation::Fingerprint f;
   Eigen::VectorXd held = ctx.setup.prior;  // the estimator takes the parameters not fitted from the prior
   for (int i : free) held[i] = 0;
@@ -244,6 +245,8 @@ std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const std:
     f.add(lm->continue_gain), f.add(lm->continue_window), f.add(lm->iteration_cap);
   }
   f.add(static_cast<int>(log_ratio_first));
+  f.add(static_cast<int>(settling.size()));
+  for (int i : settling) f.add(i);
   Eigen::VectorXd r;
   for (const ResidualFunction* fn : {&weighted, &log_ratio}) {
     if (fn == &log_ratio && !log_ratio_first) continue;
@@ -261,8 +264,26 @@ std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const std:
   return key;
 }
 
+// FitOptions::settle_first: the free parameters that settle while those named are held (model indices, in `free`'s
+// order); empty where nothing would be held or nothing would settle.
+std::vector<int> settling_parameters(const FitContext& ctx, const std::vector<int>& free) {
+  std::vector<int> held;
+  for (const std::string& name : ctx.options.settle_first) {
+    const int idx = ctx.info.parameter_index(name);
+    if (idx < 0) throw FitError("fit: settle_first names " + name + ": the model has no parameter " + name);
+    held.push_back(idx);
+  }
+  std::vector<int> settling;
+  for (int i : free)
+    if (std::find(held.begin(), held.end(), i) == held.end()) settling.push_back(i);
+  if (settling.size() == free.size()) settling.clear();
+  return settling;
+}
+
 // One local fit from every starting point on the search problem: log-ratio search first where it applies (not from
-// FitOptions::optimum_start_at), then the weighted refinement. Results by start index.
+// FitOptions::optimum_start_at), then the weighted refinement. With FitOptions::settle_first, from the prior and the
+// further starts those two stages run on the settling parameters alone, the held ones at the start's values, and the
+// weighted refinement of all follows. Results by start index.
 std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem& search, const std::vector<int>& free,
                                       const std::vector<Eigen::VectorXd>& start_points) {
   const int starts = static_cast<int>(start_points.size());
@@ -270,6 +291,13 @@ std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem
   search_lm.cost_tolerance = std::max(ctx.lm.cost_tolerance, ctx.options.search_cost_tolerance);
   const ResidualFunction weighted = search.estimator().function(free, ResidualKind::Weighted);
   const ResidualFunction log_ratio = search.estimator().function(free, ResidualKind::LogRatio);
+  const std::vector<int> settling = settling_parameters(ctx, free);
+  // The starts that settle: the prior and further_starts_at, where the parameters not named stand at the prior.
+  const int first_further = 1 + static_cast<int>(!ctx.options.also_start_at.empty()) +
+                            static_cast<int>(!ctx.options.optimum_start_at.empty());
+  const auto settles_from = [&](int s) {
+    return s == 0 || (s >= first_further && s < first_further + static_cast<int>(ctx.options.further_starts_at.size()));
+  };
   estimation::AgreementRule rule;
   if (ctx.options.agree > 0 && starts > ctx.options.agree) {
     rule.agree = ctx.options.agree;
@@ -284,13 +312,29 @@ std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem
         search_here.abandoned = refine_here.abandoned = abandoned;
         Eigen::VectorXd theta = start_points[static_cast<std::size_t>(s)];
         const bool log_ratio_first = search.log_ratio_first() && s != optimum_start;
+        const std::vector<int> settles = settles_from(s) ? settling : std::vector<int>{};
         const std::optional<LocalFitMemo::Key> key =
-            ctx.options.memo ? local_fit_key(ctx, free, theta, search_lm, weighted, log_ratio, log_ratio_first)
+            ctx.options.memo ? local_fit_key(ctx, free, theta, search_lm, weighted, log_ratio, log_ratio_first, settles)
                              : std::nullopt;
         if (key)
           if (std::optional<LmResult> seen = ctx.options.memo->find(*key)) return *seen;
         bool whole = true;  // not abandoned part-way: a result worth keeping
-        if (log_ratio_first) {
+        if (!settles.empty()) {
+          const Estimator& e = search.estimator();
+          const Eigen::VectorXd at = e.full_values(free, theta);
+          Eigen::VectorXd part = e.internal(settles, at);
+          const IterationCallback progress = ctx.progress(s, starts, "settle");
+          if (log_ratio_first) {
+            const LmResult searched = estimation::levenberg_marquardt(
+                e.function(settles, ResidualKind::LogRatio, at), part, search_here, progress);
+            whole = searched.stop_reason != kAbandoned;
+            part = searched.x;
+          }
+          const LmResult settled = estimation::levenberg_marquardt(
+              e.function(settles, ResidualKind::Weighted, at), part, refine_here, progress);
+          whole = whole && settled.stop_reason != kAbandoned;
+          theta = e.internal(free, e.full_values(settles, settled.x, at));
+        } else if (log_ratio_first) {
           const LmResult searched =
               estimation::levenberg_marquardt(log_ratio, theta, search_here, ctx.progress(s, starts, "search"));
           whole = searched.stop_reason != kAbandoned;

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <set>
 
 using namespace mbgen;
@@ -164,6 +166,44 @@ TEST_CASE("further_starts_at follow also_start_at, before the random starts", "[
   o.starts = 2;  // `starts` bounds them
   CHECK(fit(model, {DataSet(data)}, o).start_costs.size() == 2);
   o.further_starts_at = {{{"no_such_parameter", 1.0}}};
+  CHECK_THROWS_AS(fit(model, {DataSet(data)}, o), FitError);
+}
+
+TEST_CASE("settle_first: from the prior and the further starts the others settle first, then all are refined",
+          "[fit][frf][global]") {
+  const test::Mdof2Values truth;
+  std::mt19937 rng(8);
+  const FrfData data = test::mdof2_frf_data(truth, frequencies(), 0.01, rng);
+  test::Mdof2Values prior = truth;
+  prior.k11 *= 1.3;
+  prior.m1 *= 0.8;
+  const test::LinearModel model = test::mdof2_model(prior);
+  FitOptions o;
+  o.starts = 4;
+  o.agree = 0;
+  o.optimum_start_at = {{"k12", truth.k12}};         // start 1: a point the caller knows to be an optimum
+  o.further_starts_at = {{{"k12", 1.5 * truth.k12}}};  // start 2; start 3 is drawn at random
+  const FitResult plain = fit(model, {DataSet(data)}, o);
+  o.settle_first = {"k12"};
+  std::mutex mutex;
+  std::map<int, std::set<std::string>> stages;  // by start
+  o.progress = [&](const FitProgress& p) {
+    std::lock_guard<std::mutex> lock(mutex);
+    stages[p.start].insert(p.stage);
+  };
+  const FitResult settled = fit(model, {DataSet(data)}, o);
+  CHECK(settled.cost == Approx(plain.cost).epsilon(1e-6));  // the same optimum
+  CHECK(settled.values[4] == Approx(plain.values[4]).epsilon(1e-4));
+  const std::set<std::string> settling = {"settle", "refine"}, refining = {"refine"}, searching = {"search", "refine"};
+  CHECK(stages[0] == settling);   // the prior: settled (log-ratio search and refinement on all but k12), refined
+  CHECK(stages[1] == refining);   // the optimum start: refined only
+  CHECK(stages[2] == settling);   // a further start: the others at the prior, as from the prior
+  CHECK(stages[3] == searching);  // a random start: every parameter elsewhere, nothing to settle around
+  // Nothing left to settle (every free parameter held): the plain fit.
+  o.progress = nullptr;
+  o.settle_first = {"m1", "m2", "k11", "k22", "k12", "c11", "c22"};
+  CHECK(fit(model, {DataSet(data)}, o).start_costs == plain.start_costs);
+  o.settle_first = {"no_such_parameter"};
   CHECK_THROWS_AS(fit(model, {DataSet(data)}, o), FitError);
 }
 

@@ -54,7 +54,7 @@ struct FitProgress {
   int starts = 1;      // number of starts in this stage
   int iteration = 0;   // LM iteration within that start
   double cost = 0;     // weighted residual sum of squares
-  std::string stage;   // "search", "refine", "refine records" (time records), "final"
+  std::string stage;   // "settle", "search", "refine", "refine records" (time records), "final"
 };
 
 struct FitOptions {
@@ -82,6 +82,14 @@ struct FitOptions {
   // `starts` allows (named values; the others at the prior). E.g. a diagnosis candidate's new mode started at
   // each of the data's unexplained peaks, not only at the strongest.
   std::vector<std::map<std::string, double>> further_starts_at;
+  // Parameters held at their start values while the other free ones settle around them (the start's search and
+  // refinement on those alone), before all are refined together: from the starts where the parameters not named
+  // stand at the prior (`values`), that is start 0 and further_starts_at. E.g. a diagnosis candidate's new
+  // structural element fitted around the current estimate, which has absorbed part of what the element explains (a
+  // rigid wall's spring holds the series stiffness of the wall's support and itself): with the element added at
+  // its start the model's own modes stand misplaced, and a joint fit switched the element off (a wall damped rigid)
+  // before it could place the new mode (docs/estimation.md, "Solver and global search").
+  std::vector<std::string> settle_first;
   double spread = 3.0;
   unsigned long long seed = 1;
   // The search ends early once `agree` of its starts, counted in index order, have ended within a relative 1e-6 of
