@@ -179,6 +179,21 @@ std::vector<Eigen::VectorXd> starting_points(const FitContext& ctx, const std::v
                                   chosen);
 }
 
+// Where starting_points puts the chosen starts: the prior (0), also_start_at, optimum_start_at, further_starts_at,
+// then the random ones.
+struct StartLayout {
+  int optimum = -1;                        // optimum_start_at's index; -1 without one
+  int further_begin = 0, further_end = 0;  // further_starts_at's indices [begin, end)
+};
+StartLayout start_layout(const FitOptions& options) {
+  StartLayout layout;
+  int next = 1 + static_cast<int>(!options.also_start_at.empty());
+  if (!options.optimum_start_at.empty()) layout.optimum = next++;
+  layout.further_begin = next;
+  layout.further_end = next + static_cast<int>(options.further_starts_at.size());
+  return layout;
+}
+
 // Where the multi-start search runs: on the data themselves, or, for time records, on FRFs estimated from them
 // (spectral_companion.hpp), whose best start is then refined on the records. Not copyable: the companion's
 // estimator refers to its problem.
@@ -292,20 +307,15 @@ std::vector<LmResult> fit_every_start(const FitContext& ctx, const SearchProblem
   const ResidualFunction weighted = search.estimator().function(free, ResidualKind::Weighted);
   const ResidualFunction log_ratio = search.estimator().function(free, ResidualKind::LogRatio);
   const std::vector<int> settling = settling_parameters(ctx, free);
+  const StartLayout layout = start_layout(ctx.options);
+  const int optimum_start = layout.optimum;
   // The starts that settle: the prior and further_starts_at, where the parameters not named stand at the prior.
-  const int first_further = 1 + static_cast<int>(!ctx.options.also_start_at.empty()) +
-                            static_cast<int>(!ctx.options.optimum_start_at.empty());
-  const auto settles_from = [&](int s) {
-    return s == 0 || (s >= first_further && s < first_further + static_cast<int>(ctx.options.further_starts_at.size()));
-  };
+  const auto settles_from = [&](int s) { return s == 0 || (s >= layout.further_begin && s < layout.further_end); };
   estimation::AgreementRule rule;
   if (ctx.options.agree > 0 && starts > ctx.options.agree) {
     rule.agree = ctx.options.agree;
     rule.ceiling = search.noise_cost() * (1 + kNoiseMargin);
   }
-  // starting_points: the prior, then also_start_at, then optimum_start_at.
-  const int optimum_start =
-      ctx.options.optimum_start_at.empty() ? -1 : 1 + static_cast<int>(!ctx.options.also_start_at.empty());
   return estimation::run_starts_until_agreed(
       starts, ctx.options.threads, rule, [&](int s, const std::function<bool()>& abandoned) {
         LmOptions search_here = search_lm, refine_here = ctx.lm;
