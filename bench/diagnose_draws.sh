@@ -8,6 +8,7 @@
 # tests/diagnosis (which keep CI short).
 #   bench/diagnose_draws.sh [build-dir] [draws] [case-filter-regex]
 #   e.g. bench/diagnose_draws.sh build 5 'mdof2.*frf'
+# DRAWS_KEEP=DIR keeps each draw's diagnosis JSON and progress lines there (DIR/EXAMPLE_CASE_KIND_drawN.json, .log).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mbgen=${1:-build}/compiler/mbgen
@@ -77,6 +78,12 @@ for entry in "${cases[@]}"; do
          > /dev/null 2> "$work/err"; then
       failed=$((failed + 1))
       continue
+    fi
+    if [ -n "${DRAWS_KEEP:-}" ]; then
+      mkdir -p "$DRAWS_KEEP"
+      kept="$DRAWS_KEEP/${example}_${case}_${kind}$(echo "${options:-}" | tr -c 'A-Za-z0-9=,\n' _)_draw$draw"
+      cp "$work/d.json" "$kept.json"
+      cp "$work/err" "$kept.log"
     fi
     read -r verdict selected < <(python3 -c "
 import json; j = json.load(open('$work/d.json')); print(j['verdict'], '+'.join(j['selected']) or '-')")

@@ -79,6 +79,7 @@ class Diagnoser {
       }
       if (!extend_once(round, result, current)) break;
     }
+    drop_superseded(result, current);
     keep_only_full_explanations(result, current);
     if (!result.selected.empty())
       current.text = with_estimates(current.text, current.model.file, current.values, added_parameters(result));
@@ -135,6 +136,7 @@ class Diagnoser {
     for (double f : ctx.peak_hz) hints += format(" %.1f", f);
     if (!hints.empty()) fits_.say("round " + std::to_string(round) + ": peaks to place new modes at (Hz):" + hints);
     std::vector<Extension> extensions = enumerate_extensions(current.model, current.text, ctx);
+    const std::vector<Extension> enumerated = extensions;  // before the chain's are sifted: the winner's is here
     // The measurement chain's candidates come first in the list; only those the data support are fitted.
     const auto structural = std::stable_partition(extensions.begin(), extensions.end(),
                                                   [](const Extension& e) { return e.operator_name == kChainOperator; });
@@ -165,6 +167,9 @@ class Diagnoser {
     if (!explained.why.empty()) fits_.say(explained.why);
     if (!explained.holds) return false;
     result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
+    result.selected_variants.push_back(winner.variant);
+    for (const Extension& e : enumerated)
+      if (e.id == winner.id && e.variant == winner.variant) taken_.push_back({e, ctx, round});
     result.explains.push_back(findings_cleared(result, current, chosen));
     for (const std::string& id : equivalents(outcomes, best))
       fits_.say("  " + id + " fits exactly as well: the same extension in another place");
@@ -230,6 +235,66 @@ class Diagnoser {
     return best;
   }
 
+  // Backward elimination of the first of two extensions taken (docs/diagnosis.md, step 7). Greedy rounds take the
+  // largest gain first, and the second extension may do the first one's work better: a low-pass on d2 taken for
+  // what was a delay's phase lag, and then the delay itself. The second is applied to the nominal model alone and
+  // fitted from the final estimates; when the final model's BIC is lower than that by less than a round's least
+  // evidence (|min_delta_bic|) and the second alone qualifies against the nominal model, the first is superseded:
+  // dropped, and the model without it is the current one.
+  void drop_superseded(DiagnosisResult& result, ModelState& current) {
+    if (result.selected.size() != 2 || taken_.size() != 2) return;
+    const Taken& first = taken_[0];
+    const Taken& second = taken_[1];
+    const Extension* alone = nullptr;
+    const std::vector<Extension> on_nominal =
+        enumerate_extensions(result.nominal.model, result.nominal.text, second.context);
+    for (const Extension& e : on_nominal)
+      if (e.id == second.extension.id && e.variant == second.extension.variant &&
+          e.new_parameters.size() == second.extension.new_parameters.size())
+        alone = &e;
+    if (!alone) return;
+    // Start at the final estimates; the second's new parameters (renamed where the first's took their names) at its
+    // estimates, and held where the final model holds them.
+    std::map<std::string, double> start = current.values;
+    std::vector<std::string> held;
+    for (std::size_t k = 0; k < alone->new_parameters.size(); ++k) {
+      const std::string& was = second.extension.new_parameters[k].name;
+      const std::string& now = alone->new_parameters[k].name;
+      const auto value = current.values.find(was);
+      if (value == current.values.end()) return;
+      start[now] = value->second;
+      for (const ir::Parameter& p : current.model.parameters)
+        if (p.name == was && p.role == ir::Role::Known) held.push_back(now);
+    }
+    const std::unique_ptr<Model> evaluator = fits_.derive_model(alone->model);
+    ModelState without;
+    try {
+      without = fits_.assess(*evaluator, alone->model, alone->mdl_text, start, 1,
+                             Workers{fits_.options().fit.threads, nullptr, nullptr}, {}, held);
+    } catch (const std::exception&) {
+      return;  // not evaluable there: the two stand
+    }
+    CandidateOutcome outcome = judge(*alone, *evaluator, without, result.nominal, second.round, fits_.options());
+    outcome.description += " (fitted again without " + label(first.extension) + ")";
+    const double rise = without.fit.bic - current.fit.bic;
+    if (!outcome.qualifies || !(rise < -fits_.options().min_delta_bic)) {
+      fits_.say(label(first.extension) + format(" stays: without it the BIC goes from %.1f to %.1f", current.fit.bic,
+                                                without.fit.bic));
+      return;
+    }
+    fits_.say(label(first.extension) + " is superseded by " + label(second.extension) +
+              format(": without it the BIC goes from %.1f to %.1f (a round needs a fall of %.0f); dropped",
+                     current.fit.bic, without.fit.bic, -fits_.options().min_delta_bic));
+    result.superseded.push_back({first.extension.id, first.extension.variant, first.round, rise});
+    result.selected = {second.extension.id};
+    result.selected_variants = {second.extension.variant};
+    result.explains = {findings_cleared(result, result.nominal, without)};
+    result.candidates.push_back(std::move(outcome));
+    declare_held_known(without);
+    current = std::move(without);
+    taken_.erase(taken_.begin());
+  }
+
   // The selected extensions are kept only if together they explain enough (full_explanation); otherwise nothing is
   // selected, the reasons are said with the nominal findings that still show, and the current model is the nominal
   // one again.
@@ -243,6 +308,7 @@ class Diagnoser {
                 format(" (band residual %.3g -> %.3g)", band_mean_z(result.nominal.channels, *d),
                        band_mean_z(current.channels, *d)));
     result.selected.clear();
+    result.selected_variants.clear();
     result.explains.clear();
     current = result.nominal;
   }
@@ -290,7 +356,15 @@ class Diagnoser {
     return ctx;
   }
 
+  // A selected extension as it was enumerated, and the context of its round: to apply it to another model.
+  struct Taken {
+    Extension extension;
+    ExtensionContext context;
+    int round = 0;
+  };
+
   FitContext fits_;
+  std::vector<Taken> taken_;                    // the selected extensions, in the order taken
   PriorPeaks prior_;                            // the data's peaks against the current model at its priors
   std::set<std::string> sensor_outputs_;        // outputs the nominal model misses more than all others
   std::vector<ReversedDrivingPoint> reversed_;  // driving points whose data a passive structure cannot give

@@ -107,9 +107,19 @@ struct DiagnosisResult {
   ModelState nominal;
   std::vector<CandidateOutcome> candidates;  // every round
   std::vector<std::string> selected;
+  std::vector<std::string> selected_variants;  // the variant taken of each (same order); "" for one without variants
   // Per selected extension (same order): the nominal model's findings (indices into nominal.residual.discrepancies)
   // that the model shows before that extension is taken and no longer shows after it: what that effect explains.
   std::vector<std::vector<std::size_t>> explains;
+  // Extensions taken in a round and dropped again because the one taken after them does their work (backward
+  // elimination, docs/diagnosis.md step 7): without them the final model's BIC rose by `bic_rise`, less than a round
+  // needs.
+  struct Superseded {
+    std::string id, variant;
+    int round = 0;
+    double bic_rise = 0;
+  };
+  std::vector<Superseded> superseded;
   std::string verdict;  // "extended", "no_extension_justified", "unexplained"
   ModelState final;     // the extended model when extended, else the nominal
 };

@@ -112,6 +112,18 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
   }
   j["candidates"] = candidates;
   j["selected"] = result.selected;
+  j["selected_variants"] = result.selected_variants;
+  if (!result.superseded.empty()) {
+    ordered_json superseded = ordered_json::array();
+    for (const DiagnosisResult::Superseded& x : result.superseded) {
+      ordered_json entry = {{"id", x.id}};
+      if (!x.variant.empty()) entry["variant"] = x.variant;
+      entry["round"] = x.round;
+      entry["bic_rise"] = number(x.bic_rise);
+      superseded.push_back(entry);
+    }
+    j["superseded"] = superseded;
+  }
   j["verdict"] = result.verdict;
   if (result.verdict == "extended") {
     j["extended_model"] = extended_model_path;

@@ -126,6 +126,12 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
       }
     }
     doc.list(std::move(said));
+    for (const DiagnosisResult::Superseded& x : r.superseded)
+      doc.paragraph(report::Inline(report::code(x.id)) << (x.variant.empty() ? "" : " (" + x.variant + ")")
+                                                       << ", taken in round " << x.round
+                                                       << ", was dropped again: the extension taken after it does its "
+                                                          "work (without it the BIC changes by "
+                                                       << num(x.bic_rise) << ").");
   } else if (r.verdict == "unexplained") {
     doc.paragraph("The model misses the data beyond the noise, and no candidate extension explains it (see the "
                   "findings and the ranking below).");
