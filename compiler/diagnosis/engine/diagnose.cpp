@@ -136,7 +136,6 @@ class Diagnoser {
     for (double f : ctx.peak_hz) hints += format(" %.1f", f);
     if (!hints.empty()) fits_.say("round " + std::to_string(round) + ": peaks to place new modes at (Hz):" + hints);
     std::vector<Extension> extensions = enumerate_extensions(current.model, current.text, ctx);
-    const std::vector<Extension> enumerated = extensions;  // before the chain's are sifted: the winner's is here
     // The measurement chain's candidates come first in the list; only those the data support are fitted.
     const auto structural = std::stable_partition(extensions.begin(), extensions.end(),
                                                   [](const Extension& e) { return e.operator_name == kChainOperator; });
@@ -168,7 +167,7 @@ class Diagnoser {
     if (!explained.holds) return false;
     result.selected.push_back(outcomes[static_cast<std::size_t>(best)].id);
     result.selected_variants.push_back(winner.variant);
-    for (const Extension& e : enumerated)
+    for (const Extension& e : extensions)  // the fitted candidates: the winner is among them
       if (e.id == winner.id && e.variant == winner.variant) taken_.push_back({e, ctx, round});
     result.explains.push_back(findings_cleared(result, current, chosen));
     for (const std::string& id : equivalents(outcomes, best))
