@@ -49,7 +49,7 @@ std::string summary(const diagnosis::DiagnosisResult& r) {
     if (i >= r.explains.size() || r.explains[i].empty()) continue;
     out << "  it explains:\n";
     for (std::size_t k = 0; k < r.explains[i].size() && k < kSummaryExplained; ++k)
-      out << "    - " << nominal_findings[r.explains[i][k]].text << "\n";
+      out << "    - " << diagnosis::reader_text(r, nominal_findings[r.explains[i][k]].text) << "\n";
     if (r.explains[i].size() > kSummaryExplained)
       out << "    ... and " << r.explains[i].size() - kSummaryExplained << " more (--json, --report)\n";
   }
@@ -59,12 +59,14 @@ std::string summary(const diagnosis::DiagnosisResult& r) {
   // The strongest findings (they come strongest first); the rest are in the JSON and the report.
   const std::vector<Discrepancy>& findings = r.nominal.residual.discrepancies;
   if (!findings.empty()) out << "what the nominal model gets wrong:\n";
-  for (std::size_t k = 0; k < findings.size() && k < kSummaryFindings; ++k) out << "  - " << findings[k].text << "\n";
+  for (std::size_t k = 0; k < findings.size() && k < kSummaryFindings; ++k)
+    out << "  - " << diagnosis::reader_text(r, findings[k].text) << "\n";
   if (findings.size() > kSummaryFindings)
     out << "  ... and " << findings.size() - kSummaryFindings << " more (--json, --report)\n";
   if (r.verdict == "extended" && !r.final.residual.discrepancies.empty()) {
     out << "still unexplained after extension:\n";
-    for (const Discrepancy& d : r.final.residual.discrepancies) out << "  - " << d.text << "\n";
+    for (const Discrepancy& d : r.final.residual.discrepancies)
+      out << "  - " << diagnosis::reader_text(r, d.text) << "\n";
   }
   return out.str();
 }

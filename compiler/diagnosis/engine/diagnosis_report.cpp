@@ -3,6 +3,7 @@
 #include <mbgen/report/gnuplot.hpp>
 #include <mbgen/report/report_document.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -78,7 +79,8 @@ void first_screen(report::Document& doc, const DiagnosisResult& r) {
   if (all.empty()) return;
   constexpr std::size_t kShown = 3;
   std::vector<report::Inline> strongest;
-  for (std::size_t k = 0; k < all.size() && k < kShown; ++k) strongest.push_back(report::text(all[k].text));
+  for (std::size_t k = 0; k < all.size() && k < kShown; ++k)
+    strongest.push_back(report::text(reader_text(r, all[k].text)));
   doc.paragraph(all.size() > kShown ? "The strongest findings (of " + std::to_string(all.size()) + ", all below):"
                                     : std::string("The findings:"));
   doc.list(std::move(strongest));
@@ -94,6 +96,17 @@ void first_screen(report::Document& doc, const DiagnosisResult& r) {
 }
 
 }  // namespace
+
+std::string reader_text(const DiagnosisResult& r, const std::string& finding_text) {
+  std::string text = finding_text;
+  for (const std::string& path : r.data) {
+    const std::string full = " (" + path + ")";
+    const std::string brief = r.data.size() == 1 ? "" : " (" + fs::path(path).filename().string() + ")";
+    for (std::size_t at = text.find(full); at != std::string::npos; at = text.find(full, at + brief.size()))
+      text.replace(at, full.size(), brief);
+  }
+  return text;
+}
 
 void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
   const fs::path root(dir);
@@ -119,10 +132,14 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
       if (!o) continue;
       report::Inline& line = said.emplace_back(report::Inline(report::code(r.selected[i])) << ": "
                                                                                           << report::text(o->description));
+      // The findings it explains, the strongest few (the list is strongest first); all are listed below.
       if (i < r.explains.size() && !r.explains[i].empty()) {
-        line << ". It explains: ";
-        for (std::size_t k = 0; k < r.explains[i].size(); ++k)
-          line << (k ? "; " : "") << report::text(r.nominal.residual.discrepancies[r.explains[i][k]].text);
+        constexpr std::size_t kNamed = 2;
+        const std::vector<std::size_t>& cleared = r.explains[i];
+        line << ". It explains " << cleared.size() << (cleared.size() == 1 ? " finding" : " findings")
+             << " of the nominal model" << (cleared.size() > kNamed ? ", the strongest: " : ": ");
+        for (std::size_t k = 0; k < cleared.size() && k < kNamed; ++k)
+          line << (k ? "; " : "") << report::text(reader_text(r, r.nominal.residual.discrepancies[cleared[k]].text));
       }
     }
     doc.list(std::move(said));
@@ -146,7 +163,16 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
   doc.heading(2, "What the nominal model gets wrong");
   if (r.nominal.residual.discrepancies.empty()) doc.paragraph("No finding above the noise level.");
   std::vector<report::Inline> findings, noise;
-  for (const Discrepancy& d : r.nominal.residual.discrepancies) findings.push_back(d.text + " (`" + d.kind + "`)");
+  const std::vector<Discrepancy>& nominal_findings = r.nominal.residual.discrepancies;
+  for (std::size_t k = 0; k < nominal_findings.size(); ++k) {
+    const Discrepancy& d = nominal_findings[k];
+    report::Inline& line =
+        findings.emplace_back(report::Inline(report::text(reader_text(r, d.text))) << " (`" << d.kind << "`)");
+    if (!extended) continue;
+    for (std::size_t i = 0; i < r.explains.size() && i < r.selected.size(); ++i)
+      if (std::find(r.explains[i].begin(), r.explains[i].end(), k) != r.explains[i].end())
+        line << ": explained by " << report::code(r.selected[i]);
+  }
   doc.list(std::move(findings));
   doc.paragraph("The noise level each channel is judged against (1 in the normalized residual):");
   for (const ChannelResidual& c : r.nominal.channels) {

@@ -8,6 +8,11 @@
 
 namespace mbgen::diagnosis {
 
+// A finding's text as a reader sees it (the report, standard output): the findings name their data file by the path
+// given on the command line. With one data file the path says nothing and is left out, with several the file's name
+// tells them apart; the JSON keeps the full text.
+std::string reader_text(const DiagnosisResult& result, const std::string& finding_text);
+
 void write_diagnosis_report(const std::string& dir, const DiagnosisResult& result);
 
 }  // namespace mbgen::diagnosis

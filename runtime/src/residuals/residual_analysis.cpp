@@ -189,10 +189,11 @@ Discrepancy classify(const ChannelResidual& c, const Eigen::VectorXcd& smooth, c
       // shows so (a damping mismatch changes the height).
       d.kind = "frequency_shift";
       d.model_f_hz = f[static_cast<std::size_t>(model_peak)];
-      const double phase_deg = std::abs(std::arg(c.measured[at] / c.model[at])) * 180.0 / numerics::kPi;
-      d.text = format("the resonance near %.1f Hz on %s has the model's height (%+.1f dB) but is %.0f degrees out of "
-                      "phase with it: its frequency differs by less than a line",
-                      d.f_hz, where.c_str(), d.size_db, phase_deg);
+      // The phase where the residual is largest (at the peak line itself it may differ by a fraction of a degree).
+      const double phase_deg = std::abs(std::arg(c.measured[worst] / c.model[worst])) * 180.0 / numerics::kPi;
+      d.text = format("the resonance near %.1f Hz on %s has the model's height (%+.1f dB) but is %.1f degrees out of "
+                      "phase with it at %.1f Hz: its frequency differs by less than a line",
+                      d.f_hz, where.c_str(), d.size_db, phase_deg, f[static_cast<std::size_t>(worst)]);
     } else if (rel <= o.peak_tolerance) {
       d.kind = "damping_mismatch";
       d.model_f_hz = f[static_cast<std::size_t>(model_peak)];
@@ -219,6 +220,14 @@ Discrepancy classify(const ChannelResidual& c, const Eigen::VectorXcd& smooth, c
   } else if (d.size_db < -3.0) {
     d.kind = "unexplained_antiresonance";
     d.text = format("a dip near %.1f Hz on %s that the model does not have (%.1f dB)", d.f_hz, where.c_str(), d.size_db);
+  } else if (std::abs(std::arg(c.measured[at] / c.model[at])) > std::abs(d.size_db) * std::log(10.0) / 20.0) {
+    // Where the residual is largest the miss is more in phase than in magnitude (compared as the parts of
+    // ln(data / model): radians against nepers), so it is said in degrees; "by up to 0.0 dB" said nothing.
+    d.kind = "misfit";
+    const double phase_deg = std::abs(std::arg(c.measured[at] / c.model[at])) * 180.0 / numerics::kPi;
+    d.text = format("between %.1f and %.1f Hz the model misses %s in phase: by %.1f degrees at %.1f Hz (%.1f dB in "
+                    "magnitude)",
+                    d.f_lo, d.f_hi, where.c_str(), phase_deg, d.f_hz, std::abs(d.size_db));
   } else {
     d.kind = "misfit";
     d.text = format("between %.1f and %.1f Hz the model misses %s by up to %.1f dB", d.f_lo, d.f_hi, where.c_str(),

@@ -7,6 +7,7 @@
 #include <complex>
 #include <limits>
 #include <random>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -124,6 +125,29 @@ TEST_CASE("a resonance shifted by less than a line is a frequency shift seen in 
   CHECK(d.f_hz == Approx(120.0).margin(0.5));
   CHECK(std::abs(d.size_db) < 1.0);
   CHECK(d.text.find("out of phase") != std::string::npos);
+  // The phase difference is read where the residual is largest, and it is the ~10 degrees of the shift.
+  std::smatch m;
+  REQUIRE(std::regex_search(d.text, m, std::regex("is ([0-9.]+) degrees out of phase with it at ([0-9.]+) Hz")));
+  CHECK(std::stod(m[1].str()) > 4.0);
+  CHECK(std::stod(m[1].str()) < 20.0);
+  CHECK(std::stod(m[2].str()) == Approx(120.0).margin(1.5));
+}
+
+TEST_CASE("a misfit in phase alone is said in degrees, not as a miss of 0.0 dB", "[residual]") {
+  // Between 200 and 210 Hz, away from the resonance, the data turn by 10 degrees at the model's magnitude.
+  ChannelResidual c = make_channel(false, 7, 0.01);
+  for (std::size_t i = 0; i < c.f_hz.size(); ++i)
+    if (c.f_hz[i] >= 200.0 && c.f_hz[i] <= 210.0)
+      c.measured[static_cast<Eigen::Index>(i)] *= std::exp(cd(0, 10.0 * M_PI / 180.0));
+  const ResidualSummary s = analyse_residuals({c});
+  REQUIRE(s.discrepancies.size() == 1);
+  const Discrepancy& d = s.discrepancies.front();
+  CHECK(d.kind == "misfit");
+  CHECK(d.f_hz >= 200.0);
+  CHECK(d.f_hz <= 210.0);
+  std::smatch m;
+  REQUIRE(std::regex_search(d.text, m, std::regex("misses y/u \\(synthetic.csv\\) in phase: by ([0-9.]+) degrees")));
+  CHECK(std::stod(m[1].str()) == Approx(10.0).margin(1.5));
 }
 
 TEST_CASE("a pure delay shows as a phase trend", "[residual]") {
