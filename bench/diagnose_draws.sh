@@ -45,7 +45,7 @@ cases=(
   "spindle nominal frf measurement_chain:input:Fx --force-sign -1"
   "spindle nominal frf measurement_chain:swap:xs_front,xs_rear --swap xs_front,xs_rear"
   "spindle nominal frf measurement_chain:gain:xs_front --unit xs_front=mm"
-  "spindle untie_parameter frf measurement_chain:gain:xs_rear --gain xs_rear=draw"
+  "spindle untie_parameter frf measurement_chain:gain:xs_rear+untie_parameter:k_hby --gain xs_rear=draw"
   "spindle nominal frf measurement_chain:form:xs_front --frf-form xs_front=mobility"
   "spindle nominal frf measurement_chain:form:xh_front --frf-form xh_front=accelerance"
   "mdof2 nominal frf measurement_chain:form:d2 --frf-form d2=mobility"

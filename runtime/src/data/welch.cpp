@@ -59,6 +59,22 @@ Eigen::VectorXd window_values(WelchWindow window, Eigen::Index n) {
   return w;
 }
 
+// How much the overlap of the segments leaves the averaged spectra more variable than `segments` independent ones:
+// 1 + 2 sum_{j>=1} (1 - j/K) rho_j^2 (Welch 1967), rho_j the window's overlap correlation at a shift of j steps,
+// sum w[i] w[i + j step] / sum w[i]^2 (50 % overlapping Hann segments: rho_1 = 1/6, a factor of about 1.056).
+double overlap_variance_factor(const Eigen::VectorXd& w, Eigen::Index step, Eigen::Index segments) {
+  const Eigen::Index L = w.size();
+  const double power = w.squaredNorm();
+  if (!(power > 0)) return 1.0;
+  double factor = 1.0;
+  for (Eigen::Index j = 1; j < segments && j * step < L; ++j) {
+    const Eigen::Index shift = j * step;
+    const double rho = w.head(L - shift).dot(w.tail(L - shift)) / power;
+    factor += 2.0 * (1.0 - static_cast<double>(j) / static_cast<double>(segments)) * rho * rho;
+  }
+  return factor;
+}
+
 }  // namespace
 
 std::mutex& fftw_planner_mutex() {
@@ -75,6 +91,28 @@ std::complex<double> zero_order_hold_response(double f_hz, double dt) {
 void remove_zero_order_hold(FrfData& frf, double dt) {
   for (auto& ch : frf.channels)
     for (Eigen::Index k = 0; k < frf.f_hz.size(); ++k) ch.values[k] /= zero_order_hold_response(frf.f_hz[k], dt);
+}
+
+std::vector<double> welch_line_correlation(const WelchOptions& options, int count) {
+  const Eigen::VectorXd w = window_values(options.window, options.segment_length);
+  const Eigen::Index L = w.size();
+  const double power = w.squaredNorm();
+  std::vector<double> rho;
+  for (int j = 1; j <= count; ++j) {
+    std::complex<double> c = 0;
+    for (Eigen::Index n = 0; n < L; ++n)
+      c += w[n] * w[n] * std::polar(1.0, -numerics::kTwoPi * j * static_cast<double>(n) / static_cast<double>(L));
+    rho.push_back(power > 0 ? std::norm(c / power) : 0.0);
+  }
+  return rho;
+}
+
+double welch_variance_dof(const WelchOptions& options, Eigen::Index segments, Eigen::Index inputs) {
+  const Eigen::Index L = options.segment_length;
+  const Eigen::Index step =
+      std::max<Eigen::Index>(1, L - static_cast<Eigen::Index>(std::llround(options.overlap * static_cast<double>(L))));
+  const double factor = overlap_variance_factor(window_values(options.window, L), step, segments);
+  return 2.0 * static_cast<double>(std::max<Eigen::Index>(segments - inputs, 1)) / factor;
 }
 
 WelchEstimate welch_h1(const TimeRecord& record, const std::vector<std::string>& inputs,
@@ -123,6 +161,8 @@ WelchEstimate welch_h1(const TimeRecord& record, const std::vector<std::string>&
     }
   }
 
+  // The noise's variance in H1 is that of `segments` / overlap factor independent averages.
+  const double overlap_factor = overlap_variance_factor(w, step, segments);
   WelchEstimate est;
   est.segments = segments;
   est.dt = record.dt();
@@ -158,9 +198,10 @@ WelchEstimate welch_h1(const TimeRecord& record, const std::vector<std::string>&
       // S sums the segments' spectra; the product below is the same for sums and averages, and is the variance of
       // one segment's H. Averaging divides it by the number of segments less the inputs: the unexplained power is
       // the residual of a least-squares fit of ni regressors to `segments` values, low by that ratio on average.
+      // Overlapping segments are not independent: their average varies more, by the overlap factor.
       const double unexplained = std::max(gyy - explained, 0.0);
       const double degrees_of_freedom = static_cast<double>(std::max<Eigen::Index>(segments - ni, 1));
-      var.row(o) = unexplained * Gxx_inverse_diagonal.transpose() / degrees_of_freedom;
+      var.row(o) = unexplained * Gxx_inverse_diagonal.transpose() * overlap_factor / degrees_of_freedom;
     }
     f.push_back(static_cast<double>(k) / (static_cast<double>(L) * est.dt));
     H.push_back(Hk);

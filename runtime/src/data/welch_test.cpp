@@ -156,8 +156,8 @@ TEST_CASE("Welch H1, output noise: errors and coherence as statistics predicts")
   // The coherence estimate is biased upwards by about (1 - g2)^2 / n_d < 0.004: the mean stays close.
   CHECK(std::abs(coherence_bias) < 0.01);
   for (Eigen::Index k = 0; k < est.frf.f_hz.size(); ++k) CHECK((*h.coherence)[k] < 1.0);
-  // The variance the estimate reports for itself: the same statistics without knowing the exact response (its
-  // n = segments, not the ~segments / 1.06 independent averages, so the ratio's mean is ~1.06).
+  // The variance the estimate reports for itself: the same statistics without knowing the exact response, with the
+  // overlap's ~segments / 1.06 independent averages (the ratio's mean is ~1; it read ~1.06 with n = segments).
   REQUIRE(est.variance.size() == 1);
   double reported = 0;
   for (Eigen::Index k = 1; k + 1 < est.frf.f_hz.size(); ++k)
@@ -320,4 +320,30 @@ TEST_CASE("Welch H1 from several threads gives the sequential result") {
     opt.segment_length = 128 << i;
     CHECK(results[i] == welch_h1(rec, {"F"}, {"x"}, opt).frf.channels[0].values);
   }
+}
+
+TEST_CASE("Welch H1's noise correlates between neighbouring lines as the window says") {
+  WelchOptions opt;
+  opt.segment_length = kSegment;
+  const std::vector<double> rho = welch_line_correlation(opt, 2);
+  REQUIRE(rho.size() == 2);
+  CHECK(rho[0] == Approx(4.0 / 9.0).margin(1e-12));  // Hann: (2/3)^2
+  CHECK(rho[1] == Approx(1.0 / 36.0).margin(1e-12));  // (1/6)^2
+  opt.window = WelchWindow::Rectangular;
+  CHECK(welch_line_correlation(opt, 1)[0] == Approx(0.0).margin(1e-12));
+  // Measured: the errors of H1 at neighbouring bins, each scaled by its reported standard deviation, for white
+  // input and white output noise.
+  const SecondOrder sys = resonator(0.9, 2 * M_PI * 0.1, 1.0, 0.5, 0.2);
+  const Eigen::VectorXd u = white_noise(kSamples, 12, 1.0);
+  const Eigen::VectorXd y = sys.filter(u) + white_noise(kSamples, 13, 1.0);
+  const WelchEstimate est = welch_h1(make_record(kDt, {{"F", u}, {"x", y}}), {"F"}, {"x"}, WelchOptions{kSegment});
+  const FrfChannel& h = est.frf.channels[0];
+  std::vector<cd> e;
+  for (Eigen::Index k = 1; k + 1 < est.frf.f_hz.size(); ++k)
+    e.push_back((h.values[k] - sys.response(est.frf.f_hz[k], kDt)) / std::sqrt(est.variance[0][k]));
+  cd lag1 = 0;
+  double power = 0;
+  for (std::size_t k = 0; k + 1 < e.size(); ++k) lag1 += e[k] * std::conj(e[k + 1]), power += std::norm(e[k]);
+  INFO("measured lag-one correlation " << lag1 / power);
+  CHECK(std::abs(lag1 / power - 4.0 / 9.0) < 0.1);
 }

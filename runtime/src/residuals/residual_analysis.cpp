@@ -1,8 +1,11 @@
 #include "mbgen/residuals/residual_analysis.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -368,12 +371,106 @@ double finding_threshold(const ResidualOptions& options, long lines) {
   return hi;
 }
 
+namespace {
+
+// P(mean of the window's z > t) for noise whose lines correlate as `rho` (lag 1, 2, ...): z_k = |e_k|^2 with e
+// complex Gaussian of correlation matrix R (R_ij = rho_|i-j|), so the window's sum is sum_i lambda_i E_i, lambda the
+// eigenvalues of R and E_i independent Exp(1), whose tail is sum_i prod_{j != i} lambda_i / (lambda_i - lambda_j)
+// exp(-w t / lambda_i) for distinct eigenvalues. Null when they are not distinct enough for that sum.
+// The eigenvalues of the correlation matrix of w neighbouring lines, R_ij = rho_|i-j|; null when they are not
+// distinct enough for the tail's sum.
+std::optional<Eigen::VectorXd> window_eigenvalues(int w, const std::vector<double>& rho) {
+  Eigen::MatrixXd R = Eigen::MatrixXd::Identity(w, w);
+  for (int i = 0; i < w; ++i)
+    for (int j = 0; j < w; ++j) {
+      const std::size_t lag = static_cast<std::size_t>(std::abs(i - j));
+      if (lag > 0 && lag <= rho.size()) R(i, j) = rho[lag - 1];
+    }
+  const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(R, Eigen::EigenvaluesOnly).eigenvalues();
+  for (int i = 0; i < w; ++i)
+    for (int j = i + 1; j < w; ++j)
+      if (std::abs(lambda[i] - lambda[j]) < 1e-6 * lambda.maxCoeff()) return std::nullopt;
+  return lambda;
+}
+
+// P(sum_i lambda_i E_i > w t), E_i independent Exp(1), for distinct eigenvalues lambda.
+double eigen_tail(const Eigen::VectorXd& lambda, int w, double t) {
+  double p = 0;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+    if (!(lambda[i] > 0)) continue;  // a direction without noise adds nothing
+    double weight = 1;
+    for (Eigen::Index j = 0; j < lambda.size(); ++j)
+      if (j != i && lambda[j] > 0) weight *= lambda[i] / (lambda[i] - lambda[j]);
+    p += weight * std::exp(-w * t / lambda[i]);
+  }
+  return std::clamp(p, 0.0, 1.0);
+}
+
+// The tail with sigma^2 estimated: z = |e|^2 / (sigma^2 S), S = chi^2_dof / dof independent of e, so the window's
+// mean exceeds t when the exact one exceeds t S: the tail averaged over S's density (Simpson's rule over S's mean
+// +- 10 standard deviations). dof <= 0: sigma exact.
+double window_tail(const Eigen::VectorXd& lambda, int w, double t, double dof) {
+  if (!(dof > 0)) return eigen_tail(lambda, w, t);
+  const double sd = std::sqrt(2.0 / dof), hi = 1.0 + 10.0 * sd, lo = std::max(1e-9, 1.0 - 10.0 * sd);
+  const int n = 400;  // even
+  const double h = (hi - lo) / n, k = dof / 2;
+  const auto density = [&](double s) {  // of chi^2_dof / dof at s
+    return std::exp(std::log(dof) + (k - 1) * std::log(dof * s) - dof * s / 2 - k * std::log(2.0) - std::lgamma(k));
+  };
+  double sum = 0;
+  for (int i = 0; i <= n; ++i) {
+    const double s = lo + i * h, weight = i == 0 || i == n ? 1 : i % 2 ? 4 : 2;
+    sum += weight * density(s) * eigen_tail(lambda, w, t * s);
+  }
+  return std::clamp(sum * h / 3, 0.0, 1.0);
+}
+
+}  // namespace
+
+double finding_threshold(const ResidualOptions& options, const std::vector<ChannelResidual>& channels) {
+  const int w = std::max(1, options.window);
+  long independent_lines = 0;
+  struct Correlated {
+    double lines;
+    Eigen::VectorXd lambda;
+    double dof;
+  };
+  std::vector<Correlated> correlated;
+  for (const ChannelResidual& c : channels) {
+    const bool any = std::any_of(c.line_correlation.begin(), c.line_correlation.end(), [](double r) { return r != 0; });
+    std::optional<Eigen::VectorXd> lambda;
+    if (any && w > 1) lambda = window_eigenvalues(w, c.line_correlation);
+    if (lambda)
+      correlated.push_back({static_cast<double>(c.f_hz.size()), *lambda, c.sigma_dof});
+    else
+      independent_lines += static_cast<long>(c.f_hz.size());
+  }
+  if (correlated.empty()) return finding_threshold(options, independent_lines);
+  // The expected number of windows above t: the independent lines' as in finding_threshold, plus each correlated
+  // channel's lines times its windows' tail.
+  const auto expected = [&](double t) {
+    const double x = w * t;
+    double term = 1, sum = 1;
+    for (int k = 1; k < w; ++k) sum += (term *= x / k);
+    double e = static_cast<double>(independent_lines) * std::exp(-x) * sum;
+    for (const Correlated& c : correlated) e += c.lines * window_tail(c.lambda, w, t, c.dof);
+    return e;
+  };
+  double lo = options.threshold;
+  if (expected(lo) <= options.false_alarm_rate) return lo;
+  double hi = std::max(lo, 1.0);
+  while (expected(hi) > options.false_alarm_rate) hi *= 2;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (expected(mid) > options.false_alarm_rate ? lo : hi) = mid;
+  }
+  return hi;
+}
+
 ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, const ResidualOptions& given) {
   ResidualSummary summary;
-  long all_lines = 0;
-  for (const ChannelResidual& c : channels) all_lines += static_cast<long>(c.f_hz.size());
   ResidualOptions options = given;
-  options.threshold = finding_threshold(given, all_lines);
+  options.threshold = finding_threshold(given, channels);
   summary.threshold = options.threshold;
   double z_sum = 0;
   for (const ChannelResidual& original : channels) {

@@ -230,3 +230,65 @@ TEST_CASE("noise alone over a 9-channel, 4096-line matrix gives a finding in few
   // The check can fail: the same noise at a fixed level of 4 gives findings in far more of them.
   CHECK(with_findings_at_4 > 40);
 }
+
+TEST_CASE("noise correlated between neighbouring lines gives a finding in few diagnoses at its threshold",
+          "[residual]") {
+  // A record's H1 lines share the Hann-windowed spectra of its segments: their noise correlates by 4/9 with the
+  // next line's (welch.hpp). Drawn here as a moving average e_k = (g_k + c g_(k-1)) / sqrt(1 + c^2), whose lag-one
+  // correlation c / (1 + c^2) is 4/9 at c = 0.6096: 300 diagnoses of 2 x 460 lines, a 2 s mdof2 record's.
+  std::mt19937 rng(20261129);
+  std::normal_distribution<double> g(0.0, 1.0);
+  const double c_ma = 0.6096, rho = c_ma / (1 + c_ma * c_ma);
+  REQUIRE(rho == Approx(4.0 / 9.0).margin(1e-3));
+  const int trials = 300, channels = 2, n = 460;
+  int with_findings = 0, as_if_independent = 0;
+  ResidualOptions o;
+  for (int t = 0; t < trials; ++t) {
+    std::vector<ChannelResidual> all(channels);
+    for (int ch = 0; ch < channels; ++ch) {
+      ChannelResidual& c = all[static_cast<std::size_t>(ch)];
+      c.channel = "d" + std::to_string(ch) + "/F";
+      c.data_set = "record.csv";
+      c.measured.resize(n);
+      c.model.resize(n);
+      c.sigma.resize(n);
+      cd previous(g(rng), g(rng));
+      for (int i = 0; i < n; ++i) {
+        const cd now(g(rng), g(rng));
+        c.f_hz.push_back(4.0 * (i + 1));
+        c.model[i] = cd(1.0, 0.0);
+        c.sigma[i] = 0.01;
+        c.measured[i] = c.model[i] + (now + c_ma * previous) / std::sqrt(1 + c_ma * c_ma) * (0.01 / std::sqrt(2.0));
+        previous = now;
+      }
+    }
+    if (!analyse_residuals(all, o).discrepancies.empty()) ++as_if_independent;
+    for (ChannelResidual& c : all) c.line_correlation = {rho, 0.0};
+    if (!analyse_residuals(all, o).discrepancies.empty()) ++with_findings;
+  }
+  INFO("diagnoses with findings: " << with_findings << " (taking the lines as independent: " << as_if_independent
+                                   << ") of " << trials);
+  // At most 5 % expected; 30 of 300 is beyond 3 binomial standard deviations of 15.
+  CHECK(with_findings <= 30);
+  // The check can fail: taken as independent, the same noise gives findings far more often.
+  CHECK(as_if_independent > 2 * with_findings);
+}
+
+TEST_CASE("the threshold of correlated lines is higher than of as many independent ones", "[residual]") {
+  ResidualOptions o;
+  ChannelResidual c;
+  c.f_hz.assign(920, 1.0);
+  const double independent = finding_threshold(o, std::vector<ChannelResidual>{c});
+  CHECK(independent == finding_threshold(o, 920L));
+  c.line_correlation = {4.0 / 9.0, 1.0 / 36.0};
+  const double correlated = finding_threshold(o, std::vector<ChannelResidual>{c});
+  // P(mean of 5 > t) with Hann H1's correlation is 2.4e-4 at 4 (1.7e-5 independent); 920 windows at 5 % need ~4.6.
+  CHECK(correlated > 4.4);
+  CHECK(correlated < 4.8);
+  // A level estimated from about 76 degrees of freedom (a 2 s record's five-line H1 variance) scatters by +-16 %:
+  // the tail at 4 is 2.7 times heavier at 100 degrees of freedom, so the threshold rises again.
+  c.sigma_dof = 76;
+  const double estimated = finding_threshold(o, std::vector<ChannelResidual>{c});
+  CHECK(estimated > correlated + 0.1);
+  CHECK(estimated < 5.5);
+}

@@ -29,9 +29,9 @@ struct WelchEstimate {
   // multiple coherence of its output with all inputs (the ordinary coherence for one input).
   FrfData frf;
   // Per channel of `frf` (same order) and frequency: the variance of H1 from the output power the inputs do not
-  // explain, (1 - coh^2) Gyy [Gxx^-1]_ii / (segments - inputs) (Bendat & Piersol, Random Data, 9.90, with the
-  // degrees of freedom of the residual power; the overlapping Hann segments give about segments / 1.06 independent
-  // averages, so it is still low by ~6 %). Unlike the textbook form
+  // explain, (1 - coh^2) Gyy [Gxx^-1]_ii c / (segments - inputs) (Bendat & Piersol, Random Data, 9.90, with the
+  // degrees of freedom of the residual power), c the overlap factor: overlapping segments average less of the noise
+  // away than independent ones (Welch 1967; 50 % overlapping Hann segments: c ~ 1.056). Unlike the textbook form
   // (1 - coh^2) / (coh^2 n) |H|^2 it needs no estimated |H| and no division by a small coherence, so it stays a
   // noise level where H is small: e.g. for the residual of a nearly right model.
   std::vector<Eigen::VectorXd> variance;
@@ -39,6 +39,17 @@ struct WelchEstimate {
   double dt = 0;                       // sample interval of the record
   std::vector<Eigen::Index> dropped_bins;
 };
+
+// The correlation of H1's errors at a line with those at its j-th neighbour (j = 1 .. count) for these options:
+// each segment's noise and input spectra at neighbouring bins correlate as the window's squared transform,
+// c_j = sum w^2 e^(-2 pi i j n / L) / sum w^2 (Hann: -2/3, 1/6), and H1's error with their product, |c_j|^2
+// (Hann: 4/9, 1/36), for spectra about flat over a few bins.
+std::vector<double> welch_line_correlation(const WelchOptions& options, int count);
+
+// The degrees of freedom of one line's WelchEstimate::variance from `segments` segments and `inputs` inputs:
+// 2 (segments - inputs) / c, c the overlap factor (the unexplained power is a sum over the segments of complex
+// squares, less one per input fitted, and overlapping segments count as fewer).
+double welch_variance_dof(const WelchOptions& options, Eigen::Index segments, Eigen::Index inputs);
 
 // H1 = Gyx Gxx^{-1} (for one input Gyx / Gxx), with linearly averaged one-sided cross spectra of windowed,
 // overlapping segments. Throws DataError for unknown signals, a record shorter than one segment, fewer
