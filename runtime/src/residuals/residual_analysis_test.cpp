@@ -46,6 +46,29 @@ ChannelResidual make_channel(bool extra_mode, unsigned seed, double noise_rel) {
   return c;
 }
 
+// `channels` channels of n lines at f0 + df i, a model of 1 and sigma 0.01, measured = model + 0.01 / sqrt(2) times
+// noise(i): a unit complex Gaussian draw per line, independent or correlated as the caller draws it.
+template <class Noise>
+std::vector<ChannelResidual> noise_channels(int channels, int n, double f0, double df, const std::string& name,
+                                            Noise noise) {
+  std::vector<ChannelResidual> all(static_cast<std::size_t>(channels));
+  for (int ch = 0; ch < channels; ++ch) {
+    ChannelResidual& c = all[static_cast<std::size_t>(ch)];
+    c.channel = name + std::to_string(ch) + "/F";
+    c.data_set = "noise.csv";
+    c.measured.resize(n);
+    c.model.resize(n);
+    c.sigma.resize(n);
+    for (int i = 0; i < n; ++i) {
+      c.f_hz.push_back(f0 + df * i);
+      c.model[i] = cd(1.0, 0.0);
+      c.sigma[i] = 0.01;
+      c.measured[i] = c.model[i] + noise(i) * (0.01 / std::sqrt(2.0));
+    }
+  }
+  return all;
+}
+
 }  // namespace
 
 TEST_CASE("noise alone gives no findings and a mean normalized residual near 1", "[residual]") {
@@ -206,21 +229,8 @@ TEST_CASE("noise alone over a 9-channel, 4096-line matrix gives a finding in few
   ResidualOptions fixed_level;
   fixed_level.false_alarm_rate = std::numeric_limits<double>::infinity();  // the level stays at 4
   for (int t = 0; t < trials; ++t) {
-    std::vector<ChannelResidual> all(channels);
-    for (int ch = 0; ch < channels; ++ch) {
-      ChannelResidual& c = all[static_cast<std::size_t>(ch)];
-      c.channel = "a" + std::to_string(ch) + "/F";
-      c.data_set = "noise.csv";
-      c.measured.resize(n);
-      c.model.resize(n);
-      c.sigma.resize(n);
-      for (int i = 0; i < n; ++i) {
-        c.f_hz.push_back(1.0 + 0.03125 * i);
-        c.model[i] = cd(1.0, 0.0);
-        c.sigma[i] = 0.01;
-        c.measured[i] = c.model[i] + cd(g(rng), g(rng)) * (0.01 / std::sqrt(2.0));
-      }
-    }
+    const std::vector<ChannelResidual> all =
+        noise_channels(channels, n, 1.0, 0.03125, "a", [&](int) { return cd(g(rng), g(rng)); });
     if (!analyse_residuals(all).discrepancies.empty()) ++with_findings;
     if (!analyse_residuals(all, fixed_level).discrepancies.empty()) ++with_findings_at_4;
   }
@@ -244,24 +254,14 @@ TEST_CASE("noise correlated between neighbouring lines gives a finding in few di
   int with_findings = 0, as_if_independent = 0;
   ResidualOptions o;
   for (int t = 0; t < trials; ++t) {
-    std::vector<ChannelResidual> all(channels);
-    for (int ch = 0; ch < channels; ++ch) {
-      ChannelResidual& c = all[static_cast<std::size_t>(ch)];
-      c.channel = "d" + std::to_string(ch) + "/F";
-      c.data_set = "record.csv";
-      c.measured.resize(n);
-      c.model.resize(n);
-      c.sigma.resize(n);
-      cd previous(g(rng), g(rng));
-      for (int i = 0; i < n; ++i) {
-        const cd now(g(rng), g(rng));
-        c.f_hz.push_back(4.0 * (i + 1));
-        c.model[i] = cd(1.0, 0.0);
-        c.sigma[i] = 0.01;
-        c.measured[i] = c.model[i] + (now + c_ma * previous) / std::sqrt(1 + c_ma * c_ma) * (0.01 / std::sqrt(2.0));
-        previous = now;
-      }
-    }
+    cd previous;
+    std::vector<ChannelResidual> all = noise_channels(channels, n, 4.0, 4.0, "d", [&](int i) {
+      if (i == 0) previous = cd(g(rng), g(rng));  // each channel's moving average starts afresh
+      const cd now(g(rng), g(rng));
+      const cd e = (now + c_ma * previous) / std::sqrt(1 + c_ma * c_ma);
+      previous = now;
+      return e;
+    });
     if (!analyse_residuals(all, o).discrepancies.empty()) ++as_if_independent;
     for (ChannelResidual& c : all) c.line_correlation = {rho, 0.0};
     if (!analyse_residuals(all, o).discrepancies.empty()) ++with_findings;
