@@ -59,6 +59,13 @@ Eigen::VectorXd window_values(WelchWindow window, Eigen::Index n) {
   return w;
 }
 
+// Samples from one segment's start to the next's.
+Eigen::Index segment_step(const WelchOptions& options) {
+  const Eigen::Index L = options.segment_length;
+  const auto shared = static_cast<Eigen::Index>(std::llround(options.overlap * static_cast<double>(L)));
+  return std::max<Eigen::Index>(1, L - shared);
+}
+
 // How much the overlap of the segments leaves the averaged spectra more variable than `segments` independent ones:
 // 1 + 2 sum_{j>=1} (1 - j/K) rho_j^2 (Welch 1967), rho_j the window's overlap correlation at a shift of j steps,
 // sum w[i] w[i + j step] / sum w[i]^2 (50 % overlapping Hann segments: rho_1 = 1/6, a factor of about 1.056).
@@ -108,10 +115,8 @@ std::vector<double> welch_line_correlation(const WelchOptions& options, int coun
 }
 
 double welch_variance_dof(const WelchOptions& options, Eigen::Index segments, Eigen::Index inputs) {
-  const Eigen::Index L = options.segment_length;
-  const Eigen::Index step =
-      std::max<Eigen::Index>(1, L - static_cast<Eigen::Index>(std::llround(options.overlap * static_cast<double>(L))));
-  const double factor = overlap_variance_factor(window_values(options.window, L), step, segments);
+  const double factor =
+      overlap_variance_factor(window_values(options.window, options.segment_length), segment_step(options), segments);
   return 2.0 * static_cast<double>(std::max<Eigen::Index>(segments - inputs, 1)) / factor;
 }
 
@@ -127,8 +132,7 @@ WelchEstimate welch_h1(const TimeRecord& record, const std::vector<std::string>&
     throw DataError(record.file, 0, 0,
                     "time record has " + std::to_string(n) + " samples, fewer than one Welch segment of " +
                         std::to_string(L));
-  const Eigen::Index step =
-      std::max<Eigen::Index>(1, L - static_cast<Eigen::Index>(std::llround(options.overlap * static_cast<double>(L))));
+  const Eigen::Index step = segment_step(options);
   const Eigen::Index segments = 1 + (n - L) / step;
   const Eigen::Index ni = static_cast<Eigen::Index>(inputs.size()), no = static_cast<Eigen::Index>(outputs.size());
   if (segments < ni)

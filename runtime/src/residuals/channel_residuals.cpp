@@ -252,6 +252,8 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
     FrfData frf;
     std::optional<FrfData> model_frf;  // for a record: the model's FRFs as the same estimator sees them
     WelchEstimate residual_est;        // for a record: the H1 of measured minus simulated outputs
+    std::vector<double> line_correlation;  // for a record: of H1's neighbouring lines' noise
+    double sigma_dof = 0;                  // for a record: of its five-line noise level
     if (const FrfData* measured = std::get_if<FrfData>(&d.content)) {
       frf = *measured;
     } else {
@@ -278,6 +280,15 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
       // coherence at a lightly damped spindle mode drops to 0.5, a noise level far too high there, which hid the
       // gyroscopic split of those modes.
       residual_est = record_frfs(model, residual);
+      // H1's neighbouring lines share the segments' windowed spectra: their noise correlates (Hann: 0.44), and the
+      // noise level is an estimate; the finding threshold counts both (residual_analysis.hpp). Without them a right
+      // model's records were called `unexplained` in 5 of 40 drawn mdof2 controls, against the 5 % the threshold
+      // states.
+      const WelchOptions welch = record_welch_options(record);
+      const auto present = [&](const std::string& in) { return record.find(in) != nullptr; };
+      const auto inputs = static_cast<Eigen::Index>(std::count_if(info.inputs.begin(), info.inputs.end(), present));
+      line_correlation = welch_line_correlation(welch, 4);
+      sigma_dof = five_line_dof(welch_variance_dof(welch, residual_est.segments, inputs), line_correlation);
       // Above 90 % of Nyquist the anti-aliasing roll-off of any real record dominates; judge below it.
       const double f_max = 0.45 / est.dt;
       Eigen::Index keep = 0;
@@ -317,16 +328,8 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
         r.sigma = record_sigma(residual_est.variance[channel], c.values, weighting.floor);
         r.noise = "the H1 variance of the record's residual (measured minus simulated) over five lines";
         keep_record_lines_above_noise(r, static_cast<double>(residual_est.segments));
-        // H1's neighbouring lines share the segments' windowed spectra: their noise correlates (Hann: 0.44), and
-        // the finding threshold counts it (residual_analysis.hpp). Without it a right model's records were called
-        // `unexplained` in 5 of 40 drawn mdof2 controls, against the 5 % the threshold states.
-        const TimeRecord& record = std::get<TimeRecord>(d.content);
-        const WelchOptions welch = record_welch_options(record);
-        const auto residual_inputs = static_cast<Eigen::Index>(
-            std::count_if(info.inputs.begin(), info.inputs.end(), [&](const std::string& in) { return record.find(in); }));
-        r.line_correlation = welch_line_correlation(welch, 4);
-        r.sigma_dof = five_line_dof(welch_variance_dof(welch, residual_est.segments, residual_inputs),
-                                    r.line_correlation);
+        r.line_correlation = line_correlation;
+        r.sigma_dof = sigma_dof;
       } else {
         // The noise level from the data alone, the same for every model judged against them.
         const FrfNoise& noise = noise_levels.of(d, frf, c);

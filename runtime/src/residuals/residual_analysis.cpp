@@ -223,11 +223,12 @@ Discrepancy classify(const ChannelResidual& c, const Eigen::VectorXcd& smooth, c
   } else if (d.size_db < -3.0) {
     d.kind = "unexplained_antiresonance";
     d.text = format("a dip near %.1f Hz on %s that the model does not have (%.1f dB)", d.f_hz, where.c_str(), d.size_db);
-  } else if (std::abs(std::arg(c.measured[at] / c.model[at])) > std::abs(d.size_db) * std::log(10.0) / 20.0) {
+  } else if (const double phase = std::abs(std::arg(c.measured[at] / c.model[at]));
+             phase > std::abs(d.size_db) * std::log(10.0) / 20.0) {
     // Where the residual is largest the miss is more in phase than in magnitude (compared as the parts of
     // ln(data / model): radians against nepers), so it is said in degrees; "by up to 0.0 dB" said nothing.
     d.kind = "misfit";
-    const double phase_deg = std::abs(std::arg(c.measured[at] / c.model[at])) * 180.0 / numerics::kPi;
+    const double phase_deg = phase * 180.0 / numerics::kPi;
     d.text = format("between %.1f and %.1f Hz the model misses %s in phase: by %.1f degrees at %.1f Hz (%.1f dB in "
                     "magnitude)",
                     d.f_lo, d.f_hi, where.c_str(), phase_deg, d.f_hz, std::abs(d.size_db));
@@ -350,35 +351,44 @@ std::vector<int> magnitude_peaks(const Eigen::VectorXcd& h, double prominence_db
   return peaks;
 }
 
-double finding_threshold(const ResidualOptions& options, long lines) {
-  const int w = std::max(1, options.window);
-  // P(Gamma(w, 1) > w t): the chance that the mean of w independent Exp(1) variables (z of noise alone) exceeds t.
-  const auto tail = [w](double t) {
-    const double x = w * t;
-    double term = 1, sum = 1;
-    for (int k = 1; k < w; ++k) sum += (term *= x / k);
-    return std::exp(-x) * sum;
-  };
-  const double n = static_cast<double>(std::max(lines, 1L));
+namespace {
+
+// P(Gamma(w, 1) > w t): the chance that the mean of w independent Exp(1) variables (z of noise alone) exceeds t.
+double independent_tail(int w, double t) {
+  const double x = w * t;
+  double term = 1, sum = 1;
+  for (int k = 1; k < w; ++k) sum += (term *= x / k);
+  return std::exp(-x) * sum;
+}
+
+// The lowest level at or above options.threshold at which `expected(level)`, the number of windows noise alone is
+// expected to raise above it (falling with the level), is at most options.false_alarm_rate.
+template <class Expected>
+double lowest_level(const ResidualOptions& options, Expected expected) {
   double lo = options.threshold;
-  if (n * tail(lo) <= options.false_alarm_rate) return lo;
+  if (expected(lo) <= options.false_alarm_rate) return lo;
   double hi = std::max(lo, 1.0);  // doubling from a level of 0 would never move
-  while (n * tail(hi) > options.false_alarm_rate) hi *= 2;
+  while (expected(hi) > options.false_alarm_rate) hi *= 2;
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (n * tail(mid) > options.false_alarm_rate ? lo : hi) = mid;
+    (expected(mid) > options.false_alarm_rate ? lo : hi) = mid;
   }
   return hi;
 }
 
+}  // namespace
+
+double finding_threshold(const ResidualOptions& options, long lines) {
+  const int w = std::max(1, options.window);
+  const double n = static_cast<double>(std::max(lines, 1L));
+  return lowest_level(options, [&](double t) { return n * independent_tail(w, t); });
+}
+
 namespace {
 
-// P(mean of the window's z > t) for noise whose lines correlate as `rho` (lag 1, 2, ...): z_k = |e_k|^2 with e
-// complex Gaussian of correlation matrix R (R_ij = rho_|i-j|), so the window's sum is sum_i lambda_i E_i, lambda the
-// eigenvalues of R and E_i independent Exp(1), whose tail is sum_i prod_{j != i} lambda_i / (lambda_i - lambda_j)
-// exp(-w t / lambda_i) for distinct eigenvalues. Null when they are not distinct enough for that sum.
-// The eigenvalues of the correlation matrix of w neighbouring lines, R_ij = rho_|i-j|; null when they are not
-// distinct enough for the tail's sum.
+// Noise whose lines correlate as `rho` (lag 1, 2, ...): z_k = |e_k|^2 with e complex Gaussian of correlation matrix R
+// (R_ij = rho_|i-j|), so a window's sum of z is sum_i lambda_i E_i, lambda the eigenvalues of R and E_i independent
+// Exp(1). The eigenvalues for w neighbouring lines; null when they are not distinct enough for eigen_tail's sum.
 std::optional<Eigen::VectorXd> window_eigenvalues(int w, const std::vector<double>& rho) {
   Eigen::MatrixXd R = Eigen::MatrixXd::Identity(w, w);
   for (int i = 0; i < w; ++i)
@@ -393,7 +403,8 @@ std::optional<Eigen::VectorXd> window_eigenvalues(int w, const std::vector<doubl
   return lambda;
 }
 
-// P(sum_i lambda_i E_i > w t), E_i independent Exp(1), for distinct eigenvalues lambda.
+// P(sum_i lambda_i E_i > w t), E_i independent Exp(1), for distinct eigenvalues lambda: sum_i prod_{j != i}
+// lambda_i / (lambda_i - lambda_j) exp(-w t / lambda_i).
 double eigen_tail(const Eigen::VectorXd& lambda, int w, double t) {
   double p = 0;
   for (Eigen::Index i = 0; i < lambda.size(); ++i) {
@@ -448,23 +459,11 @@ double finding_threshold(const ResidualOptions& options, const std::vector<Chann
   if (correlated.empty()) return finding_threshold(options, independent_lines);
   // The expected number of windows above t: the independent lines' as in finding_threshold, plus each correlated
   // channel's lines times its windows' tail.
-  const auto expected = [&](double t) {
-    const double x = w * t;
-    double term = 1, sum = 1;
-    for (int k = 1; k < w; ++k) sum += (term *= x / k);
-    double e = static_cast<double>(independent_lines) * std::exp(-x) * sum;
+  return lowest_level(options, [&](double t) {
+    double e = static_cast<double>(independent_lines) * independent_tail(w, t);
     for (const Correlated& c : correlated) e += c.lines * window_tail(c.lambda, w, t, c.dof);
     return e;
-  };
-  double lo = options.threshold;
-  if (expected(lo) <= options.false_alarm_rate) return lo;
-  double hi = std::max(lo, 1.0);
-  while (expected(hi) > options.false_alarm_rate) hi *= 2;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (expected(mid) > options.false_alarm_rate ? lo : hi) = mid;
-  }
-  return hi;
+  });
 }
 
 ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, const ResidualOptions& given) {
