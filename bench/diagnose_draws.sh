@@ -21,6 +21,7 @@ trap 'rm -rf "$work"' EXIT
 cases=(
   "mdof2 nominal frf -"
   "mdof2 nominal frf - --no-coherence"
+  "mdof2 nominal frf - --analyser 8"
   "mdof2 compliant_ground frf compliant_ground:wall"
   "mdof2 free_parameter frf free_parameter:c12"
   "mdof2 resonator frf resonator:mass1"
@@ -34,6 +35,7 @@ cases=(
   "mdof2 outside_maxwell time not_extended"
   "mdof2 sensor_lowpass time sensor_dynamics:d2"
   "spindle nominal frf -"
+  "spindle nominal frf - --analyser 8"
   "spindle compliant_ground frf compliant_ground:base"
   "spindle base_on_feet frf compliant_ground:base"
   "spindle untie_parameter frf untie_parameter:k_hby"

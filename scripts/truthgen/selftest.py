@@ -712,6 +712,21 @@ def check_averages_and_options():
           and np.allclose(h - H, (one["noisy"] - H) / np.sqrt(8)),
           "--averages 8: (1 - coh)/(8 coh) |h|^2 = sigma^2/8 on every line, noise power / it = %s"
           % np.round(ratio.ravel(), 3).tolist())
+    # An analyser's H1 from N segments: (1 - coh)/(N coh) |h|^2 is the residual power of the N segments' least
+    # squares over N sum|X|^2, an estimate of h's variance with 2 (N - 1) degrees of freedom and mean (N - 1)/N of
+    # it, so |h - H|^2 over it has mean N/(N - 1) (N - 1)/(N - 2) = N/(N - 2): 4/3 for N = 8 (over its average
+    # instead, the ratio is (N - 1)/N)
+    an = generate.make_analyser_frf(mats, f, 40.0, np.random.default_rng(5), 8)
+    H, h, coh = an["clean"], an["noisy"], an["coherence"]
+    estimate = (1 - coh) / (8 * coh) * np.abs(h) ** 2
+    z = np.abs(h - H) ** 2 / estimate
+    pooled = np.mean(np.abs(h - H) ** 2, axis=0) / np.mean(estimate, axis=0)
+    again = generate.make_analyser_frf(mats, f, 40.0, np.random.default_rng(5), 8)
+    check(np.all(np.abs(np.mean(z, axis=0) / (8 / 6) - 1) < 0.1) and np.all(np.abs(pooled / (8 / 7) - 1) < 0.1)
+          and np.all((coh > 0) & (coh < 1)) and np.array_equal(again["noisy"], h),
+          "--analyser 8: |h - H|^2 over its coherence's variance estimate has mean %s (4/3 predicted), over its mean "
+          "%s (8/7); coherence inside (0, 1); same seed same data"
+          % (np.round(np.mean(z, axis=0).ravel(), 3).tolist(), np.round(pooled.ravel(), 3).tolist()))
     with tempfile.TemporaryDirectory() as tmp:
         run_cli_here(["--example", "mdof2", "--case", "sensor_delay", "--kind", "frf", "--averages", "4",
                       "--no-coherence", "--draw", "7", "-o", "a.csv"], tmp)
@@ -735,6 +750,9 @@ def check_averages_and_options():
                            (["--example", "mdof2", "--case", "nominal", "--kind", "time", "--averages", "2"],
                             "--averages on a time record"),
                            (["--example", "mdof2", "--case", "nominal", "--averages", "0"], "--averages 0"),
+                           (["--example", "mdof2", "--case", "nominal", "--analyser", "1"], "--analyser 1"),
+                           (["--example", "mdof2", "--case", "nominal", "--analyser", "4", "--averages", "2"],
+                            "--analyser with --averages"),
                            (["--example", "mdof2", "--case", "nominal", "--draw", "-1"], "--draw -1")]:
             bad = subprocess.run([sys.executable, os.path.join(HERE, "truthgen.py")] + argv + ["-o", "e.csv"],
                                  capture_output=True, text=True, cwd=tmp)

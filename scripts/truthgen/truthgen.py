@@ -65,6 +65,9 @@ def parse_args(argv):
     ap.add_argument("--averages", type=int, default=1, metavar="N",
                     help="FRF: the average of N measurements: noise variance sigma^2/N, coherence as for one "
                          "measurement (default 1)")
+    ap.add_argument("--analyser", type=int, metavar="N",
+                    help="FRF: an analyser's H1 estimate from N segments, its coherence from the same segments "
+                         "(scatters as a measured one does; N >= 2)")
     ap.add_argument("--no-coherence", action="store_true", help="FRF: write no .coh columns")
     series_options = ap.add_argument_group("a monitored series (--kind oma; docs/truthgen.md)")
     series_options.add_argument("--series", type=int, metavar="N",
@@ -173,6 +176,11 @@ def truth_document(args, case, p, mats, settings, snr_db, data, outputs, inputs,
             doc["frf"]["averages"] = args.averages
             doc["noise"]["definition"] += ("; the FRF is the average of %d measurements: noise variance sigma^2/%d, "
                                            "coherence as for one" % (args.averages, args.averages))
+        if args.analyser is not None:
+            doc["frf"]["analyser_segments"] = args.analyser
+            doc["noise"]["definition"] += ("; the FRF is an analyser's H1 estimate from %d segments (complex Gaussian "
+                                           "force spectra of unit power, output noise sigma per segment), its "
+                                           "coherence from the same segments" % args.analyser)
         if args.no_coherence:
             doc["frf"]["coherence_columns"] = False
         for oi, o in enumerate(outputs):
@@ -231,6 +239,8 @@ def run(argv):
         raise UsageError("case %s/%s has no %s data" % (case.example, case.name, args.kind))
     if args.kind != "frf" and (args.averages != 1 or args.no_coherence):
         raise UsageError("--averages and --no-coherence apply to FRFs only")
+    if args.analyser is not None and (args.kind != "frf" or args.analyser < 2 or args.averages != 1):
+        raise UsageError("--analyser N applies to FRFs only, needs N >= 2 segments and excludes --averages")
     if args.averages < 1:
         raise UsageError("--averages %d: must be at least 1" % args.averages)
     if args.input_snr_db is not None and (args.kind != "time" or not math.isfinite(args.input_snr_db)):
@@ -264,7 +274,10 @@ def run(argv):
                                     args.df if args.df is not None else df)
         if f[0] < 0 or len(f) < 1:
             raise UsageError("bad frequency grid")
-        data = generate.make_frf(mats, f, snr_db, rng, args.averages)
+        if args.analyser is not None:
+            data = generate.make_analyser_frf(mats, f, snr_db, rng, args.analyser)
+        else:
+            data = generate.make_frf(mats, f, snr_db, rng, args.averages)
         chain.apply_frf(data, measurement_chain, outputs, inputs)
         datafiles.write_frf_csv(args.output, data, outputs, inputs, settings, coherence=not args.no_coherence)
     elif args.kind == "oma":

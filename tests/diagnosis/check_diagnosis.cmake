@@ -1,7 +1,7 @@
 # One hidden-effect test: make data with the independent truth-model generator (scripts/truthgen, numpy; not
 # mbgen's code), run `mbgen diagnose`, and check the verdict and the selected extensions in its JSON.
 #   -DMBGEN=... -DPYTHON=... -DTRUTHGEN=... -DMODEL=... -DWORK_DIR=...
-#   -DDATA="example:case:kind:seed[:NAME=VALUE][:duration=S][:draw=N][:averages=N][:nocoh][:fs=HZ]
+#   -DDATA="example:case:kind:seed[:NAME=VALUE][:duration=S][:draw=N][:averages=N][:analyser=N][:nocoh][:fs=HZ]
 #           [:gain=OUTPUT=FACTOR][:inputgain=INPUT=FACTOR][:forcesign=-1][:swap=A,B][:unit=OUTPUT=UNIT]
 #           [:form=OUTPUT=FORM]|..."
 #                                                                     one or more data sets; gain, inputgain,
@@ -42,6 +42,8 @@ foreach(set IN LISTS sets)
         list(APPEND extra --draw "${CMAKE_MATCH_1}")  # the truth drawn at random from this seed
       elseif(option MATCHES "^averages=(.*)$")
         list(APPEND extra --averages "${CMAKE_MATCH_1}")  # an FRF averaged this many times
+      elseif(option MATCHES "^analyser=(.*)$")
+        list(APPEND extra --analyser "${CMAKE_MATCH_1}")  # an analyser's H1 of this many segments
       elseif(option STREQUAL "nocoh")
         list(APPEND extra --no-coherence)  # an FRF file without coherence columns
       elseif(option MATCHES "^fs=(.*)$")

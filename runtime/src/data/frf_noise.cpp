@@ -133,6 +133,54 @@ FrfNoise from_scatter(const Eigen::VectorXd& f_hz, const Eigen::VectorXcd& h, do
   return out;
 }
 
+// The degrees of freedom at which one line's coherence-based level is taken as exact: chi-square of 200 scatters by
+// 10 % (sqrt(2/200)), which moves a five-line window's tail at the threshold by far less than the windows judged do.
+constexpr double kExactLineDof = 200;
+
+// v averaged over the five lines around each line (fewer at the ends).
+Eigen::VectorXd five_line_mean(const Eigen::VectorXd& v) {
+  const Eigen::Index n = v.size();
+  Eigen::VectorXd out(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Index lo = std::max<Eigen::Index>(0, k - 2), hi = std::min<Eigen::Index>(n - 1, k + 2);
+    out[k] = v.segment(lo, hi - lo + 1).mean();
+  }
+  return out;
+}
+
+// The degrees of freedom nu of one line's variance estimate v_k, from its scatter about its four neighbours' mean:
+// r_k = v_k / mean(v_k-2, v_k-1, v_k+1, v_k+2) is F(nu, 4 nu)-distributed where v is a chi-square estimate of a
+// smooth level, whose variance 2 (4 nu)^2 (5 nu - 2) / (nu (4 nu - 2)^2 (4 nu - 4)) is matched to the mean of
+// (r_k - 1)^2 over the stencils `usable` marks (centred two lines on). 0 where v does not scatter: a coherence
+// made from the exact noise level (test data) gives it exactly, up to its printed digits, and a level that follows
+// the response instead of a smooth one only lowers nu (a conservative threshold).
+double line_dof(const Eigen::VectorXd& v, const std::vector<char>& usable) {
+  double sum = 0;
+  long count = 0;
+  for (std::size_t k = 0; k < usable.size(); ++k) {
+    if (!usable[k]) continue;
+    const auto c = static_cast<Eigen::Index>(k) + 2;
+    const double neighbours = (v[c - 2] + v[c - 1] + v[c + 1] + v[c + 2]) / 4;
+    if (!(neighbours > 0)) continue;
+    const double r = v[c] / neighbours - 1;
+    sum += r * r, ++count;
+  }
+  if (count < FrfNoise::kMinLines) return 0;
+  const double m = sum / static_cast<double>(count);
+  const auto f_variance = [](double nu) {
+    const double d2 = 4 * nu;
+    return 2 * d2 * d2 * (nu + d2 - 2) / (nu * (d2 - 2) * (d2 - 2) * (d2 - 4));
+  };
+  if (!(m > f_variance(1e9))) return 0;  // no scatter beyond the digits: exact
+  double lo = 2, hi = 1e9;                // f_variance falls with nu
+  if (m >= f_variance(lo)) return lo;
+  for (int i = 0; i < 100 && hi > lo * (1 + 1e-9); ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (f_variance(mid) > m ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
 // The coherence-based level: the variance of the H1 estimate, (1 - coh^2)/(n coh^2) |h|^2 with the measured |h|, the
 // fit's own formula (frf_variance, frf_sigma.hpp, which says why the measured |h|), with the number of averages n
 // estimated from the data: it is rarely known, and it sets the level's scale. n is estimated from the data's scatter
@@ -146,7 +194,6 @@ FrfNoise from_scatter(const Eigen::VectorXd& f_hz, const Eigen::VectorXcd& h, do
 FrfNoise from_coherence(const FrfChannel& channel, double floor) {
   const Eigen::VectorXcd& h = channel.values;
   const Eigen::VectorXd& coherence = *channel.coherence;
-  const auto variance = [&](double averages) { return frf_variance(channel, averages, floor); };
   const Stencil s = differences(h);
   const Eigen::Index m = s.e.size();
   std::vector<char> usable(static_cast<std::size_t>(m), 0);
@@ -158,6 +205,14 @@ FrfNoise from_coherence(const FrfChannel& channel, double floor) {
     usable_count += clear;
   }
   if (usable_count < FrfNoise::kMinLines) std::fill(usable.begin(), usable.end(), 1);  // too few: use all
+  // One line's level scattering by under 10 % (nu >= 200) is taken as exact, line by line: pooled, it would only
+  // blur a level that may follow the response. Otherwise five lines are pooled, with five times the freedom.
+  const double nu = line_dof(frf_variance(channel, 1, floor), usable);
+  const bool pooled = nu > 0 && nu < kExactLineDof;
+  const auto variance = [&](double averages) {
+    const Eigen::VectorXd v = frf_variance(channel, averages, floor);
+    return pooled ? five_line_mean(v) : v;
+  };
   // Maximum likelihood of the scale of e_k ~ Exp(scale V_k), V the stencil sum of variance v, the
   // curvature-dominated lines left out.
   int left_out = 0;
@@ -194,6 +249,7 @@ FrfNoise from_coherence(const FrfChannel& channel, double floor) {
   out.source = FrfNoise::Source::Coherence;
   out.averages = averages;
   out.coherence_scale = scale;
+  out.level_dof = pooled ? 5 * nu : 0;
   out.lines_left_out = std::max(left_out, 0);
   out.sigma = (scale * v.array()).sqrt();
   return out;
@@ -204,6 +260,11 @@ FrfNoise from_coherence(const FrfChannel& channel, double floor) {
 std::string FrfNoise::description() const {
   switch (source) {
     case Source::Coherence:
+      if (averages > 1 && level_dof > 0)
+        return detail::format("coherence, for an FRF averaged %.3g times (the number that matches the data's scatter "
+                              "between neighbouring lines), over five lines: the coherence scatters, the level has "
+                              "%.0f degrees of freedom",
+                              averages, level_dof);
       if (averages > 1)
         return detail::format("coherence, for an FRF averaged %.3g times (the number that matches the data's scatter "
                               "between neighbouring lines)",

@@ -160,6 +160,51 @@ TEST_CASE("frf_noise: where the coherence is low, the level follows the averaged
   }
 }
 
+// An analyser's H1 from `segments` averages, made here: each line's force spectra of unit magnitude and random
+// phase (a periodic chirp's), the output the response plus complex noise of the one segment's level, h =
+// sum(Y conj X) / sum|X|^2 and the coherence |sum(Y conj X)|^2 / (sum|X|^2 sum|Y|^2) from the same segments.
+Averaged analyser(unsigned seed, double additive_rel, int segments, int lines = 2400) {
+  Averaged a{make(seed, lines, 600.0 / lines, 0.02, additive_rel, 0.0, 0.0), {}, {}};
+  std::mt19937_64 rng(seed + 1000);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> phase(0, two_pi);
+  Eigen::VectorXcd h(lines);
+  Eigen::VectorXd coherence(lines);
+  for (int k = 0; k < lines; ++k) {
+    cd cross = 0;
+    double xx = 0, yy = 0;
+    for (int m = 0; m < segments; ++m) {
+      const cd x = std::polar(1.0, phase(rng));
+      const cd y = a.one.clean[k] * x + a.one.sigma[k] / std::sqrt(2.0) * cd(normal(rng), normal(rng));
+      cross += y * std::conj(x), xx += std::norm(x), yy += std::norm(y);
+    }
+    h[k] = cross / xx;
+    coherence[k] = std::norm(cross) / (xx * yy);
+  }
+  a.channel = channel(h);
+  a.channel.coherence = coherence;
+  a.sigma = a.one.sigma / std::sqrt(static_cast<double>(segments));
+  return a;
+}
+
+TEST_CASE("frf_noise: an analyser's coherence from few averages scatters, and its level says by how much",
+          "[frf_noise]") {
+  // (1 - coh^2)/coh^2 |h|^2 of 8 averages is a chi-square estimate of 14 degrees of freedom per line; five lines
+  // pooled have 70. A coherence from the exact level (`averaged`) does not scatter.
+  for (unsigned seed = 61; seed <= 63; ++seed) {
+    const Averaged a = analyser(seed, 0.05, 8);
+    const mbgen::FrfNoise noise = mbgen::frf_noise(a.one.f, a.channel);
+    INFO("seed " << seed << ": " << noise.description() << ", level dof " << noise.level_dof);
+    CHECK(noise.level_dof == Approx(70).epsilon(0.2));
+    Eigen::VectorXd ratio = noise.sigma.cwiseQuotient(a.sigma);
+    std::sort(ratio.data(), ratio.data() + ratio.size());
+    CHECK(ratio[ratio.size() / 20] > 0.6);                     // pooled: 5 % of lines lower, not a tenth at 0.56
+    CHECK(ratio[ratio.size() - 1 - ratio.size() / 20] < 1.4);  // 5 % higher
+    const Averaged exact = averaged(seed, 0.05, 8);
+    CHECK(mbgen::frf_noise(exact.one.f, exact.channel).level_dof == 0);
+  }
+}
+
 TEST_CASE("frf_noise: too few lines fall back to the channel's RMS and say so", "[frf_noise]") {
   Eigen::VectorXd f = Eigen::VectorXd::LinSpaced(5, 10, 14);
   const mbgen::FrfNoise noise = mbgen::frf_noise(f, channel(Eigen::VectorXcd::Constant(5, cd(3, 4))));

@@ -335,6 +335,7 @@ std::vector<ChannelResidual> channel_residuals(const Model& model, const std::ve
         const FrfNoise& noise = noise_levels.of(d, frf, c);
         r.sigma = noise.sigma;
         r.noise = noise.description();
+        r.sigma_dof = noise.level_dof;
         keep_frf_lines_above_noise(r, prediction.at(d, values, f, o, i));
       }
       out.push_back(std::move(r));

@@ -419,9 +419,11 @@ double eigen_tail(const Eigen::VectorXd& lambda, int w, double t) {
 
 // The tail with sigma^2 estimated: z = |e|^2 / (sigma^2 S), S = chi^2_dof / dof independent of e, so the window's
 // mean exceeds t when the exact one exceeds t S: the tail averaged over S's density (Simpson's rule over S's mean
-// +- 10 standard deviations). dof <= 0: sigma exact.
-double window_tail(const Eigen::VectorXd& lambda, int w, double t, double dof) {
-  if (!(dof > 0)) return eigen_tail(lambda, w, t);
+// +- 10 standard deviations). dof <= 0: sigma exact. `exact_tail(t)` is the tail with sigma exact: eigen_tail for
+// correlated lines, independent_tail for independent ones.
+template <class ExactTail>
+double window_tail(ExactTail exact_tail, double t, double dof) {
+  if (!(dof > 0)) return exact_tail(t);
   const double sd = std::sqrt(2.0 / dof), hi = 1.0 + 10.0 * sd, lo = std::max(1e-9, 1.0 - 10.0 * sd);
   const int n = 400;  // even
   const double h = (hi - lo) / n, k = dof / 2;
@@ -431,7 +433,7 @@ double window_tail(const Eigen::VectorXd& lambda, int w, double t, double dof) {
   double sum = 0;
   for (int i = 0; i <= n; ++i) {
     const double s = lo + i * h, weight = i == 0 || i == n ? 1 : i % 2 ? 4 : 2;
-    sum += weight * density(s) * eigen_tail(lambda, w, t * s);
+    sum += weight * density(s) * exact_tail(t * s);
   }
   return std::clamp(sum * h / 3, 0.0, 1.0);
 }
@@ -441,27 +443,34 @@ double window_tail(const Eigen::VectorXd& lambda, int w, double t, double dof) {
 double finding_threshold(const ResidualOptions& options, const std::vector<ChannelResidual>& channels) {
   const int w = std::max(1, options.window);
   long independent_lines = 0;
-  struct Correlated {
+  // Channels whose windows have a tail of their own: correlated lines (lambda), or a noise level estimated with
+  // `dof` degrees of freedom (a record's, or a measured FRF's whose coherence scatters), or both.
+  struct OwnTail {
     double lines;
-    Eigen::VectorXd lambda;
+    std::optional<Eigen::VectorXd> lambda;
     double dof;
   };
-  std::vector<Correlated> correlated;
+  std::vector<OwnTail> own;
   for (const ChannelResidual& c : channels) {
     const bool any = std::any_of(c.line_correlation.begin(), c.line_correlation.end(), [](double r) { return r != 0; });
     std::optional<Eigen::VectorXd> lambda;
     if (any && w > 1) lambda = window_eigenvalues(w, c.line_correlation);
-    if (lambda)
-      correlated.push_back({static_cast<double>(c.f_hz.size()), *lambda, c.sigma_dof});
+    if (lambda || c.sigma_dof > 0)
+      own.push_back({static_cast<double>(c.f_hz.size()), lambda, c.sigma_dof});
     else
       independent_lines += static_cast<long>(c.f_hz.size());
   }
-  if (correlated.empty()) return finding_threshold(options, independent_lines);
-  // The expected number of windows above t: the independent lines' as in finding_threshold, plus each correlated
+  if (own.empty()) return finding_threshold(options, independent_lines);
+  // The expected number of windows above t: the independent lines' as in finding_threshold, plus each other
   // channel's lines times its windows' tail.
   return lowest_level(options, [&](double t) {
     double e = static_cast<double>(independent_lines) * independent_tail(w, t);
-    for (const Correlated& c : correlated) e += c.lines * window_tail(c.lambda, w, t, c.dof);
+    for (const OwnTail& c : own) {
+      if (c.lambda)
+        e += c.lines * window_tail([&](double x) { return eigen_tail(*c.lambda, w, x); }, t, c.dof);
+      else
+        e += c.lines * window_tail([&](double x) { return independent_tail(w, x); }, t, c.dof);
+    }
     return e;
   });
 }

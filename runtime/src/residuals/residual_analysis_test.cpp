@@ -292,3 +292,17 @@ TEST_CASE("the threshold of correlated lines is higher than of as many independe
   CHECK(estimated > correlated + 0.1);
   CHECK(estimated < 5.5);
 }
+
+TEST_CASE("independent lines over a level of few degrees of freedom get the tail of that level's scatter",
+          "[residual]") {
+  // A measured FRF whose coherence scatters (an analyser's, frf_noise.hpp): its lines are independent, but the level
+  // pooled over five lines is an estimate. The threshold at which 1000 lines expect 0.05 windows above it, from
+  // scipy's quadrature of P(Gamma(5, 1) > 5 t S) over S ~ chi2(70)/70: 4.6072 (3.7311 with the level exact, so
+  // the threshold's floor of 4 holds there).
+  ResidualOptions o;
+  ChannelResidual c;
+  c.f_hz.assign(1000, 1.0);
+  CHECK(finding_threshold(o, std::vector<ChannelResidual>{c}) == 4.0);
+  c.sigma_dof = 70;
+  CHECK(finding_threshold(o, std::vector<ChannelResidual>{c}) == Approx(4.6072).epsilon(2e-3));
+}

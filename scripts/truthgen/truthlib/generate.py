@@ -11,6 +11,11 @@ Noise definitions (docs/truthgen.md):
   An FRF averaged over N measurements (--averages N) has noise of variance sigma^2/N, and the coherence column
   is |h|^2/(|h|^2 + sigma^2) with that average h and the sigma of one measurement: averaging does not improve
   the coherence, it shrinks the estimate's variance (1 - coh)/(N coh) |h|^2 = sigma^2/N.
+  An analyser's FRF (--analyser N, make_analyser_frf) is the H1 estimate of N segments instead, each input driven
+  alone with complex Gaussian spectra of unit power per line and every output with noise of the one measurement's
+  sigma: h = sum(Y conj X) / sum|X|^2 and coherence |sum(Y conj X)|^2 / (sum|X|^2 sum|Y|^2), both from the same
+  N segments. Its coherence scatters as a real one does: (1 - coh)/(N coh) |h|^2 is an estimate of h's variance
+  with 2 (N - 1) degrees of freedom, where the two constructions above give it exactly.
 - Time: per output, sigma = RMS of the noise-free output record divided by 10^(SNR/20), white Gaussian,
   independent per sample and channel. Inputs are exact (a measured force taken as clean).
 """
@@ -56,6 +61,33 @@ def make_frf(mats, f_hz, snr_db, rng, averages=1):
                 coh[:, o, i] = np.abs(noisy[:, o, i]) ** 2 / (np.abs(noisy[:, o, i]) ** 2 + sigma[o, i] ** 2)
     return {"f_hz": np.asarray(f_hz, float), "clean": H, "noisy": noisy, "coherence": coh, "sigma": sigma,
             "averages": averages}
+
+
+def make_analyser_frf(mats, f_hz, snr_db, rng, segments):
+    """An analyser's H1 estimate of every output/input pair from `segments` averages, with its own coherence
+    (module docstring). Returns make_frf's dict; sigma is one segment's noise, the estimate's about
+    sigma/sqrt(segments)."""
+    H = response.frf(mats, f_hz)
+    F, O, I = H.shape
+    sigma = np.zeros((O, I))
+    for o in range(O):
+        for i in range(I):
+            magnitude = np.abs(np.ascontiguousarray(H[:, o, i]))
+            sigma[o, i] = noise_sigma(np.sqrt(np.mean(magnitude ** 2)), snr_db)
+    noisy = H.copy()
+    coh = np.ones(H.shape)
+    for i in range(I):
+        # one test per input: its force spectra are shared by every output measured in that test
+        X = (rng.standard_normal((segments, F)) + 1j * rng.standard_normal((segments, F))) / np.sqrt(2)
+        power_x = np.sum(np.abs(X) ** 2, axis=0)
+        for o in range(O):
+            n = (rng.standard_normal((segments, F)) + 1j * rng.standard_normal((segments, F))) / np.sqrt(2)
+            Y = H[:, o, i] * X + sigma[o, i] * n
+            cross = np.sum(Y * np.conj(X), axis=0)
+            noisy[:, o, i] = cross / power_x
+            coh[:, o, i] = np.abs(cross) ** 2 / (power_x * np.sum(np.abs(Y) ** 2, axis=0))
+    return {"f_hz": np.asarray(f_hz, float), "clean": H, "noisy": noisy, "coherence": coh, "sigma": sigma,
+            "averages": segments, "analyser": True}
 
 
 def excitation(kind, count, inputs, amplitude, rng):

@@ -29,7 +29,8 @@ struct ChannelResidual {
   // as assumed for measured FRFs). A record's H1 lines share its segments' windowed spectra (welch.hpp).
   std::vector<double> line_correlation;
   // The degrees of freedom of sigma^2 where it is an estimate from a few averages (a record's H1 variance over five
-  // lines), 0 where it is taken as exact: an estimated level scatters, and z over it has a heavier tail.
+  // lines, a measured FRF's coherence-based variance over five lines where the coherence scatters: frf_noise.hpp),
+  // 0 where it is taken as exact: an estimated level scatters, and z over it has a heavier tail.
   double sigma_dof = 0;
 };
 
@@ -86,8 +87,9 @@ double finding_threshold(const ResidualOptions& options, long lines);
 // The same over channels whose neighbouring lines may be correlated (ChannelResidual::line_correlation): a window's
 // mean of z is then a sum of exponentials weighted by the eigenvalues of its lines' correlation matrix, whose tail
 // is heavier (with a Hann window's H1, P(mean of 5 > 4) is 2.4e-4 instead of 1.7e-5), and heavier again where sigma^2
-// is an estimate of `sigma_dof` degrees of freedom (the tail averaged over its chi-square scatter; 6.7e-4 at 100);
-// the expected number of windows above the level is summed over the channels.
+// is an estimate of `sigma_dof` degrees of freedom (the tail averaged over its chi-square scatter; 6.7e-4 at 100;
+// independent lines with such a level: 2.4e-4 at 70); the expected number of windows above the level is summed over
+// the channels.
 double finding_threshold(const ResidualOptions& options, const std::vector<ChannelResidual>& channels);
 
 ResidualSummary analyse_residuals(const std::vector<ChannelResidual>& channels, const ResidualOptions& options = {});
