@@ -260,15 +260,15 @@ FrfNoise from_coherence(const FrfChannel& channel, double floor) {
 std::string FrfNoise::description() const {
   switch (source) {
     case Source::Coherence:
-      if (averages > 1 && level_dof > 0)
-        return detail::format("coherence, for an FRF averaged %.3g times (the number that matches the data's scatter "
-                              "between neighbouring lines), over five lines: the coherence scatters, the level has "
-                              "%.0f degrees of freedom",
-                              averages, level_dof);
-      if (averages > 1)
-        return detail::format("coherence, for an FRF averaged %.3g times (the number that matches the data's scatter "
-                              "between neighbouring lines)",
-                              averages);
+      if (averages > 1) {
+        std::string text = detail::format("coherence, for an FRF averaged %.3g times (the number that matches the "
+                                          "data's scatter between neighbouring lines)",
+                                          averages);
+        if (level_dof > 0)
+          text += detail::format(", over five lines: the coherence scatters, the level has %.0f degrees of freedom",
+                                 level_dof);
+        return text;
+      }
       return detail::format("coherence, its variance scaled by %.3g to match the data's scatter between neighbouring "
                             "lines (larger than one average's)",
                             coherence_scale);

@@ -466,10 +466,8 @@ double finding_threshold(const ResidualOptions& options, const std::vector<Chann
   return lowest_level(options, [&](double t) {
     double e = static_cast<double>(independent_lines) * independent_tail(w, t);
     for (const OwnTail& c : own) {
-      if (c.lambda)
-        e += c.lines * window_tail([&](double x) { return eigen_tail(*c.lambda, w, x); }, t, c.dof);
-      else
-        e += c.lines * window_tail([&](double x) { return independent_tail(w, x); }, t, c.dof);
+      const auto exact = [&](double x) { return c.lambda ? eigen_tail(*c.lambda, w, x) : independent_tail(w, x); };
+      e += c.lines * window_tail(exact, t, c.dof);
     }
     return e;
   });

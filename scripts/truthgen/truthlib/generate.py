@@ -39,14 +39,10 @@ def noise_sigma(rms, snr_db):
     return rms / 10 ** (snr_db / 20.0)
 
 
-def make_frf(mats, f_hz, snr_db, rng, averages=1):
-    """Noisy FRF of every output/input pair, the average of `averages` measurements. Returns dict with f, clean
-    H, noisy H, coherence, sigma (O x I; the noise of one measurement: the average's is sigma/sqrt(averages))."""
-    H = response.frf(mats, f_hz)
-    F, O, I = H.shape
+def channel_sigmas(H, snr_db):
+    """One measurement's noise sigma of every output/input pair of H (F x O x I): RMS |H| over the grid / SNR."""
+    _, O, I = H.shape
     sigma = np.zeros((O, I))
-    noisy = H.copy()
-    coh = np.ones(H.shape)
     for o in range(O):
         for i in range(I):
             # |H| of a contiguous copy: numpy's abs of the strided column took its vectorised or its scalar
@@ -54,6 +50,19 @@ def make_frf(mats, f_hz, snr_db, rng, averages=1):
             # allocated before; the contiguous copy always takes the vectorised one (the sigma's written digits)
             magnitude = np.abs(np.ascontiguousarray(H[:, o, i]))
             sigma[o, i] = noise_sigma(np.sqrt(np.mean(magnitude ** 2)), snr_db)
+    return sigma
+
+
+def make_frf(mats, f_hz, snr_db, rng, averages=1):
+    """Noisy FRF of every output/input pair, the average of `averages` measurements. Returns dict with f, clean
+    H, noisy H, coherence, sigma (O x I; the noise of one measurement: the average's is sigma/sqrt(averages))."""
+    H = response.frf(mats, f_hz)
+    F, O, I = H.shape
+    sigma = channel_sigmas(H, snr_db)
+    noisy = H.copy()
+    coh = np.ones(H.shape)
+    for o in range(O):
+        for i in range(I):
             if np.isfinite(snr_db):
                 n = rng.standard_normal(F) + 1j * rng.standard_normal(F)
                 scale = sigma[o, i] if averages == 1 else sigma[o, i] / np.sqrt(averages)
@@ -69,11 +78,7 @@ def make_analyser_frf(mats, f_hz, snr_db, rng, segments):
     sigma/sqrt(segments)."""
     H = response.frf(mats, f_hz)
     F, O, I = H.shape
-    sigma = np.zeros((O, I))
-    for o in range(O):
-        for i in range(I):
-            magnitude = np.abs(np.ascontiguousarray(H[:, o, i]))
-            sigma[o, i] = noise_sigma(np.sqrt(np.mean(magnitude ** 2)), snr_db)
+    sigma = channel_sigmas(H, snr_db)
     noisy = H.copy()
     coh = np.ones(H.shape)
     for i in range(I):
