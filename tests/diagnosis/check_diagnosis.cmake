@@ -10,8 +10,8 @@
 #         or "file=PATH|..." for measured data as they are (real data, no generator)
 #   -DDIAGNOSE_ARGS="--fit-band;20:320" (optional): more arguments of `mbgen diagnose`
 #   -DEXPECT_VERDICT=extended|no_extension_justified|unexplained|not_extended
-#   -DEXPECT_SELECTED=id (first selected extension, when extended), or A+B (two effects: both selected, either
-#                     order, nothing else)
+#   -DEXPECT_SELECTED=id (first selected extension, when extended), or A+B, A+B+C (several effects: all selected,
+#                     in any order, nothing else)
 #   -DEXPECT_ALSO=id (optional: another extension that must be among the selected)
 #   -DEXPECT_FACTOR=PARAM:TOL (optional: the first selected extension's new parameter PARAM estimates the factor of
 #                     the first data set's measurement-chain error, from its .truth.json, within a relative TOL)
@@ -130,7 +130,7 @@ if(verdict STREQUAL "extended")
     if(NOT explains_id STREQUAL id)
       message(FATAL_ERROR "extended.explains[${i}] is ${explains_id}, selected[${i}] ${id}")
     endif()
-    # Two effects at once: each named effect explains at least one of the nominal model's findings of its own.
+    # Several effects at once: each named effect explains at least one of the nominal model's findings of its own.
     if(EXPECT_SELECTED MATCHES "\\+" AND n_explained EQUAL 0)
       message(FATAL_ERROR "${id} is selected but explains none of the nominal model's findings")
     endif()
@@ -156,13 +156,13 @@ if(index EQUAL 1 AND n_findings GREATER 0)
   endif()
 endif()
 if(EXPECT_SELECTED MATCHES "\\+")
-  # Two effects at once ("A+B"): both selected, in either order, and nothing else.
+  # Several effects at once ("A+B", "A+B+C"): every one selected, in any order, and nothing else.
   string(REPLACE "+" ";" expected_all "${EXPECT_SELECTED}")
   list(SORT expected_all)
   set(sorted_selected ${all_selected})
   list(SORT sorted_selected)
   if(NOT sorted_selected STREQUAL expected_all)
-    message(FATAL_ERROR "selected '${all_selected}', expected both of ${EXPECT_SELECTED} and nothing else")
+    message(FATAL_ERROR "selected '${all_selected}', expected all of ${EXPECT_SELECTED} and nothing else")
   endif()
 elseif(EXPECT_SELECTED AND NOT selected STREQUAL EXPECT_SELECTED)
   message(FATAL_ERROR "selected '${selected}', expected ${EXPECT_SELECTED}")
@@ -178,7 +178,7 @@ if(EXPECT_ALSO AND NOT EXPECT_ALSO IN_LIST all_selected)
   message(FATAL_ERROR "selected '${all_selected}', expected ${EXPECT_ALSO} among them")
 endif()
 # An error of the measurement chain alone is never answered with a structural extension as well.
-if(EXPECT_SELECTED MATCHES "^measurement_chain:" AND NOT EXPECT_ALSO)
+if(EXPECT_SELECTED MATCHES "^measurement_chain:" AND NOT EXPECT_ALSO AND NOT EXPECT_SELECTED MATCHES "\\+")
   foreach(id IN LISTS all_selected)
     if(NOT id MATCHES "^measurement_chain:")
       message(FATAL_ERROR "a structural extension (${id}) beside the chain's error: selected '${all_selected}'")
