@@ -24,7 +24,7 @@ namespace {
 // start of the search rather than a search of their own. `held`: new parameters kept at their start values.
 // Each search also starts from the candidate's alternative starts (its new mode at the next peaks).
 // `centres`: which of the two searches run (a reduced fit repeats only the one that won the full fit); `won` is set
-// to the one whose fit is returned.
+// to the one whose fit is returned (with records, one search: left as it is).
 enum class Centres { Both, Current, Priors };
 ModelState search(const FitContext& fits, const Extension& ext, const Model& evaluator, const ModelState& base,
                   const Workers& workers, const std::vector<std::string>& held, Centres centres = Centres::Both,
@@ -37,22 +37,23 @@ ModelState search(const FitContext& fits, const Extension& ext, const Model& eva
     return fits.assess(evaluator, ext.model, ext.mdl_text, base.values, fits.options().candidate_starts + 1, workers,
                        priors, held, further, ext.nesting, settle);
   }
-  if (won) *won = Centres::Current;
-  if (centres == Centres::Priors) {
-    if (won) *won = Centres::Priors;
+  const auto around_current = [&] {
+    return fits.assess(evaluator, ext.model, ext.mdl_text, base.values, fits.options().candidate_starts, workers, {},
+                       held, further, ext.nesting, settle);
+  };
+  const auto around_priors = [&] {
     return fits.assess(evaluator, ext.model, ext.mdl_text, {}, fits.options().candidate_starts, workers, {}, held,
                        further);
+  };
+  if (centres != Centres::Both) {
+    if (won) *won = centres;
+    return centres == Centres::Current ? around_current() : around_priors();
   }
-  ModelState s = fits.assess(evaluator, ext.model, ext.mdl_text, base.values, fits.options().candidate_starts, workers,
-                             {}, held, further, ext.nesting, settle);
-  if (centres == Centres::Current) return s;
-  ModelState from_priors =
-      fits.assess(evaluator, ext.model, ext.mdl_text, {}, fits.options().candidate_starts, workers, {}, held, further);
-  if (from_priors.fit.cost < s.fit.cost) {
-    s = std::move(from_priors);
-    if (won) *won = Centres::Priors;
-  }
-  return s;
+  ModelState s = around_current();
+  ModelState from_priors = around_priors();
+  const bool priors_lower = from_priors.fit.cost < s.fit.cost;
+  if (won) *won = priors_lower ? Centres::Priors : Centres::Current;
+  return priors_lower ? std::move(from_priors) : std::move(s);
 }
 
 CandidateOutcome score(const FitContext& fits, const Extension& ext, const Model& evaluator, const ModelState& base,
