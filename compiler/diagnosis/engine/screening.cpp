@@ -25,6 +25,8 @@ void screen(const FitContext& fits, const std::vector<Extension>& extensions,
     FitOptions fo = fits.local_fit_options(info, base.values);
     fo.cores = cores;
     fo.memo = memo;
+    // Screening ranks by cost: what the data cannot determine stays where the fit left it (FitOptions).
+    fo.unidentifiable_to_prior = false;
     if (kind == Kind::Records) {
       fo.starts = 1;
       fo.spectral_search = false;

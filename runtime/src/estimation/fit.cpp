@@ -413,8 +413,9 @@ void search_globally(const FitContext& ctx, const SearchProblem& search, FitStat
   state.values = ctx.estimator.full_values(state.free, state.best.x);
 }
 
-// Identifiability at the estimate: rank can be lost away from the prior. What is lost goes back to its prior and
-// the rest is refitted, until the free parameters have full rank. A search on the records' spectral companion
+// Identifiability at the estimate: rank can be lost away from the prior. What is lost goes back to its prior (or
+// stays where the search left it: FitOptions::unidentifiable_to_prior) and the rest is refitted, until the free
+// parameters have full rank. A search on the records' spectral companion
 // refits there first and then on the records: set back to its prior, a parameter moves the model far from the
 // estimate, and the records' descent back (a simulation with sensitivities per iteration) took 819 iterations where
 // the companion's takes milliseconds each.
@@ -427,21 +428,23 @@ void refit_where_rank_is_lost(const FitContext& ctx, const SearchProblem& search
     if (a.rank() == static_cast<int>(free.size())) break;
     state.identifiability.record(ctx.setup.candidates, free, a);
     for (std::size_t j = 0; j < free.size(); ++j)
-      if (!a.identifiable[j]) state.values[free[j]] = prior[free[j]];
+      if (!a.identifiable[j] && ctx.options.unidentifiable_to_prior) state.values[free[j]] = prior[free[j]];
     state.free = select(free, a.identifiable);
+    // The parameters not free now stand at their priors or, those lost here, where the search left them.
+    const Eigen::VectorXd held_at = state.values;
     Eigen::VectorXd from = ctx.estimator.internal(state.free, state.values);
     if (search.on_companion()) {
       LmOptions on_companion = ctx.lm;
       on_companion.cost_tolerance = std::max(ctx.lm.cost_tolerance, ctx.options.search_cost_tolerance);
       const LmResult near = estimation::levenberg_marquardt(
-          search.estimator().function(state.free, ResidualKind::Weighted), from, on_companion,
+          search.estimator().function(state.free, ResidualKind::Weighted, held_at), from, on_companion,
           ctx.progress(0, 1, "final search"));
       if (near.x.allFinite()) from = near.x;
     }
-    state.best = estimation::levenberg_marquardt(ctx.estimator.function(state.free, ResidualKind::Weighted), from,
-                                                 ctx.lm, ctx.progress(0, 1, "final"));
+    state.best = estimation::levenberg_marquardt(ctx.estimator.function(state.free, ResidualKind::Weighted, held_at),
+                                                 from, ctx.lm, ctx.progress(0, 1, "final"));
     result.cost_history.insert(result.cost_history.end(), state.best.history.begin(), state.best.history.end());
-    state.values = ctx.estimator.full_values(state.free, state.best.x);
+    state.values = ctx.estimator.full_values(state.free, state.best.x, held_at);
   }
 }
 

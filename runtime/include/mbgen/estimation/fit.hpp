@@ -130,6 +130,12 @@ struct FitOptions {
 
   double zero_tolerance = 1e-10;  // identifiability: see identifiability.hpp
   double rank_tolerance = 1e-7;
+  // Where a parameter the data cannot determine at the estimate is held while the rest are fitted again: at its
+  // prior (reported there, the user's value), or where the search left it. At the estimate the refit starts at a
+  // stationary point of the others and cannot end above the search's cost; back at the prior it moves the model, and
+  // near the noise the refit crawled to its iteration limit and ended higher (a diagnosis's screening fits, which
+  // only rank candidates by their cost, hold them at the estimate: docs/diagnosis.md, step 5).
+  bool unidentifiable_to_prior = true;
 
   FrfWeighting frf_weighting;
   // Local fits already run (make_local_fit_memo()), shared by later fits of the same model: a search's start met
@@ -146,7 +152,8 @@ struct ParameterEstimate {
   double value = 0;
   double std = 0;             // standard deviation in physical units; 0 when not estimated
   bool estimated = false;     // a candidate that was fitted
-  bool identifiable = true;   // false: kept at the prior because the data cannot determine it, or at a bound
+  bool identifiable = true;   // false: the data cannot determine it (kept at the prior, or where the search left it:
+                              // FitOptions::unidentifiable_to_prior), or it is at a bound
   // "lower" or "upper" when the optimum lies on that bound (the data pull the parameter beyond it): the value is the
   // bound, there is no std (a linearisation at a bound means nothing) and identifiable is false. Empty otherwise.
   std::string at_bound;
