@@ -415,10 +415,9 @@ void search_globally(const FitContext& ctx, const SearchProblem& search, FitStat
 
 // Identifiability at the estimate: rank can be lost away from the prior. What is lost goes back to its prior (or
 // stays where the search left it: FitOptions::unidentifiable_to_prior) and the rest is refitted, until the free
-// parameters have full rank. A search on the records' spectral companion
-// refits there first and then on the records: set back to its prior, a parameter moves the model far from the
-// estimate, and the records' descent back (a simulation with sensitivities per iteration) took 819 iterations where
-// the companion's takes milliseconds each.
+// parameters have full rank. A search on the records' spectral companion refits there first and then on the
+// records: set back to its prior, a parameter moves the model far from the estimate, and the records' descent back
+// (a simulation with sensitivities per iteration) took 819 iterations where the companion's takes milliseconds each.
 void refit_where_rank_is_lost(const FitContext& ctx, const SearchProblem& search, FitState& state, FitResult& result) {
   const Eigen::VectorXd& prior = ctx.setup.prior;
   while (!state.free.empty()) {
@@ -427,8 +426,9 @@ void refit_where_rank_is_lost(const FitContext& ctx, const SearchProblem& search
         analyse_identifiability(ctx.estimator.scaled_jacobian(free, state.values, nullptr), ctx.id_options);
     if (a.rank() == static_cast<int>(free.size())) break;
     state.identifiability.record(ctx.setup.candidates, free, a);
-    for (std::size_t j = 0; j < free.size(); ++j)
-      if (!a.identifiable[j] && ctx.options.unidentifiable_to_prior) state.values[free[j]] = prior[free[j]];
+    if (ctx.options.unidentifiable_to_prior)
+      for (std::size_t j = 0; j < free.size(); ++j)
+        if (!a.identifiable[j]) state.values[free[j]] = prior[free[j]];
     state.free = select(free, a.identifiable);
     // The parameters not free now stand at their priors or, those lost here, where the search left them.
     const Eigen::VectorXd held_at = state.values;
