@@ -219,7 +219,8 @@ class Diagnoser {
       if (!(refit.fit.cost < current.fit.cost * (1.0 - 1e-9))) break;
       fits_.say("the current model fits better started from the estimate of " +
                 outcomes[static_cast<std::size_t>(from)].id +
-                format(" (BIC %.1f -> %.1f): a better optimum, not an effect; judging the candidates again",
+                format(" (cost %.6g -> %.6g", current.fit.cost, refit.fit.cost) +
+                format(", BIC %.1f -> %.1f): a better optimum, not an effect; judging the candidates again",
                        current.fit.bic, refit.fit.bic));
       if (result.selected.empty()) result.nominal = refit;  // the current model is still the nominal one
       current = std::move(refit);
