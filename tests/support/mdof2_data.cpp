@@ -12,19 +12,23 @@ FrfData mdof2_frf_data(const Mdof2Values& v, const Eigen::VectorXd& f_hz, double
   FrfData d;
   d.file = "mdof2-synthetic.csv";
   d.f_hz = f_hz;
-  std::normal_distribution<double> normal;
   for (int c = 0; c < 2; ++c) {
     FrfChannel ch;
     ch.output = c == 0 ? "d1" : "d2";
     ch.input = "F1";
     ch.values.resize(f_hz.size());
     for (Eigen::Index k = 0; k < f_hz.size(); ++k) ch.values[k] = c == 0 ? mdof2_g11(v, f_hz[k]) : mdof2_g21(v, f_hz[k]);
-    const double level = std::sqrt(ch.values.squaredNorm() / double(f_hz.size()));
-    for (Eigen::Index k = 0; k < f_hz.size(); ++k)
-      ch.values[k] += level * relative_noise / std::sqrt(2.0) * std::complex<double>(normal(rng), normal(rng));
+    add_relative_noise(ch.values, relative_noise, rng);
     d.channels.push_back(ch);
   }
   return d;
+}
+
+void add_relative_noise(Eigen::VectorXcd& values, double relative_noise, std::mt19937& rng) {
+  std::normal_distribution<double> normal;
+  const double level = std::sqrt(values.squaredNorm() / double(values.size()));
+  for (Eigen::Index k = 0; k < values.size(); ++k)
+    values[k] += level * relative_noise / std::sqrt(2.0) * std::complex<double>(normal(rng), normal(rng));
 }
 
 Eigen::MatrixXd zoh_modal_response(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C, const Eigen::MatrixXd& K,

@@ -329,15 +329,12 @@ TEST_CASE("unidentifiable_to_prior: where a parameter lost at the estimate is he
   ch.output = "d1";
   ch.input = "F1";
   ch.values.resize(f.size());
-  std::mt19937 rng(3);
-  std::normal_distribution<double> normal;
   for (Eigen::Index k = 0; k < f.size(); ++k) {
     const double w = 2 * M_PI * f[k];
     ch.values[k] = 1.0 / std::complex<double>(k11 - w * w * m1, w * c11) + 1 / (4 * k11);
   }
-  const double level = std::sqrt(ch.values.squaredNorm() / double(f.size()));
-  for (Eigen::Index k = 0; k < f.size(); ++k)
-    ch.values[k] += 1e-9 * level / std::sqrt(2.0) * std::complex<double>(normal(rng), normal(rng));
+  std::mt19937 rng(3);
+  test::add_relative_noise(ch.values, 1e-9, rng);
   data.channels.push_back(ch);
 
   test::LinearModel model("compliance", 2, {"F1"}, {"d1"});
@@ -380,8 +377,8 @@ TEST_CASE("unidentifiable_to_prior: where a parameter lost at the estimate is he
       CHECK(m2 == m2_prior);
       CHECK(r.cost > 100 * searched);  // back at its prior m2 acts again, and the others cannot make up for it
     } else {
-      CHECK(std::abs(m2) < 1e-6);               // where the search left it
-      CHECK(r.cost / searched - 1 <= 1e-9);     // not above the search's cost (evaluated again: rounding)
+      CHECK(std::abs(m2) < 1e-6);            // where the search left it
+      CHECK(r.cost / searched - 1 <= 1e-9);  // not above the search's cost (evaluated again: rounding)
     }
   }
 }

@@ -18,6 +18,10 @@ namespace mbgen::test {
 // `relative_noise` times the channel's RMS |H| (40 dB SNR: 0.01).
 FrfData mdof2_frf_data(const Mdof2Values& v, const Eigen::VectorXd& f_hz, double relative_noise, std::mt19937& rng);
 
+// Adds to `values` the noise mdof2_frf_data adds: complex Gaussian, of standard deviation `relative_noise` times
+// their RMS magnitude.
+void add_relative_noise(Eigen::VectorXcd& values, double relative_noise, std::mt19937& rng);
+
 // Exact zero-order-hold response from rest of M q'' + C q' + K q = B u, y = Cd q, by modal superposition of the
 // first-order system: z = V^-1 x decouples into z+ = e^{l h} z + (e^{l h} - 1)/l (V^-1 B) u.
 Eigen::MatrixXd zoh_modal_response(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C, const Eigen::MatrixXd& K,
