@@ -45,6 +45,11 @@ struct DiagnoseOptions {
   // H1 estimates; with records also three Gauss-Newton steps on the records); only the `full_fits` best by
   // screened BIC get the full two-search fit and a verdict. 0: every candidate is fitted fully.
   int full_fits = 6;
+  // A candidate's fits (screening and full) stop once their last 20 accepted steps together lowered n ln(cost), the
+  // measure BIC compares models by, by less than this (FitOptions::stall_gain): far below the evidence a candidate
+  // needs (|min_delta_bic|) and the rank changes screening looks for. The candidate taken is then fitted on to full
+  // convergence before it is judged and the next round starts from it. 0: candidates' fits run to the full tolerance.
+  double candidate_stall_gain = 0.1;
   double min_delta_bic = -10.0;
   double min_validation_gain = 0.01;       // relative decrease of the validation error required
   int max_extensions = 3;

@@ -113,6 +113,7 @@ ModelState FitContext::assess(const Model& evaluator, const ir::ModelIr& model, 
   fo.threads = workers.threads;
   fo.cores = workers.cores;
   fo.memo = workers.memo;
+  fo.stall_gain = workers.stall_gain;
   // Two fits may run at once (candidates on worker threads): their progress reaches the caller one at a time.
   if (options_.fit.progress)
     fo.progress = [this](const FitProgress& p) {

@@ -27,6 +27,7 @@ struct Workers {
   int threads = 1;
   std::shared_ptr<ThreadBudget> cores;
   std::shared_ptr<estimation::LocalFitMemo> memo;
+  double stall_gain = 0;  // FitOptions::stall_gain: a candidate's fit (DiagnoseOptions::candidate_stall_gain)
 };
 
 // A model's parameter values by name (`values` in the order of info.parameters).

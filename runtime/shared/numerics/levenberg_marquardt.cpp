@@ -103,12 +103,17 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
                                   : 1.0 / 3;
         lambda = std::max(lambda * shrink, 1e-15);
         accepted = true;
+        const std::size_t steps = res.history.size() - 1, window = static_cast<std::size_t>(options.stall_window);
         if (decrease < options.cost_tolerance) {
           res.converged = true;
           res.stop_reason = "relative cost decrease below tolerance";
         } else if (dx.norm() < options.step_tolerance || step < options.step_tolerance) {
           res.converged = true;
           res.stop_reason = "step below tolerance";
+        } else if (options.stall_gain > 0 && window > 0 && steps >= window &&
+                   static_cast<double>(r.size()) * std::log(res.history[steps - window] / res.cost) < options.stall_gain) {
+          res.converged = true;
+          res.stop_reason = kStalled;
         }
         break;
       }

@@ -41,6 +41,11 @@ struct LmOptions {
   double continue_gain = 0;
   int continue_window = 50;
   int iteration_cap = 0;
+  // A fit whose last `stall_window` accepted steps together lowered n ln(cost) by less than `stall_gain` stops,
+  // converged (stop_reason kStalled): for a fit that only ranks models by BIC, a crawl that gains a fraction of a
+  // unit per window changes no ranking. 0: off.
+  double stall_gain = 0;
+  int stall_window = 20;
   // Checked before every iteration: true stops the fit where it stands ("abandoned"; a multi-start's later start
   // whose result is no longer wanted, multistart.hpp).
   std::function<bool()> abandoned;
@@ -48,6 +53,8 @@ struct LmOptions {
 
 // LmResult::stop_reason of a fit stopped by LmOptions::abandoned.
 inline constexpr char kAbandoned[] = "abandoned";
+// LmResult::stop_reason of a fit stopped by LmOptions::stall_gain.
+inline constexpr char kStalled[] = "stalled: the last steps gained too little in n ln(cost)";
 
 struct LmResult {
   Eigen::VectorXd x;

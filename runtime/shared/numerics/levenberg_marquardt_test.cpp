@@ -7,6 +7,7 @@ using mbgen::estimation::levenberg_marquardt;
 using mbgen::estimation::LmDamping;
 using mbgen::estimation::LmOptions;
 using mbgen::estimation::LmResult;
+using mbgen::estimation::kStalled;
 using mbgen::estimation::ResidualFunction;
 
 namespace {
@@ -122,4 +123,37 @@ TEST_CASE("a fit still descending at the iteration limit goes on while a window 
   const std::size_t last = faded.history.size() - 1;
   CHECK(gain(last) <= 1e-6);     // it stopped once the window gained too little ...
   CHECK(gain(last - 1) > 1e-6);  // ... and not before
+}
+
+// The fading problem again (cost 1 + exp(-2x), falling by ever less): with a stall gain the fit stops, converged, at
+// the first window of stall_window steps that gained less than it in n ln(cost), well before the iteration limit.
+TEST_CASE("a fit whose window of steps gains less than the stall gain stops there, converged", "[estimation][lm]") {
+  const ResidualFunction fading = [](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    r.resize(2);
+    r << 1, std::exp(-x[0]);
+    if (J) {
+      J->resize(2, 1);
+      *J << 0, -std::exp(-x[0]);
+    }
+    return true;
+  };
+  LmOptions o;
+  o.cost_tolerance = 0;
+  o.step_tolerance = 0;
+  o.gradient_tolerance = 0;
+  o.max_iterations = 200;
+  o.stall_window = 5;
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(1);
+  const LmResult unstalled = levenberg_marquardt(fading, x0, o);  // stall_gain 0: off
+  CHECK(unstalled.stop_reason != kStalled);
+  o.stall_gain = 1e-6;
+  const LmResult stalled = levenberg_marquardt(fading, x0, o);
+  CHECK(stalled.converged);
+  CHECK(stalled.stop_reason == kStalled);
+  REQUIRE(stalled.iterations >= 5);
+  CHECK(stalled.iterations < unstalled.iterations);
+  const auto gain = [&](std::size_t end) { return 2 * std::log(stalled.history[end - 5] / stalled.history[end]); };
+  const std::size_t last = stalled.history.size() - 1;
+  CHECK(gain(last) < 1e-6);      // it stopped once the window gained too little ...
+  CHECK(gain(last - 1) >= 1e-6);  // ... and not before
 }

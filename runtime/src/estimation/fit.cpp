@@ -76,6 +76,7 @@ LmOptions lm_options(const FitOptions& options) {
   lm.gradient_tolerance = options.gradient_tolerance;
   lm.continue_gain = options.continue_gain;
   lm.iteration_cap = options.iteration_cap;
+  lm.stall_gain = options.stall_gain;
   return lm;
 }
 
@@ -258,6 +259,7 @@ std::optional<LocalFitMemo::Key> local_fit_key(const FitContext& ctx, const std:
     f.add(lm->max_iterations), f.add(static_cast<int>(lm->damping));
     f.add(lm->cost_tolerance), f.add(lm->step_tolerance), f.add(lm->gradient_tolerance);
     f.add(lm->continue_gain), f.add(lm->continue_window), f.add(lm->iteration_cap);
+    f.add(lm->stall_gain), f.add(lm->stall_window);
   }
   f.add(static_cast<int>(log_ratio_first));
   f.add(static_cast<int>(settling.size()));
