@@ -44,8 +44,8 @@ std::string summary(const diagnosis::DiagnosisResult& r) {
   const std::vector<Discrepancy>& nominal_findings = r.nominal.residual.discrepancies;
   for (std::size_t i = 0; i < r.selected.size(); ++i) {
     out << "selected: " << r.selected[i] << "\n";
-    if (const diagnosis::CandidateOutcome* o = diagnosis::selected_outcome(r, r.selected[i]))
-      out << "  " << o->description << "\n";
+    if (i < r.described.size() && !r.described[i].empty())
+      out << "  " << r.described[i] << "\n";
     if (i >= r.explains.size() || r.explains[i].empty()) continue;
     out << "  it explains:\n";
     for (std::size_t k = 0; k < r.explains[i].size() && k < kSummaryExplained; ++k)

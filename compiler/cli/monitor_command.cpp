@@ -143,9 +143,9 @@ MonitorResult monitor_machine(const std::string& model_path, const std::vector<s
     progress_done();
     if (d.verdict == "extended" && !d.selected.empty()) {
       change.cause = d.selected.front();
-      std::string description;
-      for (const diagnosis::CandidateOutcome& c : d.candidates)
-        if (c.id == change.cause && !c.description.empty()) description = " (" + c.description + ")";
+      const std::string description = d.described.empty() || d.described.front().empty()
+                                          ? std::string()
+                                          : " (" + d.described.front() + ")";
       change.text = "The diagnosis names the cause: " + change.cause + description + ". " + change.text;
     } else {
       change.text += " The diagnosis named no cause (verdict " + d.verdict + ")";

@@ -13,8 +13,9 @@
 #   -DEXPECT_SELECTED=id (first selected extension, when extended), or A+B, A+B+C (several effects: all selected,
 #                     in any order, nothing else)
 #   -DEXPECT_ALSO=id (optional: another extension that must be among the selected)
-#   -DEXPECT_FACTOR=PARAM:TOL (optional: the first selected extension's new parameter PARAM estimates the factor of
-#                     the first data set's measurement-chain error, from its .truth.json, within a relative TOL)
+#   -DEXPECT_FACTOR=PARAM:TOL (optional: the extended model's PARAM, a new parameter of a selected extension at the
+#                     final model's estimate, is the factor of the first data set's measurement-chain error, from its
+#                     .truth.json, within a relative TOL; so is what the summary and the JSON say of the extension)
 cmake_policy(SET CMP0057 NEW)  # if(... IN_LIST ...)
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
@@ -225,14 +226,18 @@ if(EXPECT_FACTOR)
   list(GET factor_args 0 factor_param)
   list(GET factor_args 1 factor_tolerance)
   execute_process(COMMAND "${PYTHON}" -c "
-import json, sys
+import json, re, sys
 d = json.load(open(sys.argv[1])); t = json.load(open(sys.argv[2]))
-c = next(c for c in d['candidates'] if c['id'] == d['selected'][0] and sys.argv[3] in c.get('new_parameters', {}))
-got = c['new_parameters'][sys.argv[3]]['value']
+m = re.search(r'^param\\s+' + sys.argv[3] + r'\\s*=\\s*(\\S+)', open(sys.argv[5]).read(), re.M)
+got = float(m.group(1))
 truth = t['measurement_chain'][0]['factor']
-print('%s = %.6g, the truth %.6g (relative error %.2g, tolerance %s)' % (sys.argv[3], got, truth, abs(got / truth - 1), sys.argv[4]))
-sys.exit(0 if abs(got / truth - 1) <= float(sys.argv[4]) else 1)
+tol = float(sys.argv[4])
+print('%s = %.6g, the truth %.6g (relative error %.2g, tolerance %s)' % (sys.argv[3], got, truth, abs(got / truth - 1), tol))
+said = [float(x) for e in d['extended']['explains'] for x in re.findall(r' (?:reads|is) (-?[0-9.e+-]+) \\+- ', e['description'])]
+print('the extended model is described as reading:', said)
+sys.exit(0 if abs(got / truth - 1) <= tol and any(abs(s / truth - 1) <= tol for s in said) else 1)
 " "${WORK_DIR}/diagnosis.json" "${WORK_DIR}/data0.truth.json" "${factor_param}" "${factor_tolerance}"
+                          "${WORK_DIR}/extended.mdl"
                   RESULT_VARIABLE status OUTPUT_VARIABLE factor_out ERROR_VARIABLE factor_err)
   message(STATUS "${factor_out}")
   if(NOT status EQUAL 0)

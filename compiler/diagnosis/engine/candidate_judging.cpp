@@ -222,6 +222,13 @@ std::string chain_description(const Extension& ext, const FitResult& fit, const 
   return text + (input ? ": the force transducer's calibration" : ": its sensor's calibration");
 }
 
+std::string described_at(const Extension& ext, const mbgen::Model& evaluator, const ModelState& s,
+                         const std::string& otherwise) {
+  if (ext.operator_name != kChainOperator) return otherwise;
+  return chain_description(ext, s.fit, otherwise,
+                           ext.new_parameters.size() == 1 && scale_confounded(evaluator, s, ext.new_parameters[0].name));
+}
+
 void rank_against(const ModelState& base, const DiagnoseOptions& options, CandidateOutcome& o) {
   o.delta_bic = o.fit.bic - base.fit.bic;
   o.qualifies = o.plausible && o.delta_bic < options.min_delta_bic &&
@@ -240,10 +247,7 @@ CandidateOutcome judge(const Extension& ext, const mbgen::Model& evaluator, cons
     o.description += " (the data do not determine " + names + ": held at " + (s.held.size() > 1 ? "their" : "its") +
                      " start value" + (s.held.size() > 1 ? "s" : "") + ")";
   }
-  if (ext.operator_name == kChainOperator)
-    o.description =
-        chain_description(ext, s.fit, o.description,
-                          ext.new_parameters.size() == 1 && scale_confounded(evaluator, s, ext.new_parameters[0].name));
+  o.description = described_at(ext, evaluator, s, o.description);
   judge_plausibility(ext, s.info, o);
   judge_new_body_modes(ext, evaluator, s, o);
   o.plausible = o.doubts.empty();

@@ -51,6 +51,11 @@ std::vector<std::string> undetermined_new_parameters(const Extension& ext, const
 std::string chain_description(const Extension& ext, const FitResult& fit, const std::string& otherwise,
                               bool size_confounded);
 
+// What extension `ext` says at the fit `s` of a model that contains it (`evaluator`): a chain candidate's
+// chain_description at that fit, `otherwise` for the rest.
+std::string described_at(const Extension& ext, const mbgen::Model& evaluator, const ModelState& s,
+                         const std::string& otherwise);
+
 // Delta BIC against the current model `base`, and whether the evidence is strong: BIC, validation and plausibility
 // (DiagnoseOptions::min_delta_bic, min_validation_gain).
 void rank_against(const ModelState& base, const DiagnoseOptions& options, CandidateOutcome& o);

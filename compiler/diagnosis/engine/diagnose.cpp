@@ -83,6 +83,7 @@ class Diagnoser {
     keep_only_full_explanations(result, current);
     if (!result.selected.empty())
       current.text = with_estimates(current.text, current.model.file, current.values, added_parameters(result));
+    describe_at_final(result, current);
     result.final = current;
     result.verdict = verdict_of(result);
     fits_.say("verdict: " + result.verdict);
@@ -249,6 +250,21 @@ class Diagnoser {
       best = best_qualifying(outcomes);
     }
     return best;
+  }
+
+  // DiagnosisResult::described: each selected extension's description at the final model's fit.
+  void describe_at_final(DiagnosisResult& result, const ModelState& final_state) const {
+    result.described.clear();
+    if (result.selected.empty()) return;
+    const std::unique_ptr<Model> evaluator = fits_.derive_model(final_state.model);
+    for (std::size_t i = 0; i < result.selected.size(); ++i) {
+      const CandidateOutcome* o = selected_outcome(result, result.selected[i]);
+      std::string text = o ? o->description : "";
+      for (const Taken& t : taken_)
+        if (t.extension.id == result.selected[i] && t.extension.variant == result.selected_variants[i])
+          text = described_at(t.extension, *evaluator, final_state, text);
+      result.described.push_back(std::move(text));
+    }
   }
 
   // Backward elimination of the first of two extensions taken (docs/diagnosis.md, step 7). Greedy rounds take the

@@ -116,6 +116,10 @@ struct DiagnosisResult {
   // Per selected extension (same order): the nominal model's findings (indices into nominal.residual.discrepancies)
   // that the model shows before that extension is taken and no longer shows after it: what that effect explains.
   std::vector<std::vector<std::size_t>> explains;
+  // Per selected extension (same order): what it says at the final model's estimates (a calibration factor's value
+  // and std from the final fit; the round that took it fitted it beside effects not named yet: a miscalibrated
+  // xs_rear with a loose mount and an added mass read 0.704 there and 0.799 in the final model, for 0.8).
+  std::vector<std::string> described;
   // Extensions taken in a round and dropped again because the one taken after them does their work (backward
   // elimination, docs/diagnosis.md step 7): without them the final model's BIC rose by `bic_rise`, less than a round
   // needs.

@@ -134,7 +134,8 @@ std::string diagnosis_json(const DiagnosisResult& result, const std::string& ext
     ordered_json explains = ordered_json::array();
     for (std::size_t i = 0; i < result.selected.size(); ++i)
       explains.push_back({{"id", result.selected[i]},
-                          {"discrepancies", i < result.explains.size() ? result.explains[i] : std::vector<std::size_t>{}}});
+                          {"discrepancies", i < result.explains.size() ? result.explains[i] : std::vector<std::size_t>{}},
+                          {"description", i < result.described.size() ? result.described[i] : std::string()}});
     j["extended"]["explains"] = explains;
   }
   // Invalid UTF-8 (a file name in another encoding) cannot be JSON text: such bytes become U+FFFD.

@@ -130,8 +130,9 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
     for (std::size_t i = 0; i < r.selected.size(); ++i) {
       const CandidateOutcome* o = selected_outcome(r, r.selected[i]);
       if (!o) continue;
-      report::Inline& line = said.emplace_back(report::Inline(report::code(r.selected[i])) << ": "
-                                                                                          << report::text(o->description));
+      const std::string& description = i < r.described.size() ? r.described[i] : o->description;
+      report::Inline& line =
+          said.emplace_back(report::Inline(report::code(r.selected[i])) << ": " << report::text(description));
       // The findings it explains, the strongest few (the list is strongest first); all are listed below.
       if (i < r.explains.size() && !r.explains[i].empty()) {
         constexpr std::size_t kNamed = 2;
