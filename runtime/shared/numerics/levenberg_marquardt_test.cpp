@@ -34,6 +34,26 @@ LmResult solve(LmDamping damping, const Eigen::VectorXd& x0, int& evaluations) {
   return levenberg_marquardt(rosenbrock(evaluations), x0, o);
 }
 
+// r = (1, exp(-x)): each Gauss-Newton step adds 1 to x, and the cost 1 + exp(-2x) falls by ever less.
+bool fading(const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+  r.resize(2);
+  r << 1, std::exp(-x[0]);
+  if (J) {
+    J->resize(2, 1);
+    *J << 0, -std::exp(-x[0]);
+  }
+  return true;
+}
+
+// Options whose tolerances never stop a fit: only the iteration rules under test do.
+LmOptions without_tolerances() {
+  LmOptions o;
+  o.cost_tolerance = 0;
+  o.step_tolerance = 0;
+  o.gradient_tolerance = 0;
+  return o;
+}
+
 }  // namespace
 
 TEST_CASE("both damping updates reach the minimum of Rosenbrock's valley", "[estimation][lm]") {
@@ -82,8 +102,7 @@ TEST_CASE("a point where the residuals cannot be evaluated is a failed trial", "
   }
 }
 
-// r = (1, exp(-x)): each Gauss-Newton step adds 1 to x, and the cost 1 + exp(-2x) falls by ever less; r = exp(-x)
-// alone: the cost falls at every step, towards its infimum 0 at x -> infinity.
+// fading, and r = exp(-x) alone: the cost falls at every step, towards its infimum 0 at x -> infinity.
 TEST_CASE("a fit still descending at the iteration limit goes on while a window of steps gains enough",
           "[estimation][lm]") {
   const ResidualFunction steady = [](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
@@ -91,19 +110,7 @@ TEST_CASE("a fit still descending at the iteration limit goes on while a window 
     if (J) *J = Eigen::MatrixXd::Constant(1, 1, -std::exp(-x[0]));
     return true;
   };
-  const ResidualFunction fading = [](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
-    r.resize(2);
-    r << 1, std::exp(-x[0]);
-    if (J) {
-      J->resize(2, 1);
-      *J << 0, -std::exp(-x[0]);
-    }
-    return true;
-  };
-  LmOptions o;
-  o.cost_tolerance = 0;
-  o.step_tolerance = 0;
-  o.gradient_tolerance = 0;
+  LmOptions o = without_tolerances();
   o.max_iterations = 10;
   o.continue_window = 5;
   o.iteration_cap = 30;
@@ -125,22 +132,10 @@ TEST_CASE("a fit still descending at the iteration limit goes on while a window 
   CHECK(gain(last - 1) > 1e-6);  // ... and not before
 }
 
-// The fading problem again (cost 1 + exp(-2x), falling by ever less): with a stall gain the fit stops, converged, at
-// the first window of stall_window steps that gained less than it in n ln(cost), well before the iteration limit.
+// fading again: with a stall gain the fit stops, converged, at the first window of stall_window steps that gained
+// less than it in n ln(cost), before it would stop otherwise.
 TEST_CASE("a fit whose window of steps gains less than the stall gain stops there, converged", "[estimation][lm]") {
-  const ResidualFunction fading = [](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
-    r.resize(2);
-    r << 1, std::exp(-x[0]);
-    if (J) {
-      J->resize(2, 1);
-      *J << 0, -std::exp(-x[0]);
-    }
-    return true;
-  };
-  LmOptions o;
-  o.cost_tolerance = 0;
-  o.step_tolerance = 0;
-  o.gradient_tolerance = 0;
+  LmOptions o = without_tolerances();
   o.max_iterations = 200;
   o.stall_window = 5;
   const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(1);
