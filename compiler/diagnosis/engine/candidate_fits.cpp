@@ -135,7 +135,7 @@ bool refit_from_sibling(const FitContext& fits, const std::vector<Extension>& ex
   ModelState state;
   try {
     state = fits.assess(*evaluators[k], ext.model, ext.mdl_text, start, 2,
-                        Workers{fits.options().fit.threads, nullptr, memos[k], fits.options().candidate_stall_gain}, {},
+                        Workers{fits.options().fit.threads, nullptr, memos[k], fits.candidate_stall_gain()}, {},
                         states[k].held);
   } catch (const std::exception&) {
     return false;  // not fitted from there: the candidate's own fit stands
@@ -236,7 +236,7 @@ void score_all(const FitContext& fits, const std::vector<Extension>& extensions,
         const double screened = outcomes[k].screen_delta_bic, on_records = outcomes[k].screen_records_delta_bic;
         outcomes[k] =
             score(fits, extensions[k], *evaluators[k], base, round,
-                  Workers{1, workers.cores, memos[k], fits.options().candidate_stall_gain}, states[k]);
+                  Workers{1, workers.cores, memos[k], fits.candidate_stall_gain()}, states[k]);
         outcomes[k].screen_delta_bic = screened;
         outcomes[k].screen_records_delta_bic = on_records;
       },

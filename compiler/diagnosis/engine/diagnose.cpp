@@ -185,7 +185,7 @@ class Diagnoser {
   // starts from it: the spindle's loose mount (outside the library, draw 6), taken in round 1, stood 10 above its
   // optimum in cost (about 30 in BIC) where its fit stalled, and the next round's fits would all start there.
   void fit_on_to_convergence(ModelState& s) const {
-    if (!(fits_.options().candidate_stall_gain > 0)) return;
+    if (!(fits_.candidate_stall_gain() > 0)) return;
     try {
       ModelState on = fits_.assess(*fits_.derive_model(s.model), s.model, s.text, s.values, 1,
                                    Workers{fits_.options().fit.threads, nullptr, nullptr}, {}, s.held);

@@ -49,6 +49,7 @@ struct DiagnoseOptions {
   // measure BIC compares models by, by less than this (FitOptions::stall_gain): far below the evidence a candidate
   // needs (|min_delta_bic|) and the rank changes screening looks for. The candidate taken is then fitted on to full
   // convergence before it is judged and the next round starts from it. 0: candidates' fits run to the full tolerance.
+  // Not with time records (FitContext::candidate_stall_gain).
   double candidate_stall_gain = 0.1;
   double min_delta_bic = -10.0;
   double min_validation_gain = 0.01;       // relative decrease of the validation error required

@@ -27,7 +27,7 @@ void screen(const FitContext& fits, const std::vector<Extension>& extensions,
     fo.memo = memo;
     // Screening ranks by cost: what the data cannot determine stays where the fit left it (FitOptions).
     fo.unidentifiable_to_prior = false;
-    fo.stall_gain = fits.options().candidate_stall_gain;
+    fo.stall_gain = fits.candidate_stall_gain();
     if (kind == Kind::Records) {
       fo.starts = 1;
       fo.spectral_search = false;
