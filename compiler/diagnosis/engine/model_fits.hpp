@@ -56,13 +56,13 @@ class FitContext {
   // With records: screen on the records' H1 estimates (estimation/spectral_companion.hpp) from now on.
   void screen_on_h1(std::vector<DataSet> h1, int averages);
 
-  // The options of a local fit from `from` (the values of it that model `info` estimates): the diagnosis's fit
-  // options without their chosen starts, on one thread, without progress.
   // DiagnoseOptions::candidate_stall_gain where it applies: 0 with time records. There a candidate's fit is
   // searched on the records' H1 estimates and refined on the records, and the stop made the spindle's 6 s base-mode
   // record slower (the on-feet base's fit 26 -> 48 s, the same result; 52-60 -> 84-94 s in all), not faster.
   double candidate_stall_gain() const { return has_records() ? 0.0 : options_.candidate_stall_gain; }
 
+  // The options of a local fit from `from` (the values of it that model `info` estimates): the diagnosis's fit
+  // options without their chosen starts, on one thread, without progress.
   FitOptions local_fit_options(const ModelInfo& info, const std::map<std::string, double>& from) const;
 
   // Derivation and tape compilation use GiNaC, which is not thread-safe: only ever on the calling thread.

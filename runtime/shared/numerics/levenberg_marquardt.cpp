@@ -45,11 +45,16 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
   }
   double lambda = 1e-3;
   Eigen::VectorXd D = Eigen::VectorXd::Zero(k);
+  // What the last `window` accepted steps together lowered n ln(cost) by; NaN before there were that many.
+  const auto window_gain = [&](int window) {
+    const std::size_t steps = res.history.size() - 1, w = static_cast<std::size_t>(window);
+    return window > 0 && steps >= w ? static_cast<double>(r.size()) * std::log(res.history[steps - w] / res.cost)
+                                    : std::numeric_limits<double>::quiet_NaN();
+  };
   // Past max_iterations: whether the last continue_window steps gained more than continue_gain.
   const auto still_descending = [&](int it) {
-    const std::size_t steps = res.history.size() - 1, window = static_cast<std::size_t>(options.continue_window);
-    return options.continue_gain > 0 && it < options.iteration_cap && window > 0 && steps >= window &&
-           static_cast<double>(r.size()) * std::log(res.history[steps - window] / res.cost) > options.continue_gain;
+    return options.continue_gain > 0 && it < options.iteration_cap &&
+           window_gain(options.continue_window) > options.continue_gain;
   };
   for (int it = 0; it < options.max_iterations || still_descending(it); ++it) {
     if (options.abandoned && options.abandoned()) {
@@ -103,15 +108,13 @@ LmResult levenberg_marquardt(const ResidualFunction& f, const Eigen::VectorXd& x
                                   : 1.0 / 3;
         lambda = std::max(lambda * shrink, 1e-15);
         accepted = true;
-        const std::size_t steps = res.history.size() - 1, window = static_cast<std::size_t>(options.stall_window);
         if (decrease < options.cost_tolerance) {
           res.converged = true;
           res.stop_reason = "relative cost decrease below tolerance";
         } else if (dx.norm() < options.step_tolerance || step < options.step_tolerance) {
           res.converged = true;
           res.stop_reason = "step below tolerance";
-        } else if (options.stall_gain > 0 && window > 0 && steps >= window &&
-                   static_cast<double>(r.size()) * std::log(res.history[steps - window] / res.cost) < options.stall_gain) {
+        } else if (options.stall_gain > 0 && window_gain(options.stall_window) < options.stall_gain) {
           res.converged = true;
           res.stop_reason = kStalled;
         }
