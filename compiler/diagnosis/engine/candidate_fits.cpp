@@ -42,8 +42,8 @@ ModelState search(const FitContext& fits, const Extension& ext, const Model& eva
 
 // A reduced fit: `held` (new parameters the data could not determine) back at their start values, the rest fitted
 // from where the last fit ended, one local fit. What the data cannot determine leaves the cost nearly flat, so the
-// optimum of the rest lies next to the last one. A new search from the search's centres (as before) took the
-// spindle's base on feet 4 of its 7 s in a round of three reductions, and ended 1200-2700 higher in BIC.
+// optimum of the rest lies next to the last one (a new search from the centres took the spindle's base on feet 4 of
+// its 7 s in a round of three reductions, and ended 1200-2700 higher in BIC).
 ModelState reduced_fit(const FitContext& fits, const Extension& ext, const Model& evaluator, const ModelState& last,
                        const Workers& workers, const std::vector<std::string>& held) {
   std::map<std::string, double> start = last.values;
