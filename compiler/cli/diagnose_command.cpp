@@ -46,7 +46,11 @@ std::string summary(const diagnosis::DiagnosisResult& r) {
     out << "selected: " << r.selected[i] << "\n";
     if (i < r.described.size() && !r.described[i].empty())
       out << "  " << r.described[i] << "\n";
-    if (i >= r.explains.size() || r.explains[i].empty()) continue;
+    if (i >= r.explains.size()) continue;
+    if (r.explains[i].empty()) {
+      out << "  " << diagnosis::kExplainsNoFindingAlone << "\n";
+      continue;
+    }
     out << "  it explains:\n";
     for (std::size_t k = 0; k < r.explains[i].size() && k < kSummaryExplained; ++k)
       out << "    - " << diagnosis::reader_text(r, nominal_findings[r.explains[i][k]].text) << "\n";

@@ -135,6 +135,16 @@ if(verdict STREQUAL "extended")
     if(EXPECT_SELECTED MATCHES "\\+" AND n_explained EQUAL 0)
       message(FATAL_ERROR "${id} is selected but explains none of the nominal model's findings")
     endif()
+    # One that clears none on its own says so, on standard output and in the report (diagnosis_report.hpp).
+    if(n_explained EQUAL 0)
+      file(READ "${WORK_DIR}/report/report.md" report_md)
+      string(FIND "${out}" "clears none of the nominal model's findings on its own" said_in_summary)
+      string(FIND "${report_md}" "clears none of the nominal model's findings on its own" said_in_report)
+      if(said_in_summary EQUAL -1 OR said_in_report EQUAL -1)
+        message(FATAL_ERROR "${id} explains none of the nominal model's findings and does not say so "
+                            "(summary ${said_in_summary}, report ${said_in_report})")
+      endif()
+    endif()
     # The report's list of findings marks each one an extension explains with that extension.
     if(n_explained GREATER 0)
       file(READ "${WORK_DIR}/report/report.md" report_md)

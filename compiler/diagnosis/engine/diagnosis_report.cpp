@@ -141,6 +141,10 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
              << " of the nominal model" << (cleared.size() > kNamed ? ", the strongest: " : ": ");
         for (std::size_t k = 0; k < cleared.size() && k < kNamed; ++k)
           line << (k ? "; " : "") << report::text(reader_text(r, r.nominal.residual.discrepancies[cleared[k]].text));
+      } else if (i < r.explains.size()) {
+        std::string alone = kExplainsNoFindingAlone;
+        alone[0] = 'I';
+        line << ". " << report::text(alone);
       }
     }
     doc.list(std::move(said));
