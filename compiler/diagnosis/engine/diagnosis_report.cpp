@@ -143,7 +143,7 @@ void write_diagnosis_report(const std::string& dir, const DiagnosisResult& r) {
           line << (k ? "; " : "") << report::text(reader_text(r, r.nominal.residual.discrepancies[cleared[k]].text));
       } else if (i < r.explains.size()) {
         std::string alone = kExplainsNoFindingAlone;
-        alone[0] = 'I';
+        alone[0] = 'I';  // a sentence of its own here, a clause under the extension on standard output
         line << ". " << report::text(alone);
       }
     }

@@ -14,8 +14,8 @@ namespace mbgen::diagnosis {
 std::string reader_text(const DiagnosisResult& result, const std::string& finding_text);
 
 // Said of a selected extension that clears none of the nominal model's findings on its own (its
-// DiagnosisResult::explains is empty): an effect taken last, once the others had cleared what it bears on (a loose
-// mount after a sensor's calibration and an added mass), was otherwise listed with nothing to say for it.
+// DiagnosisResult::explains is empty), so that it never stands with nothing said for it: an effect taken last, once
+// the others had cleared what it bears on (a loose mount after a sensor's calibration and an added mass).
 inline constexpr const char* kExplainsNoFindingAlone =
     "it clears none of the nominal model's findings on its own (extensions taken before it cleared them, or they still "
     "show): it was taken for the misfit over the noise that it removes";
