@@ -155,26 +155,44 @@ void score_all(const FitContext& fits, const std::vector<Extension>& extensions,
   for (const DataSet& d : fits.data())
     for (const auto& entry : d.set()) names_in_use.insert(entry.first);
   const std::vector<double> probes = probe_frequencies(fits.data());
-  for (std::size_t k = 0; k < n; ++k) {
+  std::vector<std::shared_ptr<estimation::LocalFitMemo>> memos(n);
+  const auto derive = [&](std::size_t k) {
     try {
       evaluators[k] = fits.derive_model(extensions[k].model);
     } catch (const std::exception& e) {
       derive_errors[k] = e.what();
-      continue;
+      return;
     }
     for (std::size_t j = 0; j < k && twin[k] < 0; ++j)
       if (evaluators[j] && twin[j] < 0 && same_response(*evaluators[j], *evaluators[k], probes, names_in_use))
         twin[k] = static_cast<int>(j);
+    if (twin[k] < 0) memos[k] = make_local_fit_memo();
+  };
+  // A round screens its first candidates while the later ones are still being derived (46 spindle candidates,
+  // 0.6-1.6 s on one core; screening.hpp), if it screens at all: at most every candidate is fitted in its own right.
+  const auto screening_cores = std::make_shared<ThreadBudget>(fits.options().fit.threads);
+  std::optional<Screening> screening;
+  if (Screening::applies(fits, n)) screening.emplace(fits, base, screening_cores);
+  std::vector<ScreeningFit> screened(n);
+  if (screening) {
+    consume_while_producing(
+        n, *screening_cores, derive, [&] { screening->fit_base(); },
+        [&](std::size_t k) {
+          if (evaluators[k] && twin[k] < 0) screened[k] = screening->fit(extensions[k], *evaluators[k], memos[k]);
+        });
+  } else {
+    for (std::size_t k = 0; k < n; ++k) derive(k);
   }
   std::vector<std::size_t> fitted;  // the candidates fitted in their own right
   for (std::size_t k = 0; k < n; ++k)
     if (evaluators[k] && twin[k] < 0) fitted.push_back(k);
-  std::vector<std::shared_ptr<estimation::LocalFitMemo>> memos(n);
-  for (std::size_t k : fitted) memos[k] = make_local_fit_memo();
   std::vector<char> screened_out(n, 0);
   outcomes.assign(n, CandidateOutcome{});
   states.assign(n, ModelState{});
-  screen(fits, extensions, evaluators, memos, base, round, fitted, outcomes, states, screened_out);
+  // Screened only where more were fitted in their own right than full fits have places; otherwise the screening
+  // fits, made while the twins were not yet known, are not used.
+  if (screening && Screening::applies(fits, fitted.size()))
+    screening->select(extensions, fitted, round, screened, outcomes, states, screened_out);
   fitted.erase(std::remove_if(fitted.begin(), fitted.end(), [&](std::size_t k) { return screened_out[k] != 0; }),
                fitted.end());
   // Candidates side by side (each fit on one thread) keep the cores busy through a fit's serial stretches; a core

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <exception>
 #include <mutex>
 #include <system_error>
@@ -96,6 +97,62 @@ void ordered_parallel(std::size_t count, int threads, const std::function<void(s
 void ordered_parallel(std::size_t count, ThreadBudget& cores, const std::function<void(std::size_t)>& task,
                       const std::function<void(std::size_t)>& done) {
   run_ordered(count, 1, &cores, task, done);
+}
+
+void consume_while_producing(std::size_t count, ThreadBudget& cores, const std::function<void(std::size_t)>& produce,
+                             const std::function<void()>& prepare, const std::function<void(std::size_t)>& consume) {
+  if (!cores.try_take()) {
+    for (std::size_t i = 0; i < count; ++i) produce(i);
+    prepare();
+    ordered_parallel(count, cores, consume, [](std::size_t) {});
+    return;
+  }
+  std::mutex mutex;  // guards produced and abandoned
+  std::condition_variable ready;
+  std::size_t produced = 0;  // produce(i) has returned for every i below
+  bool abandoned = false;    // a produce() threw: no more consume()
+  std::exception_ptr consumer_error;
+  std::thread consumers([&] {  // on the core just taken
+    try {
+      prepare();
+      ordered_parallel(
+          count, cores,
+          [&](std::size_t i) {
+            {
+              std::unique_lock<std::mutex> lock(mutex);
+              ready.wait(lock, [&] { return produced > i || abandoned; });
+              if (produced <= i) return;
+            }
+            consume(i);
+          },
+          [](std::size_t) {});
+    } catch (...) {
+      consumer_error = std::current_exception();
+    }
+    cores.give_back();
+  });
+  std::exception_ptr producer_error;
+  for (std::size_t i = 0; i < count; ++i) {
+    try {
+      produce(i);
+    } catch (...) {
+      producer_error = std::current_exception();
+    }
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (producer_error)
+        abandoned = true;
+      else
+        produced = i + 1;
+    }
+    ready.notify_all();
+    if (producer_error) break;
+  }
+  cores.give_back();  // the caller's core, lent to the consumers while it waits
+  consumers.join();
+  cores.take_back();
+  if (producer_error) std::rethrow_exception(producer_error);
+  if (consumer_error) std::rethrow_exception(consumer_error);
 }
 
 void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& task) {

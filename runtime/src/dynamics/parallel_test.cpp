@@ -5,10 +5,12 @@
 #include <atomic>
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <functional>
 #include <mutex>
 #include <set>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -122,6 +124,91 @@ TEST_CASE("ThreadBudget: a single core has none to lend, and a loop on it runs o
   std::set<std::thread::id> threads;
   ordered_parallel(
       4, cores, [&](std::size_t) { threads.insert(std::this_thread::get_id()); }, [](std::size_t) {});
+  CHECK(threads == std::set<std::thread::id>{std::this_thread::get_id()});
+  CHECK(cores.free_cores() == 0);
+}
+
+TEST_CASE("consume_while_producing: production on the caller's thread in order, each consume after its produce and "
+          "before the production ends, cores given back") {
+  ThreadBudget cores(2);
+  const std::size_t n = 6;
+  const std::thread::id caller = std::this_thread::get_id();
+  std::mutex mutex;
+  std::condition_variable first_consumed;
+  bool consumed_first = false;
+  std::vector<std::size_t> order;  // produced indices
+  std::vector<std::atomic<int>> produced(n), consumed(n);
+  std::atomic<int> prepared{0}, misplaced{0};
+  bool overlapped = false;
+  consume_while_producing(
+      n, cores,
+      [&](std::size_t i) {
+        if (std::this_thread::get_id() != caller) ++misplaced;
+        if (i + 1 == n) {  // the last one waits (at most 10 s) until a consumer has run: the stages overlap
+          std::unique_lock<std::mutex> lock(mutex);
+          overlapped = first_consumed.wait_for(lock, std::chrono::seconds(10), [&] { return consumed_first; });
+        }
+        order.push_back(i);
+        ++produced[i];
+      },
+      [&] { ++prepared; },
+      [&](std::size_t i) {
+        if (produced[i] != 1 || prepared != 1 || std::this_thread::get_id() == caller) ++misplaced;
+        ++consumed[i];
+        std::lock_guard<std::mutex> lock(mutex);
+        consumed_first = true;
+        first_consumed.notify_all();
+      });
+  CHECK(overlapped);
+  CHECK(misplaced == 0);
+  CHECK(prepared == 1);
+  CHECK(order == std::vector<std::size_t>{0, 1, 2, 3, 4, 5});
+  for (std::size_t i = 0; i < n; ++i) CHECK(consumed[i] == 1);
+  CHECK(cores.free_cores() == 1);
+}
+
+TEST_CASE("consume_while_producing: a failing produce ends the production, nothing consumed from it on, its "
+          "exception rethrown") {
+  ThreadBudget cores(2);
+  std::vector<std::atomic<int>> consumed(6);
+  std::atomic<int> produced{0};
+  CHECK_THROWS_WITH(consume_while_producing(
+                        6, cores,
+                        [&](std::size_t i) {
+                          if (i == 3) throw std::runtime_error("produce 3");
+                          ++produced;
+                        },
+                        [] {}, [&](std::size_t i) { ++consumed[i]; }),
+                    "produce 3");
+  CHECK(produced == 3);
+  for (std::size_t i = 3; i < 6; ++i) CHECK(consumed[i] == 0);
+  CHECK(cores.free_cores() == 1);
+  CHECK_THROWS_WITH(consume_while_producing(
+                        6, cores, [](std::size_t) {}, [] {},
+                        [](std::size_t i) {
+                          if (i == 4) throw std::runtime_error("consume 4");
+                          if (i == 2) throw std::runtime_error("consume 2");
+                        }),
+                    "consume 2");
+  CHECK(cores.free_cores() == 1);
+}
+
+TEST_CASE("consume_while_producing: a single core produces everything, then prepares and consumes, on its caller") {
+  ThreadBudget cores(1);
+  std::vector<std::string> steps;
+  std::set<std::thread::id> threads;
+  consume_while_producing(
+      3, cores,
+      [&](std::size_t i) {
+        steps.push_back("p" + std::to_string(i));
+        threads.insert(std::this_thread::get_id());
+      },
+      [&] { steps.push_back("prepare"); },
+      [&](std::size_t i) {
+        steps.push_back("c" + std::to_string(i));
+        threads.insert(std::this_thread::get_id());
+      });
+  CHECK(steps == std::vector<std::string>{"p0", "p1", "p2", "prepare", "c0", "c1", "c2"});
   CHECK(threads == std::set<std::thread::id>{std::this_thread::get_id()});
   CHECK(cores.free_cores() == 0);
 }

@@ -50,6 +50,18 @@ void ordered_parallel(std::size_t count, int threads, const std::function<void(s
 void ordered_parallel(std::size_t count, ThreadBudget& cores, const std::function<void(std::size_t)>& task,
                       const std::function<void(std::size_t)>& done);
 
+// Runs produce(i) for i = 0..count-1 in order on the caller's thread, and on `cores`' other cores prepare() once
+// and then consume(i) for each i as soon as produce(i) has returned (several at once; by ordered_parallel on the
+// budget). Once the production is done, the caller lends its core to the consumers until they finish. For work of
+// which one stage must stay on one thread (GiNaC's derivations of a diagnosis round's candidate models, which are
+// not thread-safe) and the next may run anywhere (their screening fits): the other cores need not wait for the
+// whole first stage. Without a free core: every produce(i), then prepare() and every consume(i), on the caller's
+// thread. A produce() that throws ends the production: no consume() starts for it or any later index, and its
+// exception is rethrown once the consumers have stopped; else the exception of prepare() or of the lowest failing
+// consume() is.
+void consume_while_producing(std::size_t count, ThreadBudget& cores, const std::function<void(std::size_t)>& produce,
+                             const std::function<void()>& prepare, const std::function<void(std::size_t)>& consume);
+
 // Runs task(i) for i = 0..count-1 on `threads` workers (at least one); the exception of the lowest index is
 // rethrown after all workers have stopped.
 void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& task);
