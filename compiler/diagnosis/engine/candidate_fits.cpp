@@ -170,18 +170,25 @@ void score_all(const FitContext& fits, const std::vector<Extension>& extensions,
   };
   // A round screens its first candidates while the later ones are still being derived (46 spindle candidates,
   // 0.6-1.6 s on one core; screening.hpp), if it screens at all: at most every candidate is fitted in its own right.
+  // Not with time records: there the work of the full fits that follow depends on when the screening's starts ran
+  // (what their memo holds; a race of refinements on the records, refinement_race.hpp, ends on the other thread's
+  // pace), and the spindle's connection from a 1 s record, screened along with the derivations, took 76-113 s
+  // against 47-65 s screened after them (the base on feet's full fit on the record), with the same results.
   const auto screening_cores = std::make_shared<ThreadBudget>(fits.options().fit.threads);
   std::optional<Screening> screening;
   if (Screening::applies(fits, n)) screening.emplace(fits, base, screening_cores);
   std::vector<ScreeningFit> screened(n);
-  if (screening) {
-    consume_while_producing(
-        n, *screening_cores, derive, [&] { screening->fit_base(); },
-        [&](std::size_t k) {
-          if (evaluators[k] && twin[k] < 0) screened[k] = screening->fit(extensions[k], *evaluators[k], memos[k]);
-        });
+  const auto screen = [&](std::size_t k) {
+    if (evaluators[k] && twin[k] < 0) screened[k] = screening->fit(extensions[k], *evaluators[k], memos[k]);
+  };
+  if (screening && !fits.has_records()) {
+    consume_while_producing(n, *screening_cores, derive, [&] { screening->fit_base(); }, screen);
   } else {
     for (std::size_t k = 0; k < n; ++k) derive(k);
+    if (screening) {
+      screening->fit_base();
+      ordered_parallel(n, *screening_cores, screen, [](std::size_t) {});
+    }
   }
   std::vector<std::size_t> fitted;  // the candidates fitted in their own right
   for (std::size_t k = 0; k < n; ++k)
