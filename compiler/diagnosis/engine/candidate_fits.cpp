@@ -178,6 +178,12 @@ void score_all(const FitContext& fits, const std::vector<Extension>& extensions,
   std::optional<Screening> screening;
   if (Screening::applies(fits, n)) screening.emplace(fits, base, screening_cores);
   std::vector<ScreeningFit> screened(n);
+  const auto in_own_right = [&] {  // the candidates fitted in their own right: derived, and no twin's
+    std::vector<std::size_t> own;
+    for (std::size_t k = 0; k < n; ++k)
+      if (evaluators[k] && twin[k] < 0) own.push_back(k);
+    return own;
+  };
   const auto screen = [&](std::size_t k) {
     if (evaluators[k] && twin[k] < 0) screened[k] = screening->fit(extensions[k], *evaluators[k], memos[k]);
   };
@@ -185,14 +191,12 @@ void score_all(const FitContext& fits, const std::vector<Extension>& extensions,
     consume_while_producing(n, *screening_cores, derive, [&] { screening->fit_base(); }, screen);
   } else {
     for (std::size_t k = 0; k < n; ++k) derive(k);
-    if (screening) {
+    if (screening && Screening::applies(fits, in_own_right().size())) {
       screening->fit_base();
       ordered_parallel(n, *screening_cores, screen, [](std::size_t) {});
     }
   }
-  std::vector<std::size_t> fitted;  // the candidates fitted in their own right
-  for (std::size_t k = 0; k < n; ++k)
-    if (evaluators[k] && twin[k] < 0) fitted.push_back(k);
+  std::vector<std::size_t> fitted = in_own_right();
   std::vector<char> screened_out(n, 0);
   outcomes.assign(n, CandidateOutcome{});
   states.assign(n, ModelState{});
