@@ -101,18 +101,18 @@ void ordered_parallel(std::size_t count, ThreadBudget& cores, const std::functio
 
 void consume_while_producing(std::size_t count, ThreadBudget& cores, const std::function<void(std::size_t)>& produce,
                              const std::function<void()>& prepare, const std::function<void(std::size_t)>& consume) {
-  if (!cores.try_take()) {
+  const auto in_turn = [&] {
     for (std::size_t i = 0; i < count; ++i) produce(i);
     prepare();
     ordered_parallel(count, cores, consume, [](std::size_t) {});
-    return;
-  }
+  };
+  if (!cores.try_take()) return in_turn();
   std::mutex mutex;  // guards produced and abandoned
   std::condition_variable ready;
   std::size_t produced = 0;  // produce(i) has returned for every i below
   bool abandoned = false;    // a produce() threw: no more consume()
   std::exception_ptr consumer_error;
-  std::thread consumers([&] {  // on the core just taken
+  const auto consume_all = [&] {  // on the core just taken
     try {
       prepare();
       ordered_parallel(
@@ -130,7 +130,14 @@ void consume_while_producing(std::size_t count, ThreadBudget& cores, const std::
       consumer_error = std::current_exception();
     }
     cores.give_back();
-  });
+  };
+  std::thread consumers;
+  try {
+    consumers = std::thread(consume_all);
+  } catch (const std::system_error&) {  // no thread to be had: the core back, and all on this thread
+    cores.give_back();
+    return in_turn();
+  }
   std::exception_ptr producer_error;
   for (std::size_t i = 0; i < count; ++i) {
     try {
