@@ -178,14 +178,16 @@ void score_all(const FitContext& fits, const std::vector<Extension>& extensions,
   std::optional<Screening> screening;
   if (Screening::applies(fits, n)) screening.emplace(fits, base, screening_cores);
   std::vector<ScreeningFit> screened(n);
-  const auto in_own_right = [&] {  // the candidates fitted in their own right: derived, and no twin's
+  // The candidates fitted in their own right: derived, and not the same model as an earlier one.
+  const auto own_right = [&](std::size_t k) { return evaluators[k] && twin[k] < 0; };
+  const auto in_own_right = [&] {
     std::vector<std::size_t> own;
     for (std::size_t k = 0; k < n; ++k)
-      if (evaluators[k] && twin[k] < 0) own.push_back(k);
+      if (own_right(k)) own.push_back(k);
     return own;
   };
   const auto screen = [&](std::size_t k) {
-    if (evaluators[k] && twin[k] < 0) screened[k] = screening->fit(extensions[k], *evaluators[k], memos[k]);
+    if (own_right(k)) screened[k] = screening->fit(extensions[k], *evaluators[k], memos[k]);
   };
   if (screening && !fits.has_records()) {
     consume_while_producing(n, *screening_cores, derive, [&] { screening->fit_base(); }, screen);
