@@ -152,7 +152,7 @@ int run_diagnose(int argc, char** argv) {
   app.add_flag("--no-start-from-modes", no_modal_start, "the nominal fit does not start where the model's modes match "
                "the data's own (by default it does, beside its random starts; docs/estimation.md)");
   app.add_option("--full-fits", options.full_fits,
-                 "candidates fitted fully after the screening (default 6; 0: every candidate)")
+                 "candidates fitted fully after the screening (default 4; 0: every candidate)")
       ->check(non_negative_number());
   std::string method = "auto";
   MethodOptions method_options;

@@ -43,8 +43,10 @@ struct DiagnoseOptions {
   // Screening: every candidate is first fitted more cheaply (two local fits, from the current estimate and from
   // the priors, without random starts, validation or residual analysis, on FRFs: the measured ones or the records'
   // H1 estimates; with records also three Gauss-Newton steps on the records); only the `full_fits` best by
-  // screened BIC get the full two-search fit and a verdict. 0: every candidate is fitted fully.
-  int full_fits = 6;
+  // screened BIC get the full two-search fit and a verdict. 0: every candidate is fitted fully. Four: in the test
+  // cases and draw sweeps the candidate taken ranked first, second or third in the screening (docs/diagnosis.md,
+  // step 5); the fourth place is the margin.
+  int full_fits = 4;
   // A candidate's fits (screening and full) stop once their last 20 accepted steps together lowered n ln(cost), the
   // measure BIC compares models by, by less than this (FitOptions::stall_gain): far below the evidence a candidate
   // needs (|min_delta_bic|) and the rank changes screening looks for. The candidate taken is then fitted on to full
