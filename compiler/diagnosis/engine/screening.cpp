@@ -51,7 +51,7 @@ FitResult Screening::fit_as(const Model& evaluator, const Extension* ext, Kind k
     return mbgen::fit(evaluator, fits_.screen_data(), fo);
   }
   // Converged local fits: cut to 40 or 100 iterations, or stopped after the log-ratio search, the compliant
-  // base of the spindle's base-mode data ranked below the six kept (screening delta BIC +359 against -15103).
+  // base of the spindle's base-mode data ranked below six others (screening delta BIC +359 against -15103).
   fo.starts = is_base ? 1 : 2;
   if (!is_base) {
     for (const ParameterInfo& p : info.parameters) fo.also_start_at[p.name] = p.value;
@@ -74,9 +74,9 @@ void Screening::fit_base() {
 
 // A candidate whose screening fit on the FRFs fails (its model cannot be evaluated there: a delay's dynamic
 // stiffness singular at the lowest line) has failed: its full fit, on the same lines, fails the same way. It takes
-// no full fit's place and speaks for no sibling variant (on frame3 two such delays took two of the six places, and
-// drew in their siblings' full fits, 10 s of a round). A failed Gauss-Newton screening on the records is no
-// evidence either way.
+// no full fit's place and speaks for no sibling variant (on frame3 two such delays took two of the six places there
+// were, and drew in their siblings' full fits, 10 s of a round). A failed Gauss-Newton screening on the records is
+// no evidence either way.
 ScreeningFit Screening::fit(const Extension& ext, const Model& evaluator,
                             const std::shared_ptr<estimation::LocalFitMemo>& memo) const {
   ScreeningFit out;
