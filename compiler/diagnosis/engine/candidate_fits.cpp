@@ -176,29 +176,29 @@ void score_all(const FitContext& fits, const std::vector<Extension>& extensions,
   // against 47-65 s screened after them (the base on feet's full fit on the record), with the same results.
   const auto screening_cores = std::make_shared<ThreadBudget>(fits.options().fit.threads);
   std::optional<Screening> screening;
-  if (Screening::applies(fits, n)) screening.emplace(fits, base, screening_cores);
   std::vector<ScreeningFit> screened(n);
   // The candidates fitted in their own right: derived, and not the same model as an earlier one.
   const auto own_right = [&](std::size_t k) { return evaluators[k] && twin[k] < 0; };
-  const auto in_own_right = [&] {
-    std::vector<std::size_t> own;
-    for (std::size_t k = 0; k < n; ++k)
-      if (own_right(k)) own.push_back(k);
-    return own;
-  };
   const auto screen = [&](std::size_t k) {
     if (own_right(k)) screened[k] = screening->fit(extensions[k], *evaluators[k], memos[k]);
   };
-  if (screening && !fits.has_records()) {
+  const bool along = !fits.has_records() && Screening::applies(fits, n);
+  if (along) {
+    screening.emplace(fits, base, screening_cores);
     consume_while_producing(n, *screening_cores, derive, [&] { screening->fit_base(); }, screen);
   } else {
     for (std::size_t k = 0; k < n; ++k) derive(k);
-    if (screening && Screening::applies(fits, in_own_right().size())) {
-      screening->fit_base();
-      ordered_parallel(n, *screening_cores, screen, [](std::size_t) {});
-    }
   }
-  std::vector<std::size_t> fitted = in_own_right();
+  std::vector<std::size_t> fitted;
+  for (std::size_t k = 0; k < n; ++k)
+    if (own_right(k)) fitted.push_back(k);
+  // Otherwise screened after the derivations, where more are fitted in their own right than full fits have places
+  // (known only now: twins are found as the models are derived).
+  if (!along && Screening::applies(fits, fitted.size())) {
+    screening.emplace(fits, base, screening_cores);
+    screening->fit_base();
+    ordered_parallel(n, *screening_cores, screen, [](std::size_t) {});
+  }
   std::vector<char> screened_out(n, 0);
   outcomes.assign(n, CandidateOutcome{});
   states.assign(n, ModelState{});

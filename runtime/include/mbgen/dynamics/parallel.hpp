@@ -56,9 +56,9 @@ void ordered_parallel(std::size_t count, ThreadBudget& cores, const std::functio
 // which one stage must stay on one thread (GiNaC's derivations of a diagnosis round's candidate models, which are
 // not thread-safe) and the next may run anywhere (their screening fits): the other cores need not wait for the
 // whole first stage. Without a free core (or a thread for it): every produce(i), then prepare() and every
-// consume(i), on the caller's thread. A produce() that throws ends the production: no consume() starts for it or any later index, and its
-// exception is rethrown once the consumers have stopped; else the exception of prepare() or of the lowest failing
-// consume() is.
+// consume(i), on the caller's thread. A produce() that throws ends the production: no consume() starts for it or
+// any later index, and its exception is rethrown once the consumers have stopped; else the exception of prepare()
+// or of the lowest failing consume() is.
 void consume_while_producing(std::size_t count, ThreadBudget& cores, const std::function<void(std::size_t)>& produce,
                              const std::function<void()>& prepare, const std::function<void(std::size_t)>& consume);
 
